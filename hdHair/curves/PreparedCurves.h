@@ -1,0 +1,49 @@
+#pragma once
+// Curves in the one form the renderer tessellates: every span of every curve,
+// whatever its authored type, basis and wrap, becomes a uniform Catmull-Rom
+// segment of four control points (the span runs from the 2nd to the 3rd).
+// Attributes travel with each control point in the same form, so the GPU
+// interpolates positions, widths, colours and opacities with the same weights:
+//  - vertex primvars go through the same exact change of basis as the points;
+//  - varying primvars (linear between span ends) use CR's linear precision:
+//    controls (2a-b, a, b, 2b-a) reproduce a + u(b-a) exactly;
+//  - uniform and constant primvars repeat one value four times.
+// Positions are in world space; widths are world-space diameters.
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+namespace hdhair {
+
+class Diagnostics;
+struct CurvesPrim;
+
+struct StrandControlPoint {
+    glm::vec3 position;  // world space
+    float width;         // world-space diameter
+    glm::vec3 color;     // linear displayColor
+    float opacity;       // displayOpacity
+};
+static_assert(sizeof(StrandControlPoint) == 32, "tightly packed for the GPU");
+
+struct PreparedCurves {
+    std::string path;
+    std::vector<StrandControlPoint> controlPoints;  // 4 per segment
+    std::vector<uint32_t> segmentCurve;             // per segment: index of its curve in the prim
+    uint32_t curveCount = 0;                        // curves kept (after dropping bad ones)
+    glm::vec3 boundsMin{0.0f}, boundsMax{0.0f};     // world space, widths included; min > max when empty
+
+    size_t segmentCount() const { return segmentCurve.size(); }
+    bool empty() const { return segmentCurve.empty(); }
+};
+
+// Validates, resolves every primvar (hdHair/curves/PrimvarResolution.h),
+// changes basis to Catmull-Rom and transforms to world space. Never throws for
+// bad data: each repair is reported to `diagnostics`, naming the prim and the
+// attribute. Thread-safe for distinct prims (Hydra syncs prims in parallel).
+PreparedCurves prepareCurves(const CurvesPrim& prim, Diagnostics& diagnostics);
+
+}  // namespace hdhair

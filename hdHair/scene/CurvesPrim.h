@@ -1,0 +1,50 @@
+#pragma once
+// A BasisCurves prim as the engine sees it: topology, points and primvars as
+// authored, plus its world transform. Nothing here is resolved or validated:
+// hdHair/curves/ does that, in one place, for every front end.
+
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <glm/mat4x4.hpp>
+#include <glm/vec3.hpp>
+
+#include "hdHair/scene/Primvar.h"
+
+namespace hdhair {
+
+enum class CurveType { Linear, Cubic };
+enum class CurveBasis { Bezier, Bspline, CatmullRom };
+enum class CurveWrap { Nonperiodic, Periodic, Pinned };
+
+const char* toString(CurveType type);
+const char* toString(CurveBasis basis);
+const char* toString(CurveWrap wrap);
+bool parseCurveType(const std::string& token, CurveType* out);
+bool parseCurveBasis(const std::string& token, CurveBasis* out);
+bool parseCurveWrap(const std::string& token, CurveWrap* out);
+
+struct CurvesPrim {
+    std::string path;                       // "/World/hair"
+    std::string sourceFile;                 // where it was read from, for messages ("" from Hydra)
+    CurveType type = CurveType::Cubic;      // USD fallbacks: cubic, bezier, nonperiodic
+    CurveBasis basis = CurveBasis::Bezier;
+    CurveWrap wrap = CurveWrap::Nonperiodic;
+    std::vector<int> curveVertexCounts;
+    std::vector<glm::vec3> points;          // object space
+    // "widths", "normals", "displayColor", "displayOpacity" and every other
+    // primvar, keyed by name without "primvars:". Widths and normals are
+    // stored here too, whether authored as attributes or as primvars.
+    std::map<std::string, Primvar> primvars;
+    glm::dmat4 worldTransform{1.0};
+    bool visible = true;
+
+    const Primvar* findPrimvar(const std::string& name) const {
+        auto it = primvars.find(name);
+        return it == primvars.end() ? nullptr : &it->second;
+    }
+};
+
+}  // namespace hdhair

@@ -1,0 +1,34 @@
+#pragma once
+// A UsdLux light with its inputs in USD's units. How each kind is evaluated is
+// the shading code's business; the scene only records what was authored.
+
+#include <string>
+
+#include <glm/mat4x4.hpp>
+#include <glm/vec3.hpp>
+
+namespace hdhair {
+
+enum class LightType { Distant, Sphere, Rect, Disk, Dome };
+
+const char* toString(LightType type);
+
+struct LightPrim {
+    std::string path;
+    LightType type = LightType::Distant;
+    float intensity = 1.0f;                 // inputs:intensity
+    float exposure = 0.0f;                  // inputs:exposure (stops)
+    glm::vec3 color{1.0f};                  // inputs:color
+    bool enableColorTemperature = false;    // inputs:enableColorTemperature
+    float colorTemperature = 6500.0f;       // inputs:colorTemperature (K)
+    bool normalize = false;                 // inputs:normalize
+    float angle = 0.53f;                    // DistantLight inputs:angle (degrees)
+    float radius = 0.5f;                    // Sphere/Disk inputs:radius
+    float width = 1.0f, height = 1.0f;      // RectLight inputs:width/height
+    float coneAngle = 90.0f;                // shaping:cone:angle (degrees)
+    float coneSoftness = 0.0f;              // shaping:cone:softness
+    glm::dmat4 worldTransform{1.0};         // lights emit along their -Z axis
+    bool visible = true;
+};
+
+}  // namespace hdhair

@@ -1,0 +1,56 @@
+#include "hdHair/scene/Scene.h"
+
+namespace hdhair {
+
+const char* toString(LightType type) {
+    switch (type) {
+    case LightType::Distant: return "DistantLight";
+    case LightType::Sphere: return "SphereLight";
+    case LightType::Rect: return "RectLight";
+    case LightType::Disk: return "DiskLight";
+    case LightType::Dome: return "DomeLight";
+    }
+    return "DistantLight";
+}
+
+template <typename Prim>
+void Scene::set(Entries<Prim>& entries, Prim prim) {
+    // A path names one prim: drop any prim of another kind at the same path.
+    std::string path = prim.path;
+    if (!entries.count(path)) remove(path);
+    SceneEntry<Prim>& entry = entries[path];
+    entry.prim = std::make_shared<const Prim>(std::move(prim));
+    entry.version = ++version_;
+}
+
+void Scene::setCurves(CurvesPrim prim) { set(curves_, std::move(prim)); }
+void Scene::setMesh(MeshPrim prim) { set(meshes_, std::move(prim)); }
+void Scene::setCamera(CameraPrim prim) { set(cameras_, std::move(prim)); }
+void Scene::setLight(LightPrim prim) { set(lights_, std::move(prim)); }
+
+bool Scene::remove(const std::string& path) {
+    size_t erased = curves_.erase(path) + meshes_.erase(path) + cameras_.erase(path) +
+                    lights_.erase(path);
+    if (erased) ++version_;
+    return erased > 0;
+}
+
+void Scene::clear() {
+    curves_.clear();
+    meshes_.clear();
+    cameras_.clear();
+    lights_.clear();
+    ++version_;
+}
+
+const CameraPrim* Scene::findCamera(const std::string& path) const {
+    auto it = cameras_.find(path);
+    return it == cameras_.end() ? nullptr : it->second.prim.get();
+}
+
+const CurvesPrim* Scene::findCurves(const std::string& path) const {
+    auto it = curves_.find(path);
+    return it == curves_.end() ? nullptr : it->second.prim.get();
+}
+
+}  // namespace hdhair

@@ -1,0 +1,49 @@
+#include <gtest/gtest.h>
+
+#include "hdHair/scene/Scene.h"
+
+using namespace hdhair;
+
+TEST(Scene, AddChangeRemoveOnePrimAtATime) {
+    Scene scene;
+    CurvesPrim curves;
+    curves.path = "/World/hair";
+    curves.curveVertexCounts = {4};
+    scene.setCurves(curves);
+    ASSERT_EQ(scene.curves().size(), 1u);
+    uint64_t first = scene.curves().at("/World/hair").version;
+
+    curves.curveVertexCounts = {5};
+    scene.setCurves(curves);
+    EXPECT_GT(scene.curves().at("/World/hair").version, first);
+    EXPECT_EQ(scene.findCurves("/World/hair")->curveVertexCounts[0], 5);
+
+    EXPECT_TRUE(scene.remove("/World/hair"));
+    EXPECT_FALSE(scene.remove("/World/hair"));
+    EXPECT_TRUE(scene.curves().empty());
+}
+
+TEST(Scene, SnapshotsOutliveReplacement) {
+    Scene scene;
+    CurvesPrim curves;
+    curves.path = "/a";
+    curves.points = {glm::vec3(1.0f)};
+    scene.setCurves(curves);
+    std::shared_ptr<const CurvesPrim> held = scene.curves().at("/a").prim;
+    curves.points = {glm::vec3(2.0f)};
+    scene.setCurves(curves);
+    EXPECT_EQ(held->points[0].x, 1.0f);
+    EXPECT_EQ(scene.findCurves("/a")->points[0].x, 2.0f);
+}
+
+TEST(Scene, PathNamesOnePrimWhateverItsKind) {
+    Scene scene;
+    CurvesPrim curves;
+    curves.path = "/x";
+    scene.setCurves(curves);
+    LightPrim light;
+    light.path = "/x";
+    scene.setLight(light);
+    EXPECT_TRUE(scene.curves().empty());
+    EXPECT_EQ(scene.lights().size(), 1u);
+}

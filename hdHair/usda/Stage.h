@@ -1,0 +1,115 @@
+#pragma once
+// A composed .usda stage: the embedded reader's answer to UsdStage::Open for
+// the subset of USD that hair stages use. See README "Embedded .usda reader"
+// for what is and is not supported.
+//
+// Composition supported: subLayers (stronger first), references and payloads
+// (external files with an optional prim path, defaultPrim otherwise, and
+// internal references "</Path>"), list ops (prepend/append/add/delete are all
+// treated as adding, in order), def/over/class specifiers. The strongest
+// opinion of each attribute, relationship and metadatum wins.
+
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "hdHair/usda/Value.h"
+
+namespace hdhair::usda {
+
+struct SourceLocation {
+    std::string file;
+    int line = 0;
+    int column = 0;
+    std::string toString() const;  // "file:line:column"
+};
+
+struct Attribute {
+    std::string name;                              // "points", "primvars:displayColor", "xformOp:translate"
+    std::string typeName;                          // "point3f[]"
+    bool isUniform = false;                        // declared "uniform"
+    bool isCustom = false;
+    std::optional<Value> defaultValue;             // "= ..." (absent when only timeSamples)
+    std::map<double, Value> timeSamples;           // ".timeSamples = {...}"
+    std::map<std::string, Value> metadata;         // "interpolation", "elementSize", ...
+    std::vector<std::string> connections;          // ".connect = <...>" targets
+    SourceLocation location;                       // where the strongest opinion was authored
+
+    // The value at a time code: time samples win over the default when present;
+    // numeric values are linearly interpolated between samples (matrices and
+    // vectors component-wise, arrays only when both samples have the same
+    // size), other types are held from the sample at or before the time.
+    // Before the first or after the last sample, the end sample is held.
+    std::optional<Value> valueAt(double time) const;
+    bool isTimeVarying() const { return timeSamples.size() > 1; }
+};
+
+struct Relationship {
+    std::string name;
+    std::vector<std::string> targets;  // absolute prim or property paths
+    SourceLocation location;
+};
+
+enum class Specifier { Def, Over, Class };
+
+struct Prim {
+    std::string path;                               // "/World/hair"
+    std::string name;                               // "hair"
+    std::string typeName;                           // "BasisCurves", "" for a typeless prim
+    Specifier specifier = Specifier::Def;
+    std::string kind;                               // prim metadata "kind"
+    std::vector<std::string> apiSchemas;            // prim metadata "apiSchemas"
+    bool active = true;                             // prim metadata "active"
+    std::map<std::string, Value> metadata;          // every other prim metadatum
+    std::map<std::string, Attribute> attributes;    // composed
+    std::map<std::string, Relationship> relationships;
+    std::vector<std::unique_ptr<Prim>> children;    // in authored order
+    const Prim* parent = nullptr;
+    SourceLocation location;                        // strongest "def"/"over"
+
+    const Attribute* attribute(const std::string& attributeName) const;
+    const Prim* child(const std::string& childName) const;
+};
+
+struct LayerInfo {
+    std::string defaultPrim;
+    std::string upAxis = "Y";
+    double metersPerUnit = 0.01;
+    std::optional<double> startTimeCode, endTimeCode;
+    double timeCodesPerSecond = 24.0;
+    double framesPerSecond = 24.0;
+    std::string doc;
+};
+
+class Stage {
+public:
+    // Reads and composes a stage. Throws hdhair::InputError with
+    // "file:line:column: message" for malformed input, and with the path of
+    // the layer that names it for a missing sublayer or referenced file.
+    static std::unique_ptr<Stage> open(const std::string& path);
+    // Same, from text in memory; `identifier` names it in messages and
+    // relative asset paths resolve against `baseDirectory`.
+    static std::unique_ptr<Stage> openFromString(const std::string& text,
+                                                 const std::string& identifier,
+                                                 const std::string& baseDirectory = ".");
+
+    const LayerInfo& info() const { return info_; }     // the root layer's metadata
+    const std::string& rootLayerPath() const { return rootLayerPath_; }
+    const Prim& pseudoRoot() const { return *pseudoRoot_; }
+    // Absolute path ("/World/hair"); nullptr when there is no such prim.
+    const Prim* findPrim(const std::string& path) const;
+    // Every prim below the pseudo-root, depth first in authored order. Inactive
+    // prims and their descendants, and prims with the "class" specifier, are
+    // skipped (as UsdPrimDefaultPredicate does).
+    std::vector<const Prim*> traverse() const;
+
+private:
+    LayerInfo info_;
+    std::string rootLayerPath_;
+    std::unique_ptr<Prim> pseudoRoot_;
+    friend class StageComposer;
+};
+
+}  // namespace hdhair::usda
