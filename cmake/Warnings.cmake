@@ -2,5 +2,5 @@
 add_library(hdhair_warnings INTERFACE)
 target_compile_options(hdhair_warnings INTERFACE
   $<$<COMPILE_LANGUAGE:CXX>:-Wall -Wextra -Wpedantic -Wshadow -Wnon-virtual-dtor
-    -Wold-style-cast -Wcast-align -Woverloaded-virtual -Wnull-dereference>
+    -Wold-style-cast -Wcast-align -Woverloaded-virtual>
   $<$<BOOL:${HDHAIR_WERROR}>:-Werror>)

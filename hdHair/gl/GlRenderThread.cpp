@@ -1,0 +1,58 @@
+#include "hdHair/gl/GlRenderThread.h"
+
+namespace hdhair::gl {
+
+GlRenderThread::GlRenderThread(GlBackend backend) : backend_(backend) {
+    std::promise<void> started;
+    std::future<void> startedFuture = started.get_future();
+    thread_ = std::thread([this, &started] { loop(started); });
+    try {
+        startedFuture.get();
+    } catch (...) {
+        thread_.join();
+        throw;
+    }
+}
+
+GlRenderThread::~GlRenderThread() {
+    {
+        std::lock_guard<std::mutex> lock(mutex_);
+        stopping_ = true;
+    }
+    wake_.notify_one();
+    if (thread_.joinable()) thread_.join();
+}
+
+void GlRenderThread::post(std::function<void()> job) {
+    {
+        std::lock_guard<std::mutex> lock(mutex_);
+        jobs_.push_back(std::move(job));
+    }
+    wake_.notify_one();
+}
+
+void GlRenderThread::loop(std::promise<void>& started) {
+    try {
+        context_ = createGlContext(backend_);
+        description_ = context_->description();
+    } catch (...) {
+        started.set_exception(std::current_exception());
+        return;
+    }
+    started.set_value();
+    for (;;) {
+        std::function<void()> job;
+        {
+            std::unique_lock<std::mutex> lock(mutex_);
+            wake_.wait(lock, [this] { return stopping_ || !jobs_.empty(); });
+            if (jobs_.empty()) break;  // stopping, and nothing left to do
+            job = std::move(jobs_.front());
+            jobs_.pop_front();
+        }
+        job();  // packaged_task: exceptions are delivered to the caller's future
+    }
+    // The context is destroyed on the thread it is current on.
+    context_.reset();
+}
+
+}  // namespace hdhair::gl

@@ -1,0 +1,55 @@
+#include "hdHair/gl/StrandPass.h"
+
+#include "hdHair/curves/PreparedCurves.h"
+
+namespace hdhair::gl {
+
+StrandBuffer::StrandBuffer(const PreparedCurves& curves)
+    : buffer_(createBuffer(curves.controlPoints.data(),
+                           curves.controlPoints.size() * sizeof(StrandControlPoint))),
+      controlPointCount_(static_cast<GLsizei>(curves.controlPoints.size())) {}
+
+StrandPass::StrandPass()
+    : program_(createProgram({"strand.vert", "strand.tesc", "strand.tese", "strand.frag"})),
+      vertexArray_(createVertexArray()),
+      frameBlock_(createBuffer(nullptr, sizeof(FrameUniforms), GL_DYNAMIC_STORAGE_BIT)),
+      lightBlock_(createBuffer(nullptr, sizeof(LightUniforms), GL_DYNAMIC_STORAGE_BIT)) {
+    // Attribute layout of StrandControlPoint: position, width, color, opacity.
+    GLuint vao = vertexArray_.get();
+    const GLuint offsets[4] = {offsetof(StrandControlPoint, position), offsetof(StrandControlPoint, width),
+                               offsetof(StrandControlPoint, color), offsetof(StrandControlPoint, opacity)};
+    const GLint sizes[4] = {3, 1, 3, 1};
+    for (GLuint attribute = 0; attribute < 4; ++attribute) {
+        glEnableVertexArrayAttrib(vao, attribute);
+        glVertexArrayAttribFormat(vao, attribute, sizes[attribute], GL_FLOAT, GL_FALSE, offsets[attribute]);
+        glVertexArrayAttribBinding(vao, attribute, 0);
+    }
+    checkGlError("setting up the strand pass");
+}
+
+void StrandPass::draw(const FrameUniforms& frame, const LightUniforms& lights,
+                      const std::vector<const StrandBuffer*>& strands) {
+    glNamedBufferSubData(frameBlock_.get(), 0, sizeof(frame), &frame);
+    glNamedBufferSubData(lightBlock_.get(), 0, sizeof(lights), &lights);
+    glBindBufferBase(GL_UNIFORM_BUFFER, 0, frameBlock_.get());
+    glBindBufferBase(GL_UNIFORM_BUFFER, 1, lightBlock_.get());
+
+    glUseProgram(program_.get());
+    glBindVertexArray(vertexArray_.get());
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    glDepthMask(GL_TRUE);
+    glDisable(GL_BLEND);
+    glDisable(GL_CULL_FACE);  // ribbons are seen from both sides
+    glPatchParameteri(GL_PATCH_VERTICES, 4);
+    for (const StrandBuffer* strand : strands) {
+        if (strand->controlPointCount() == 0) continue;
+        glVertexArrayVertexBuffer(vertexArray_.get(), 0, strand->buffer(), 0, sizeof(StrandControlPoint));
+        glDrawArrays(GL_PATCHES, 0, strand->controlPointCount());
+    }
+    glBindVertexArray(0);
+    glUseProgram(0);
+    checkGlError("drawing strands");
+}
+
+}  // namespace hdhair::gl

@@ -1,0 +1,30 @@
+// Lights in the form hdHair/shading/ShadingLight.h prepares them.
+#define HDHAIR_MAX_LIGHTS 16
+
+layout(std140, binding = 1) uniform LightUniforms {
+    // w = 0: xyz is the unit direction towards a distant light;
+    // w = 1: xyz is the position of a local light.
+    vec4 lightVector[HDHAIR_MAX_LIGHTS];
+    // rgb: irradiance (distant) or irradiance times squared distance (local).
+    vec4 lightScale[HDHAIR_MAX_LIGHTS];
+    // xyz: emission axis of one-sided emitters (rect, disk); w = 1 when one-sided.
+    vec4 lightAxis[HDHAIR_MAX_LIGHTS];
+    ivec4 lightCount;   // x: lights in use
+    vec4 ambient;       // rgb: dome light radiance, applied as a constant ambient term
+    vec4 kajiyaKayParameters;  // x: Kd, y: Ks, z: shininess p
+} lights;
+
+// Irradiance from light i at a point, and the unit direction towards it.
+vec3 lightIrradiance(int i, vec3 position, out vec3 toLight) {
+    vec4 v = lights.lightVector[i];
+    if (v.w < 0.5) {
+        toLight = v.xyz;
+        return lights.lightScale[i].rgb;
+    }
+    vec3 offset = v.xyz - position;
+    float distanceSquared = max(dot(offset, offset), 1e-12);
+    toLight = offset * inversesqrt(distanceSquared);
+    float facing = 1.0;
+    if (lights.lightAxis[i].w > 0.5) facing = max(0.0, dot(-toLight, lights.lightAxis[i].xyz));
+    return lights.lightScale[i].rgb * (facing / distanceSquared);
+}

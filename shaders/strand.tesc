@@ -1,0 +1,63 @@
+#version 450 core
+#extension GL_GOOGLE_include_directive : require
+// Chooses how finely each Catmull-Rom span is cut: by its projected length, so
+// strands far away or seen end-on cost few segments (adaptive to projected
+// size), never more than maxSegmentsPerSpan. Spans wholly outside the view
+// frustum get level 0, which discards them.
+#include "include/frameUniforms.glsl"
+
+layout(vertices = 4) out;
+
+layout(location = 0) in vec4 vsPositionWidth[];
+layout(location = 1) in vec4 vsColorOpacity[];
+layout(location = 0) out vec4 tcsPositionWidth[];
+layout(location = 1) out vec4 tcsColorOpacity[];
+
+vec2 toPixels(vec4 clip) { return (clip.xy / clip.w * 0.5 + 0.5) * frame.viewportSize; }
+
+void main() {
+    tcsPositionWidth[gl_InvocationID] = vsPositionWidth[gl_InvocationID];
+    tcsColorOpacity[gl_InvocationID] = vsColorOpacity[gl_InvocationID];
+    if (gl_InvocationID != 0) return;
+
+    vec3 c0 = vsPositionWidth[0].xyz, c1 = vsPositionWidth[1].xyz;
+    vec3 c2 = vsPositionWidth[2].xyz, c3 = vsPositionWidth[3].xyz;
+    // The span's Bezier control polygon contains the curve (convex hull
+    // property), so it bounds both culling and projected length.
+    vec3 hull[4] = vec3[4](c1, c1 + (c2 - c0) / 6.0, c2 - (c3 - c1) / 6.0, c2);
+    float halfWidth = 0.5 * max(max(vsPositionWidth[1].w, vsPositionWidth[2].w),
+                                max(vsPositionWidth[0].w, vsPositionWidth[3].w));
+    vec4 clip[4];
+    for (int i = 0; i < 4; ++i) clip[i] = frame.viewProjection * vec4(hull[i], 1.0);
+
+    // Outside one frustum plane with every hull point (widened by the strand's
+    // half width, scaled as clip coordinates scale with w) -> culled.
+    bool culled = false;
+    for (int axis = 0; axis < 3 && !culled; ++axis) {
+        bool allBelow = true, allAbove = true;
+        for (int i = 0; i < 4; ++i) {
+            float margin = halfWidth * abs(clip[i].w) + 1e-6;
+            allBelow = allBelow && clip[i][axis] < -clip[i].w - margin;
+            allAbove = allAbove && clip[i][axis] > clip[i].w + margin;
+        }
+        culled = allBelow || allAbove;
+    }
+
+    float level = frame.maxSegmentsPerSpan;
+    bool inFront = clip[0].w > 0.0 && clip[1].w > 0.0 && clip[2].w > 0.0 && clip[3].w > 0.0;
+    if (inFront) {
+        float pixels = 0.0;
+        for (int i = 0; i < 3; ++i) pixels += distance(toPixels(clip[i]), toPixels(clip[i + 1]));
+        level = clamp(ceil(pixels / frame.pixelsPerSegment), 1.0, frame.maxSegmentsPerSpan);
+    }
+    if (culled) level = 0.0;
+
+    // Quad domain: u runs along the span (outer 1 and 3, inner 0), v across
+    // the strand's width, one quad wide (outer 0 and 2, inner 1).
+    gl_TessLevelOuter[0] = culled ? 0.0 : 1.0;
+    gl_TessLevelOuter[1] = level;
+    gl_TessLevelOuter[2] = culled ? 0.0 : 1.0;
+    gl_TessLevelOuter[3] = level;
+    gl_TessLevelInner[0] = level;
+    gl_TessLevelInner[1] = 1.0;
+}

@@ -1,0 +1,50 @@
+#version 450 core
+#extension GL_GOOGLE_include_directive : require
+// Evaluates the Catmull-Rom span at u and offsets across the strand's width
+// (a world-space diameter) perpendicular to both the tangent and the view:
+// a camera-facing ribbon.
+#include "include/frameUniforms.glsl"
+#include "include/catmullRom.glsl"
+
+layout(quads, equal_spacing, ccw) in;
+
+layout(location = 0) in vec4 tcsPositionWidth[];
+layout(location = 1) in vec4 tcsColorOpacity[];
+
+layout(location = 0) out vec3 worldPosition;
+layout(location = 1) out vec3 worldTangent;
+layout(location = 2) out vec4 colorOpacity;
+
+void main() {
+    float u = gl_TessCoord.x, v = gl_TessCoord.y;
+    vec4 w = catmullRomWeights(u);
+    vec4 dw = catmullRomDerivativeWeights(u);
+
+    vec4 positionWidth = vec4(0.0);
+    vec3 tangent = vec3(0.0);
+    vec4 shade = vec4(0.0);
+    for (int i = 0; i < 4; ++i) {
+        positionWidth += w[i] * tcsPositionWidth[i];
+        tangent += dw[i] * tcsPositionWidth[i].xyz;
+        shade += w[i] * tcsColorOpacity[i];
+    }
+    // A zero-length derivative (coincident control points) falls back to the
+    // chord, then to any axis: the ribbon must stay well defined.
+    if (dot(tangent, tangent) < 1e-20) tangent = tcsPositionWidth[2].xyz - tcsPositionWidth[1].xyz;
+    if (dot(tangent, tangent) < 1e-20) tangent = vec3(0.0, 1.0, 0.0);
+    tangent = normalize(tangent);
+
+    vec3 toEye = directionToEye(positionWidth.xyz);
+    vec3 side = cross(tangent, toEye);
+    if (dot(side, side) < 1e-12) side = cross(tangent, abs(tangent.x) < 0.9 ? vec3(1, 0, 0) : vec3(0, 1, 0));
+    side = normalize(side);
+
+    // Cubic interpolation can overshoot: widths, colours and opacities are clamped.
+    float width = max(positionWidth.w, 0.0);
+    vec3 position = positionWidth.xyz + side * ((v - 0.5) * width);
+
+    worldPosition = position;
+    worldTangent = tangent;
+    colorOpacity = vec4(max(shade.rgb, vec3(0.0)), clamp(shade.a, 0.0, 1.0));
+    gl_Position = frame.viewProjection * vec4(position, 1.0);
+}
