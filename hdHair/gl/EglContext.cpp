@@ -136,9 +136,10 @@ std::unique_ptr<GlContext> createEglContext() {
         }
         return result;
     }
-    std::string message = "no usable OpenGL 4.5 context through EGL; tried:";
-    for (const std::string& attempt : tried) message += "\n  - " + attempt;
-    message += "\n(try --gl osmesa, or install Mesa's EGL driver: libegl-mesa0 libgl1-mesa-dri)";
+    // One line, so command-line tools can print it as their one-line reason.
+    std::string message = "no usable OpenGL 4.5 context through EGL (tried: ";
+    for (size_t i = 0; i < tried.size(); ++i) message += (i ? "; " : "") + tried[i];
+    message += "); try --gl osmesa, or install Mesa's EGL driver (libegl-mesa0, libgl1-mesa-dri)";
     throw GlUnavailableError(message);
 }
 

@@ -1,0 +1,82 @@
+#include "hdHair/shading/ShadingLight.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <glm/geometric.hpp>
+#include <glm/gtc/constants.hpp>
+
+namespace hdhair {
+
+glm::vec3 lightRadiance(const LightPrim& light) {
+    return light.intensity * std::exp2(light.exposure) * light.color;
+}
+
+namespace {
+
+glm::vec3 transformDirection(const glm::dmat4& m, const glm::dvec3& d) {
+    glm::dvec3 v = glm::dvec3(m * glm::dvec4(d, 0.0));
+    double length = glm::length(v);
+    return length > 0.0 ? glm::vec3(v / length) : glm::vec3(0.0f, 0.0f, 1.0f);
+}
+
+float emitterArea(const LightPrim& light) {
+    switch (light.type) {
+    case LightType::Sphere:
+    case LightType::Disk: return glm::pi<float>() * light.radius * light.radius;
+    case LightType::Rect: return light.width * light.height;
+    default: return 1.0f;
+    }
+}
+
+}  // namespace
+
+ShadingLights toShadingLights(const std::vector<const LightPrim*>& lights) {
+    ShadingLights result;
+    for (const LightPrim* light : lights) {
+        if (!light->visible) continue;
+        glm::vec3 radiance = lightRadiance(*light);
+        if (light->type == LightType::Dome) {
+            result.ambient += radiance;
+            continue;
+        }
+        ShadingLight shading;
+        if (light->type == LightType::Distant) {
+            // Lights emit along their −Z axis, so the light lies towards +Z.
+            shading.directionOrPosition = transformDirection(light->worldTransform, {0.0, 0.0, 1.0});
+            shading.scale = radiance;
+        } else {
+            shading.isLocal = true;
+            shading.directionOrPosition = glm::vec3(light->worldTransform[3]);
+            // A sphere, rect or disk of area A delivers E·d² = L·A (π r² for the
+            // sphere's projected disc); normalize makes it independent of A.
+            float area = light->normalize ? 1.0f : emitterArea(*light);
+            shading.scale = radiance * area;
+            shading.oneSided = light->type != LightType::Sphere;
+            shading.emissionAxis = transformDirection(light->worldTransform, {0.0, 0.0, -1.0});
+        }
+        result.lights.push_back(shading);
+    }
+    return result;
+}
+
+ShadingLight cameraLight(const glm::vec3& directionTowardsCamera) {
+    ShadingLight light;
+    light.directionOrPosition = glm::normalize(directionTowardsCamera);
+    light.scale = glm::vec3(1.0f);
+    return light;
+}
+
+glm::vec3 irradianceAt(const ShadingLight& light, const glm::vec3& position, glm::vec3* towardsLight) {
+    if (!light.isLocal) {
+        *towardsLight = light.directionOrPosition;
+        return light.scale;
+    }
+    glm::vec3 offset = light.directionOrPosition - position;
+    float distanceSquared = std::max(glm::dot(offset, offset), 1e-12f);
+    *towardsLight = offset / std::sqrt(distanceSquared);
+    float facing = light.oneSided ? std::max(0.0f, glm::dot(-*towardsLight, light.emissionAxis)) : 1.0f;
+    return light.scale * (facing / distanceSquared);
+}
+
+}  // namespace hdhair
