@@ -6,6 +6,18 @@ find_package(fmt REQUIRED)                        # libfmt-dev
 find_package(CLI11 REQUIRED)                      # libcli11-dev
 find_package(nlohmann_json REQUIRED)              # nlohmann-json3-dev
 find_package(OpenImageIO REQUIRED)                # libopenimageio-dev
+# Debian 12's OpenImageIOTargets.cmake lists /usr/include/opencv4 even when
+# OpenCV is not installed (hdHair does not use OpenCV); drop include folders
+# that do not exist instead of installing OpenCV to satisfy the package.
+get_target_property(_oiio_includes OpenImageIO::OpenImageIO INTERFACE_INCLUDE_DIRECTORIES)
+set(_oiio_existing_includes)
+foreach(_dir IN LISTS _oiio_includes)
+  if(EXISTS "${_dir}")
+    list(APPEND _oiio_existing_includes "${_dir}")
+  endif()
+endforeach()
+set_target_properties(OpenImageIO::OpenImageIO PROPERTIES
+  INTERFACE_INCLUDE_DIRECTORIES "${_oiio_existing_includes}")
 find_package(OpenEXR REQUIRED)                    # libopenexr-dev
 find_package(OpenGL REQUIRED COMPONENTS EGL)      # libegl-dev
 find_library(OSMESA_LIBRARY NAMES OSMesa REQUIRED) # libosmesa6-dev
