@@ -1,0 +1,165 @@
+#include "hdHair/render/RenderSettings.h"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <stdexcept>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+namespace hdhair {
+
+bool parseComplexity(const std::string& name, Complexity* out) {
+    if (name == "low") *out = Complexity::Low;
+    else if (name == "medium") *out = Complexity::Medium;
+    else if (name == "high") *out = Complexity::High;
+    else if (name == "veryhigh") *out = Complexity::VeryHigh;
+    else return false;
+    return true;
+}
+
+const char* toString(Complexity complexity) {
+    switch (complexity) {
+    case Complexity::Low: return "low";
+    case Complexity::Medium: return "medium";
+    case Complexity::High: return "high";
+    case Complexity::VeryHigh: return "veryhigh";
+    }
+    return "low";
+}
+
+const std::vector<SettingDescriptor>& RenderSettings::descriptors() {
+    static const std::vector<SettingDescriptor> table = {
+        {"pixelsPerSegment", SettingType::Float, "8",
+         "Target on-screen length in pixels of one tessellated strand segment (complexity: low 8, "
+         "medium 4, high 2, veryhigh 1)",
+         0.25, 1000.0, {}},
+        {"maxSegmentsPerSpan", SettingType::Int, "8",
+         "Most segments one curve span is cut into, however close it is (complexity: low 8, "
+         "medium 16, high 32, veryhigh 64)",
+         1, 64, {}},
+        {"kajiyaKay:diffuse", SettingType::Float, "1", "Kajiya-Kay diffuse weight Kd", 0.0, 100.0, {}},
+        {"kajiyaKay:specular", SettingType::Float, "0.35", "Kajiya-Kay specular weight Ks", 0.0, 100.0, {}},
+        {"kajiyaKay:shininess", SettingType::Float, "60", "Kajiya-Kay specular exponent p", 1.0, 10000.0, {}},
+        {"cameraLight", SettingType::Token, "auto",
+         "Light from the camera: auto (only when the stage has no lights), on, off", 0, 0,
+         {"auto", "on", "off"}},
+        {"framing", SettingType::Token, "fitAll",
+         "Camera when none is given: fitAll (every corner of the stage bounds in view) or usdrecord "
+         "(usdrecord's exact framing, which can cut tall stages)",
+         0, 0, {"fitAll", "usdrecord"}},
+    };
+    return table;
+}
+
+const SettingDescriptor* RenderSettings::find(const std::string& name) {
+    for (const SettingDescriptor& descriptor : descriptors())
+        if (descriptor.name == name) return &descriptor;
+    return nullptr;
+}
+
+namespace {
+
+bool parseNumber(const std::string& text, double* out) {
+    const char* begin = text.data();
+    const char* end = begin + text.size();
+    auto [next, error] = std::from_chars(begin, end, *out);
+    return error == std::errc() && next == end && std::isfinite(*out);
+}
+
+bool parseBool(const std::string& text, bool* out) {
+    if (text == "1" || text == "true" || text == "on") *out = true;
+    else if (text == "0" || text == "false" || text == "off") *out = false;
+    else return false;
+    return true;
+}
+
+}  // namespace
+
+void RenderSettings::set(const std::string& name, const std::string& value) {
+    const SettingDescriptor* descriptor = find(name);
+    if (!descriptor) {
+        std::string known;
+        for (const SettingDescriptor& d : descriptors()) known += (known.empty() ? "" : ", ") + d.name;
+        throw std::invalid_argument(fmt::format("unknown setting '{}' (known settings: {})", name, known));
+    }
+    switch (descriptor->type) {
+    case SettingType::Float:
+    case SettingType::Int: {
+        double number = 0.0;
+        bool integral = descriptor->type == SettingType::Int;
+        if (!parseNumber(value, &number) || (integral && number != std::floor(number)))
+            throw std::invalid_argument(fmt::format("setting '{}' expects {}, got '{}'", name,
+                                                    integral ? "an integer" : "a number", value));
+        if (number < descriptor->minimum || number > descriptor->maximum)
+            throw std::invalid_argument(fmt::format("setting '{}' must be in [{}, {}], got {}", name,
+                                                    descriptor->minimum, descriptor->maximum, value));
+        break;
+    }
+    case SettingType::Bool: {
+        bool flag = false;
+        if (!parseBool(value, &flag))
+            throw std::invalid_argument(fmt::format("setting '{}' expects true or false, got '{}'", name, value));
+        break;
+    }
+    case SettingType::Token:
+        if (std::find(descriptor->tokens.begin(), descriptor->tokens.end(), value) == descriptor->tokens.end())
+            throw std::invalid_argument(fmt::format("setting '{}' expects one of {}, got '{}'", name,
+                                                    fmt::join(descriptor->tokens, ", "), value));
+        break;
+    }
+    values_[name] = value;
+}
+
+void RenderSettings::setFromAssignment(const std::string& assignment) {
+    std::string::size_type equals = assignment.find('=');
+    if (equals == std::string::npos || equals == 0)
+        throw std::invalid_argument(fmt::format("setting '{}' is not of the form NAME=VALUE", assignment));
+    set(assignment.substr(0, equals), assignment.substr(equals + 1));
+}
+
+std::string RenderSettings::effectiveText(const std::string& name) const {
+    auto it = values_.find(name);
+    if (it != values_.end()) return it->second;
+    // Complexity scales tessellation density the way usdrecord's levels scale
+    // Storm's refinement: each level doubles the segments a span may get.
+    int level = static_cast<int>(complexity_);
+    if (name == "pixelsPerSegment") return std::to_string(8 >> level);
+    if (name == "maxSegmentsPerSpan") return std::to_string(8 << level);
+    const SettingDescriptor* descriptor = find(name);
+    if (!descriptor) throw std::invalid_argument(fmt::format("unknown setting '{}'", name));
+    return descriptor->defaultValue;
+}
+
+double RenderSettings::getFloat(const std::string& name) const {
+    double number = 0.0;
+    parseNumber(effectiveText(name), &number);
+    return number;
+}
+
+int RenderSettings::getInt(const std::string& name) const { return static_cast<int>(getFloat(name)); }
+
+bool RenderSettings::getBool(const std::string& name) const {
+    bool flag = false;
+    parseBool(effectiveText(name), &flag);
+    return flag;
+}
+
+std::string RenderSettings::getToken(const std::string& name) const { return effectiveText(name); }
+
+nlohmann::json RenderSettings::toJson() const {
+    nlohmann::json json = nlohmann::json::object();
+    json["complexity"] = toString(complexity_);
+    for (const SettingDescriptor& descriptor : descriptors()) {
+        switch (descriptor.type) {
+        case SettingType::Float: json[descriptor.name] = getFloat(descriptor.name); break;
+        case SettingType::Int: json[descriptor.name] = getInt(descriptor.name); break;
+        case SettingType::Bool: json[descriptor.name] = getBool(descriptor.name); break;
+        case SettingType::Token: json[descriptor.name] = getToken(descriptor.name); break;
+        }
+    }
+    return json;
+}
+
+}  // namespace hdhair

@@ -1,0 +1,62 @@
+#pragma once
+// The renderer's quality settings: one table of descriptors (name, type,
+// default, range, meaning) that hdhair-record's --setting, --stats and the
+// Hydra plugin's GetRenderSettingDescriptors all read, so a setting exists
+// everywhere the moment it is added here.
+
+#include <map>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json_fwd.hpp>
+
+namespace hdhair {
+
+enum class SettingType { Float, Int, Bool, Token };
+
+struct SettingDescriptor {
+    std::string name;                 // "maxSegmentsPerSpan"
+    SettingType type;
+    std::string defaultValue;         // as text, e.g. "8", "kajiyaKay"
+    std::string description;          // one line, for --help and usdview
+    double minimum = 0.0, maximum = 0.0;  // Float and Int: inclusive range
+    std::vector<std::string> tokens;  // Token: allowed values
+};
+
+// usdrecord's --complexity levels; they set the tessellation density.
+enum class Complexity { Low, Medium, High, VeryHigh };
+bool parseComplexity(const std::string& name, Complexity* out);
+const char* toString(Complexity complexity);
+
+class RenderSettings {
+public:
+    static const std::vector<SettingDescriptor>& descriptors();
+    static const SettingDescriptor* find(const std::string& name);
+
+    // Sets a value from text ("NAME=VALUE" is split by the caller). Throws
+    // std::invalid_argument with a one-line reason: unknown name (listing the
+    // known ones), or a value of the wrong type or out of range.
+    void set(const std::string& name, const std::string& value);
+    // Parses "NAME=VALUE".
+    void setFromAssignment(const std::string& assignment);
+    bool isExplicitlySet(const std::string& name) const { return values_.count(name) > 0; }
+
+    // Tessellation defaults for a complexity level; settings set explicitly win.
+    void setComplexity(Complexity complexity) { complexity_ = complexity; }
+    Complexity complexity() const { return complexity_; }
+
+    double getFloat(const std::string& name) const;
+    int getInt(const std::string& name) const;
+    bool getBool(const std::string& name) const;
+    std::string getToken(const std::string& name) const;
+
+    // Every setting with its effective value, for --stats and --explain.
+    nlohmann::json toJson() const;
+
+private:
+    std::string effectiveText(const std::string& name) const;
+    std::map<std::string, std::string> values_;  // explicitly set, validated
+    Complexity complexity_ = Complexity::Low;
+};
+
+}  // namespace hdhair

@@ -1,0 +1,26 @@
+#include "hdHair/render/RenderStats.h"
+
+#include <cmath>
+
+namespace hdhair {
+
+nlohmann::json RenderStats::toJson() const {
+    nlohmann::json json;
+    json["image"] = {{"width", imageWidth}, {"height", imageHeight}};
+    json["camera"] = camera;
+    json["time"] = std::isnan(time) ? nlohmann::json("default") : nlohmann::json(time);
+    json["prims"] = {{"basisCurves", curvesPrims}, {"meshes", meshPrims}, {"lights", lights}};
+    json["curves"] = curves;
+    json["segments"] = segments;
+    nlohmann::json passList = nlohmann::json::array();
+    for (const PassTiming& pass : passes) passList.push_back({{"name", pass.name}, {"milliseconds", pass.milliseconds}});
+    json["passes"] = passList;
+    json["totalMilliseconds"] = totalMilliseconds;
+    json["gl"] = glRenderer;
+    json["settings"] = settings;
+    json["plan"] = plan;
+    json["warnings"] = warnings;
+    return json;
+}
+
+}  // namespace hdhair

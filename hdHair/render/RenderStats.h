@@ -1,0 +1,34 @@
+#pragma once
+// What a render did, for --stats FILE.json and --verbose: what was drawn,
+// the plan, each pass's time, and the settings in effect.
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+namespace hdhair {
+
+struct PassTiming {
+    std::string name;
+    double milliseconds = 0.0;
+};
+
+struct RenderStats {
+    int imageWidth = 0, imageHeight = 0;
+    std::string camera;           // prim path, or "framing camera"
+    double time = 0.0;            // time code rendered; NaN for the default time
+    size_t curvesPrims = 0, meshPrims = 0, lights = 0;
+    uint64_t curves = 0, segments = 0;
+    std::vector<PassTiming> passes;
+    double totalMilliseconds = 0.0;
+    std::string glRenderer;
+    nlohmann::json settings;
+    nlohmann::json plan;
+    size_t warnings = 0;
+
+    nlohmann::json toJson() const;
+};
+
+}  // namespace hdhair

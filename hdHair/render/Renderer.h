@@ -1,0 +1,79 @@
+#pragma once
+// The engine's front door: renders a Scene as seen by a CameraView into a
+// linear, pre-multiplied RGBA image and a depth image. Used by hdhair-record
+// and (later) the Hydra render pass.
+//
+// Flow per frame: prepare changed curves on the CPU (in parallel, cached by
+// prim version) -> plan -> GL passes on the render thread -> read back.
+
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <string>
+
+#include <glm/vec3.hpp>
+
+#include "hdHair/gl/GlContext.h"
+#include "hdHair/image/Image.h"
+#include "hdHair/render/CameraView.h"
+#include "hdHair/render/RenderPlan.h"
+#include "hdHair/render/RenderSettings.h"
+#include "hdHair/render/RenderStats.h"
+
+namespace hdhair {
+
+class Diagnostics;
+class Scene;
+struct PreparedCurves;
+
+namespace gl {
+class GlRenderThread;
+class RenderTarget;
+class StrandBuffer;
+class StrandPass;
+}  // namespace gl
+
+struct SceneBounds {
+    glm::dvec3 min{1.0}, max{-1.0};  // min > max when the scene has nothing visible
+    bool empty() const { return min.x > max.x; }
+};
+
+struct RenderResult {
+    Image color;  // RGBA, scene-linear, pre-multiplied
+    Image depth;  // one channel, window depth in [0, 1], 1 where empty
+    RenderPlan plan;
+    RenderStats stats;
+};
+
+class Renderer {
+public:
+    // Starts the GL thread and context. Throws gl::GlUnavailableError.
+    explicit Renderer(gl::GlBackend backend);
+    ~Renderer();
+    Renderer(const Renderer&) = delete;
+    Renderer& operator=(const Renderer&) = delete;
+
+    // Prepares every changed curves prim (repairs are reported to
+    // diagnostics) and returns the world bounds of what is visible.
+    SceneBounds prepare(const Scene& scene, Diagnostics& diagnostics);
+
+    RenderResult render(const Scene& scene, const CameraView& camera, const RenderSettings& settings,
+                        Diagnostics& diagnostics);
+
+    const std::string& glDescription() const;
+
+private:
+    struct CachedCurves {
+        uint64_t version = 0;
+        std::shared_ptr<const PreparedCurves> prepared;
+        std::unique_ptr<gl::StrandBuffer> buffer;  // created and destroyed on the GL thread
+    };
+
+    std::unique_ptr<gl::GlRenderThread> glThread_;
+    std::unique_ptr<gl::StrandPass> strandPass_;
+    std::unique_ptr<gl::RenderTarget> target_;
+    std::map<std::string, CachedCurves> curves_;
+    double lastPrepareMilliseconds_ = 0.0;
+};
+
+}  // namespace hdhair

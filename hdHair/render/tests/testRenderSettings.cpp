@@ -1,0 +1,51 @@
+#include <stdexcept>
+#include <string>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "hdHair/render/RenderSettings.h"
+
+using namespace hdhair;
+
+namespace {
+
+std::string errorOf(RenderSettings& settings, const std::string& assignment) {
+    try {
+        settings.setFromAssignment(assignment);
+    } catch (const std::invalid_argument& error) {
+        return error.what();
+    }
+    return "";
+}
+
+}  // namespace
+
+TEST(RenderSettings, DefaultsComeFromTheDescriptors) {
+    RenderSettings settings;
+    EXPECT_DOUBLE_EQ(settings.getFloat("kajiyaKay:specular"), 0.35);
+    EXPECT_EQ(settings.getToken("cameraLight"), "auto");
+    for (const SettingDescriptor& descriptor : RenderSettings::descriptors())
+        EXPECT_TRUE(settings.toJson().contains(descriptor.name)) << descriptor.name;
+}
+
+TEST(RenderSettings, ComplexityScalesTessellationUnlessSetExplicitly) {
+    RenderSettings settings;
+    EXPECT_EQ(settings.getInt("maxSegmentsPerSpan"), 8);
+    settings.setComplexity(Complexity::VeryHigh);
+    EXPECT_EQ(settings.getInt("maxSegmentsPerSpan"), 64);
+    EXPECT_DOUBLE_EQ(settings.getFloat("pixelsPerSegment"), 1.0);
+    settings.setFromAssignment("maxSegmentsPerSpan=5");
+    EXPECT_EQ(settings.getInt("maxSegmentsPerSpan"), 5);
+}
+
+TEST(RenderSettings, BadAssignmentsGiveOneLineReasons) {
+    RenderSettings settings;
+    EXPECT_EQ(errorOf(settings, "maxSegmentsPerSpan=100"), "setting 'maxSegmentsPerSpan' must be in [1, 64], got 100");
+    EXPECT_EQ(errorOf(settings, "maxSegmentsPerSpan=2.5"), "setting 'maxSegmentsPerSpan' expects an integer, got '2.5'");
+    EXPECT_EQ(errorOf(settings, "kajiyaKay:specular=shiny"), "setting 'kajiyaKay:specular' expects a number, got 'shiny'");
+    EXPECT_EQ(errorOf(settings, "cameraLight=maybe"), "setting 'cameraLight' expects one of auto, on, off, got 'maybe'");
+    EXPECT_EQ(errorOf(settings, "noEquals"), "setting 'noEquals' is not of the form NAME=VALUE");
+    EXPECT_EQ(errorOf(settings, "bogus=1").rfind("unknown setting 'bogus' (known settings: pixelsPerSegment,", 0), 0u);
+    EXPECT_EQ(errorOf(settings, "pixelsPerSegment=nan"), "setting 'pixelsPerSegment' expects a number, got 'nan'");
+}
