@@ -1,0 +1,256 @@
+// prepareCurves (PreparedCurves.h): validate, resolve primvars, change basis
+// to Catmull-Rom and move to world space, in parallel over curves.
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include <fmt/format.h>
+#include <glm/common.hpp>
+#include <glm/mat3x3.hpp>
+#include <glm/matrix.hpp>
+#include <glm/vec4.hpp>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include "hdHair/base/Diagnostics.h"
+#include "hdHair/curves/BasisConversion.h"
+#include "hdHair/curves/CurveTopology.h"
+#include "hdHair/curves/PreparedCurves.h"
+#include "hdHair/curves/PrimvarResolution.h"
+
+namespace hdhair {
+
+namespace {
+
+// Hair prims hold up to millions of curves: past this many, per-curve warnings
+// of one kind are summarised in a single line.
+constexpr size_t kMaxCurveWarnings = 10;
+
+enum class CurveStatus : uint8_t {
+    Kept,
+    KeptUnderLength,  // invalid vertex count, drawn the way HdSt draws it
+    TooFewVertices,   // no span to draw
+    MissingVertices,  // counts run past the end of points
+    NonFinitePoint,
+};
+
+struct CurveCheck {
+    CurveStatus status = CurveStatus::Kept;
+    size_t badPoint = 0;  // first non-finite point, relative to the curve
+};
+
+bool keeps(CurveStatus status) { return status == CurveStatus::Kept || status == CurveStatus::KeptUnderLength; }
+
+CurveCheck checkCurve(const CurvesPrim& prim, const CurveTopology& topology, size_t curve) {
+    CurveCheck check;
+    const size_t begin = topology.vertexOffsets[curve];
+    const size_t end = topology.vertexOffsets[curve + 1];
+    if (end > prim.points.size()) {
+        check.status = CurveStatus::MissingVertices;
+    } else if (topology.segmentCount(curve) == 0) {
+        check.status = CurveStatus::TooFewVertices;
+    } else {
+        for (size_t p = begin; p < end; ++p) {
+            const glm::vec3& point = prim.points[p];
+            if (!std::isfinite(point.x) || !std::isfinite(point.y) || !std::isfinite(point.z)) {
+                check.status = CurveStatus::NonFinitePoint;
+                check.badPoint = p - begin;
+                return check;
+            }
+        }
+        if (!isValidVertexCount(topology.kind, topology.vertexCount(curve)))
+            check.status = CurveStatus::KeptUnderLength;
+    }
+    return check;
+}
+
+// One warning per affected curve, in curve order, up to kMaxCurveWarnings.
+template <typename Describe>
+void reportCurves(Diagnostics& diagnostics, const std::string& where, const std::vector<CurveCheck>& checks,
+                  CurveStatus status, Describe describe) {
+    size_t reported = 0;
+    for (size_t i = 0; i < checks.size(); ++i) {
+        if (checks[i].status != status) continue;
+        if (reported++ < kMaxCurveWarnings) diagnostics.warn(where, describe(i, checks[i]));
+    }
+    if (reported > kMaxCurveWarnings) {
+        diagnostics.warn(where, fmt::format("... and {} more curves like that", reported - kMaxCurveWarnings));
+    }
+}
+
+void reportCurveChecks(const CurvesPrim& prim, const CurveTopology& topology, const std::vector<CurveCheck>& checks,
+                       Diagnostics& diagnostics) {
+    const std::string countsWhere = prim.path + ".curveVertexCounts";
+    const std::string kind = toString(topology.kind);
+    if (topology.vertexTotal() != prim.points.size()) {
+        diagnostics.warn(
+            prim.path + ".points",
+            fmt::format("curveVertexCounts add up to {} vertices, but there are {} points; {}", topology.vertexTotal(),
+                        prim.points.size(),
+                        topology.vertexTotal() > prim.points.size() ? "dropping the curves whose vertices are missing"
+                                                                    : "ignoring the extra points"));
+    }
+    reportCurves(diagnostics, countsWhere, checks, CurveStatus::KeptUnderLength, [&](size_t i, const CurveCheck&) {
+        return fmt::format("curve {} has {} vertices, but {} curves need {}; drawing it as Storm does ({})", i,
+                           prim.curveVertexCounts[i], kind, describeVertexCountRule(topology.kind),
+                           topology.kind.isPeriodic() ? "wrapping its vertices" : "repeating its last vertex");
+    });
+    reportCurves(diagnostics, countsWhere, checks, CurveStatus::TooFewVertices, [&](size_t i, const CurveCheck&) {
+        return fmt::format("curve {} has {} vertices, too few for a single {} span; skipping it", i,
+                           prim.curveVertexCounts[i], kind);
+    });
+    reportCurves(diagnostics, prim.path + ".points", checks, CurveStatus::MissingVertices,
+                 [&](size_t i, const CurveCheck&) {
+                     return fmt::format("curve {} needs points [{}, {}), past the last point; dropping the curve", i,
+                                        topology.vertexOffsets[i], topology.vertexOffsets[i + 1]);
+                 });
+    reportCurves(diagnostics, prim.path + ".points", checks, CurveStatus::NonFinitePoint,
+                 [&](size_t i, const CurveCheck& check) {
+                     return fmt::format("curve {} has a non-finite point (points[{}]); dropping the curve", i,
+                                        topology.vertexOffsets[i] + check.badPoint);
+                 });
+}
+
+// Authored negative widths have no meaning (a diameter); clamp them to 0.
+void clampNegativeWidths(ResolvedPrimvar& widths, const std::string& primPath, Diagnostics& diagnostics) {
+    size_t clamped = 0;
+    for (float& width : widths.values) {
+        if (width < 0.0f) {
+            width = 0.0f;
+            ++clamped;
+        }
+    }
+    if (clamped > 0) {
+        diagnostics.warn(primPath + ".widths",
+                         fmt::format("{} negative {}; clamped to 0", clamped, clamped == 1 ? "width" : "widths"));
+    }
+}
+
+// The four span controls of one resolved primvar (4 * tupleSize floats):
+// vertex data through the span's change of basis, varying data linear between
+// the span's two end values, uniform and constant data repeated.
+void primvarSpanControls(const ResolvedPrimvar& primvar, const CurveTopology& topology,
+                         const SpanStencil& vertexStencil, size_t curve, int span, float* out) {
+    const size_t tuple = static_cast<size_t>(primvar.tupleSize);
+    auto repeat = [&](const float* value) {
+        for (size_t r = 0; r < 4; ++r) std::copy(value, value + tuple, out + r * tuple);
+    };
+    switch (primvar.interpolation) {
+    case Interpolation::Constant: repeat(primvar.element(0)); break;
+    case Interpolation::Uniform: repeat(primvar.element(curve)); break;
+    case Interpolation::Vertex:
+        applyStencil(vertexStencil, primvar.element(topology.vertexOffsets[curve]), primvar.tupleSize, out);
+        break;
+    case Interpolation::Varying:
+    case Interpolation::FaceVarying:
+        applyStencil(linearSpanStencil(topology.spanEndCount(curve), topology.kind.isPeriodic(), span),
+                     primvar.element(topology.spanEndOffsets[curve]), primvar.tupleSize, out);
+        break;
+    }
+}
+
+// A Catmull-Rom span lies inside the convex hull of its Bezier controls
+// B0 = C1, B1 = C1 + (C2-C0)/6, B2 = C2 - (C3-C1)/6, B3 = C2 (its own
+// controls do not bound it: CR weights go negative). The same holds for the
+// interpolated width, so the largest Bezier width bounds the tube's radius.
+void growBoundsBySpan(const StrandControlPoint* c, glm::vec3& lo, glm::vec3& hi) {
+    const glm::vec3 positions[4] = {c[1].position, c[1].position + (c[2].position - c[0].position) / 6.0f,
+                                    c[2].position - (c[3].position - c[1].position) / 6.0f, c[2].position};
+    const float widths[4] = {c[1].width, c[1].width + (c[2].width - c[0].width) / 6.0f,
+                             c[2].width - (c[3].width - c[1].width) / 6.0f, c[2].width};
+    const float radius = std::max(0.0f, *std::max_element(widths, widths + 4)) * 0.5f;
+    for (const glm::vec3& p : positions) {
+        lo = glm::min(lo, p - radius);
+        hi = glm::max(hi, p + radius);
+    }
+}
+
+}  // namespace
+
+PreparedCurves prepareCurves(const CurvesPrim& prim, Diagnostics& diagnostics) {
+    PreparedCurves result;
+    result.path = prim.path;
+    constexpr float kHuge = std::numeric_limits<float>::max();
+    result.boundsMin = glm::vec3(kHuge);
+    result.boundsMax = glm::vec3(-kHuge);
+
+    const CurveTopology topology(prim);
+    const size_t curveCount = topology.curveCount();
+
+    std::vector<CurveCheck> checks(curveCount);
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, curveCount), [&](const tbb::blocked_range<size_t>& range) {
+        for (size_t i = range.begin(); i != range.end(); ++i) checks[i] = checkCurve(prim, topology, i);
+    });
+    reportCurveChecks(prim, topology, checks, diagnostics);
+
+    ResolvedPrimvar widths = resolvePrimvar(prim, topology, "widths", kFallbackWidth, diagnostics);
+    clampNegativeWidths(widths, prim.path, diagnostics);
+    const ResolvedPrimvar colors = resolvePrimvar(prim, topology, "displayColor", kFallbackDisplayColor, diagnostics);
+    const ResolvedPrimvar opacities =
+        resolvePrimvar(prim, topology, "displayOpacity", kFallbackDisplayOpacity, diagnostics);
+
+    // Where each kept curve's segments go: an exclusive prefix sum.
+    std::vector<size_t> firstSegment(curveCount + 1, 0);
+    for (size_t i = 0; i < curveCount; ++i) {
+        const bool kept = keeps(checks[i].status);
+        firstSegment[i + 1] = firstSegment[i] + (kept ? static_cast<size_t>(topology.segmentCount(i)) : 0);
+        result.curveCount += kept ? 1 : 0;
+    }
+    const size_t segmentTotal = firstSegment[curveCount];
+    if (segmentTotal == 0) return result;
+    result.controlPoints.resize(4 * segmentTotal);
+    result.segmentCurve.resize(segmentTotal);
+
+    // Widths are object-space diameters (HdSt scales them by the transform).
+    // A non-uniform scale stretches a round tube into an elliptical one, which
+    // a width cannot express; the cube root of the volume scale is its mean
+    // scale factor, exact for uniform scale.
+    const glm::dmat4& toWorld = prim.worldTransform;
+    const float widthScale = static_cast<float>(std::cbrt(std::abs(glm::determinant(glm::dmat3(toWorld)))));
+
+    std::vector<glm::vec3> curveMin(curveCount, glm::vec3(kHuge));
+    std::vector<glm::vec3> curveMax(curveCount, glm::vec3(-kHuge));
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, curveCount), [&](const tbb::blocked_range<size_t>& range) {
+        std::vector<float> worldPoints;
+        for (size_t i = range.begin(); i != range.end(); ++i) {
+            if (!keeps(checks[i].status)) continue;
+            const int n = topology.vertexCount(i);
+            // Affine maps commute with the change of basis (its rows sum to
+            // 1), so transforming the vertices first is exact; double
+            // precision keeps far-from-origin hair steady.
+            worldPoints.resize(3 * static_cast<size_t>(n));
+            const glm::vec3* objectPoints = &prim.points[topology.vertexOffsets[i]];
+            for (size_t v = 0; v < static_cast<size_t>(n); ++v) {
+                const glm::dvec4 p = toWorld * glm::dvec4(glm::dvec3(objectPoints[v]), 1.0);
+                for (int c = 0; c < 3; ++c) worldPoints[3 * v + static_cast<size_t>(c)] = static_cast<float>(p[c]);
+            }
+            for (int s = 0; s < topology.segmentCount(i); ++s) {
+                const size_t segment = firstSegment[i] + static_cast<size_t>(s);
+                result.segmentCurve[segment] = static_cast<uint32_t>(i);
+                StrandControlPoint* controls = &result.controlPoints[4 * segment];
+                const SpanStencil stencil = catmullRomStencil(topology.kind, n, s);
+                float positions[12], widthValues[4], colorValues[12], opacityValues[4];
+                applyStencil(stencil, worldPoints.data(), 3, positions);
+                primvarSpanControls(widths, topology, stencil, i, s, widthValues);
+                primvarSpanControls(colors, topology, stencil, i, s, colorValues);
+                primvarSpanControls(opacities, topology, stencil, i, s, opacityValues);
+                for (int r = 0; r < 4; ++r) {
+                    controls[r].position = glm::vec3(positions[3 * r], positions[3 * r + 1], positions[3 * r + 2]);
+                    controls[r].width = widthValues[r] * widthScale;
+                    controls[r].color = glm::vec3(colorValues[3 * r], colorValues[3 * r + 1], colorValues[3 * r + 2]);
+                    controls[r].opacity = opacityValues[r];
+                }
+                growBoundsBySpan(controls, curveMin[i], curveMax[i]);
+            }
+        }
+    });
+
+    for (size_t i = 0; i < curveCount; ++i) {
+        result.boundsMin = glm::min(result.boundsMin, curveMin[i]);
+        result.boundsMax = glm::max(result.boundsMax, curveMax[i]);
+    }
+    return result;
+}
+
+}  // namespace hdhair
