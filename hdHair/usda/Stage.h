@@ -81,6 +81,8 @@ struct LayerInfo {
     double timeCodesPerSecond = 24.0;
     double framesPerSecond = 24.0;
     std::string doc;
+    std::vector<std::string> subLayers;         // as authored (asset paths, strongest first)
+    std::map<std::string, Value> metadata;      // every layer metadatum as authored (incl. the above)
 };
 
 class Stage {

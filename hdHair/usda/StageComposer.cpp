@@ -1,0 +1,581 @@
+#include "hdHair/usda/StageComposer.h"
+
+#include <algorithm>
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <deque>
+#include <filesystem>
+#include <functional>
+
+#include "hdHair/base/InputError.h"
+#include "hdHair/usda/LayerParser.h"
+
+namespace hdhair::usda {
+
+namespace {
+
+namespace fs = std::filesystem;
+using detail::AttributeSpec;
+using detail::Layer;
+using detail::ListOp;
+using detail::PrimSpec;
+using detail::Reference;
+using detail::RelationshipSpec;
+
+constexpr int kMaxNamespaceDepth = 1000;
+constexpr size_t kMaxIndexNodes = 100000;
+
+// ---------------------------------------------------------------- files
+
+bool readFile(const std::string& path, std::string& contents, std::string& error) {
+    std::error_code ec;
+    if (fs::is_directory(path, ec)) {
+        error = std::strerror(EISDIR);
+        return false;
+    }
+    std::FILE* file = std::fopen(path.c_str(), "rb");
+    if (!file) {
+        error = std::strerror(errno);
+        return false;
+    }
+    contents.clear();
+    char buffer[1 << 16];
+    while (true) {
+        size_t n = std::fread(buffer, 1, sizeof buffer, file);
+        contents.append(buffer, n);
+        if (n < sizeof buffer) break;
+    }
+    bool failed = std::ferror(file) != 0;
+    int savedErrno = errno;
+    std::fclose(file);
+    if (failed) {
+        error = std::strerror(savedErrno);
+        return false;
+    }
+    return true;
+}
+
+std::string absoluteNormal(const fs::path& path) {
+    std::error_code ec;
+    fs::path absolute = fs::absolute(path, ec);
+    if (ec) absolute = path;
+    return absolute.lexically_normal().string();
+}
+
+std::string resolveAsset(const std::string& assetPath, const std::string& baseDirectory) {
+    fs::path asset(assetPath);
+    if (asset.is_absolute()) return asset.lexically_normal().string();
+    return (fs::path(baseDirectory) / asset).lexically_normal().string();
+}
+
+// ---------------------------------------------------------------- paths
+
+// "/A" is a prefix of "/A", "/A/B" and "/A.attr", not of "/AB".
+bool hasPathPrefix(const std::string& path, const std::string& prefix) {
+    if (prefix == "/") return !path.empty() && path[0] == '/';
+    if (path.size() < prefix.size() || path.compare(0, prefix.size(), prefix) != 0) return false;
+    return path.size() == prefix.size() || path[prefix.size()] == '/' || path[prefix.size()] == '.' ||
+           path[prefix.size()] == '{';
+}
+
+struct Step {
+    bool isVariant = false;
+    std::string first;   // prim name, or variant set name
+    std::string second;  // variant selection
+};
+
+std::string primPathOf(const std::vector<Step>& site) {
+    std::string path;
+    for (const Step& step : site) {
+        if (!step.isVariant) path += "/" + step.first;
+    }
+    return path.empty() ? "/" : path;
+}
+
+std::vector<Step> stepsOf(const std::string& primPath) {
+    std::vector<Step> steps;
+    size_t pos = 1;
+    while (pos < primPath.size()) {
+        size_t end = primPath.find('/', pos);
+        if (end == std::string::npos) end = primPath.size();
+        if (end > pos) steps.push_back(Step{false, primPath.substr(pos, end - pos), std::string()});
+        pos = end + 1;
+    }
+    return steps;
+}
+
+// ---------------------------------------------------------------- prim index
+
+struct LayerStack {
+    const Layer* root = nullptr;
+    std::vector<const Layer*> layers;  // strongest first
+};
+
+enum class ArcType { Root = 0, Variant = 1, Reference = 2, Payload = 3 };
+
+struct Node {
+    const LayerStack* stack = nullptr;
+    std::vector<Step> site;
+    ArcType arc = ArcType::Root;
+    int depth = 0;    // namespace depth at which the arc was introduced
+    int sibling = 0;  // authored order among the arcs of one node
+    std::string mapSource, mapTarget;  // the arc maps mapSource (here) to mapTarget (parent); "" = identity
+    std::vector<const PrimSpec*> specs;  // strongest first
+    std::vector<Node> children;
+
+    bool hasSpecs() const {
+        if (!specs.empty()) return true;
+        for (const Node& child : children) {
+            if (child.hasSpecs()) return true;
+        }
+        return false;
+    }
+};
+
+using Mappings = std::vector<std::pair<std::string, std::string>>;  // node first, root last
+
+std::string mapPath(const std::string& path, const Mappings& mappings) {
+    std::string mapped = path;
+    for (const auto& [source, target] : mappings) {
+        if (source.empty()) continue;
+        if (hasPathPrefix(mapped, source)) mapped = target + mapped.substr(source.size());
+    }
+    return mapped;
+}
+
+struct Opinion {
+    const PrimSpec* spec;
+    const Mappings* mappings;
+};
+
+void mergeMetadatum(std::map<std::string, Value>& into, const std::string& key, const Value& weaker) {
+    auto it = into.find(key);
+    if (it == into.end()) {
+        into.emplace(key, weaker);
+        return;
+    }
+    Value& stronger = it->second;
+    if (!stronger.isDictionary() || !weaker.isDictionary() || stronger.isBlocked || weaker.isBlocked) return;
+    // Dictionaries compose key by key, the stronger value winning.
+    std::map<std::string, Value> merged;
+    for (size_t i = 0; i < stronger.keys.size(); ++i) merged.emplace(stronger.keys[i], stronger.items[i]);
+    for (size_t i = 0; i < weaker.keys.size(); ++i) {
+        mergeMetadatum(merged, weaker.keys[i], weaker.items[i]);
+        if (std::find(stronger.keys.begin(), stronger.keys.end(), weaker.keys[i]) == stronger.keys.end()) {
+            stronger.keys.push_back(weaker.keys[i]);
+            stronger.items.push_back(weaker.items[i]);
+        }
+    }
+    for (size_t i = 0; i < stronger.keys.size(); ++i) stronger.items[i] = merged[stronger.keys[i]];
+}
+
+class Composer {
+public:
+    const Layer& addRootLayer(const std::string& key, std::unique_ptr<Layer> layer) {
+        const Layer* raw = layer.get();
+        layers_[key] = std::move(layer);
+        return *raw;
+    }
+
+    const Layer& loadLayer(const std::string& absPath, const SourceLocation& from, const char* what) {
+        auto it = layers_.find(absPath);
+        if (it != layers_.end()) return *it->second;
+        std::string contents, error;
+        if (!readFile(absPath, contents, error)) {
+            throw InputError(from.toString() + ": cannot open " + what + " '" + absPath + "'");
+        }
+        std::unique_ptr<Layer> layer =
+            detail::parseLayer(contents, absPath, fs::path(absPath).parent_path().string());
+        const Layer* raw = layer.get();
+        layers_[absPath] = std::move(layer);
+        return *raw;
+    }
+
+    const LayerStack& stackFor(const Layer& root) {
+        auto it = stacks_.find(&root);
+        if (it != stacks_.end()) return *it->second;
+        auto stack = std::make_unique<LayerStack>();
+        stack->root = &root;
+        std::vector<const Layer*> chain;
+        collectSubLayers(root, stack->layers, chain);
+        const LayerStack* raw = stack.get();
+        stacks_[&root] = std::move(stack);
+        return *raw;
+    }
+
+    std::unique_ptr<Prim> composeStage(const Layer& rootLayer) {
+        Node root;
+        root.stack = &stackFor(rootLayer);
+        auto pseudoRoot = std::make_unique<Prim>();
+        pseudoRoot->path = "/";
+        pseudoRoot->specifier = Specifier::Def;
+        pseudoRoot->location = SourceLocation{rootLayer.identifier, 1, 1};
+        fillSpecs(root);
+        composeChildren(*pseudoRoot, root, 0);
+        return pseudoRoot;
+    }
+
+private:
+    void collectSubLayers(const Layer& layer, std::vector<const Layer*>& out, std::vector<const Layer*>& chain) {
+        if (std::find(out.begin(), out.end(), &layer) != out.end()) return;  // already in the stack
+        out.push_back(&layer);
+        chain.push_back(&layer);
+        for (const detail::SubLayer& sub : layer.subLayers) {
+            const std::string path = resolveAsset(sub.assetPath, layer.directory);
+            const Layer& subLayer = loadLayer(path, sub.location, "sublayer");
+            if (std::find(chain.begin(), chain.end(), &subLayer) != chain.end()) {
+                throw InputError(sub.location.toString() + ": sublayer cycle: '" + path +
+                                 "' is already a sublayer above this one");
+            }
+            collectSubLayers(subLayer, out, chain);
+        }
+        chain.pop_back();
+    }
+
+    static void fillSpecs(Node& node) {
+        node.specs.clear();
+        for (const Layer* layer : node.stack->layers) {
+            const PrimSpec* spec = &layer->pseudoRoot;
+            for (const Step& step : node.site) {
+                spec = step.isVariant ? spec->variant(step.first, step.second) : spec->child(step.first);
+                if (!spec) break;
+            }
+            if (spec) node.specs.push_back(spec);
+        }
+    }
+
+    static Node mapToChild(const Node& node, const std::string& name) {
+        Node child;
+        child.stack = node.stack;
+        child.site = node.site;
+        child.site.push_back(Step{false, name, std::string()});
+        child.arc = node.arc;
+        child.depth = node.depth;
+        child.sibling = node.sibling;
+        child.mapSource = node.mapSource;  // the arc's mapping covers the whole subtree
+        child.mapTarget = node.mapTarget;
+        child.children.reserve(node.children.size());
+        for (const Node& grandChild : node.children) child.children.push_back(mapToChild(grandChild, name));
+        return child;
+    }
+
+    // The strongest selection for a variant set anywhere in the index so far.
+    static const std::string* variantSelection(const Node& node, const std::string& setName) {
+        for (const PrimSpec* spec : node.specs) {
+            auto it = spec->metadata.find("variants");
+            if (it == spec->metadata.end()) continue;
+            if (const Value* selection = it->second.find(setName)) {
+                if (!selection->strings.empty()) return &selection->strings.front();
+            }
+        }
+        for (const Node& child : node.children) {
+            if (const std::string* selection = variantSelection(child, setName)) return selection;
+        }
+        return nullptr;
+    }
+
+    template <class T, class Getter>
+    static std::vector<T> composeListOp(const std::vector<const PrimSpec*>& specs, Getter get) {
+        std::vector<T> result;
+        for (size_t i = specs.size(); i-- > 0;) get(*specs[i]).applyTo(result);
+        return result;
+    }
+
+    void addReferenceArc(Node& node, const Reference& reference, ArcType arc, int depth, int& sibling,
+                         const std::vector<const Node*>& chain) {
+        const char* what = arc == ArcType::Payload ? "payload layer" : "referenced layer";
+        const LayerStack* targetStack = node.stack;
+        std::string layerName = node.stack->root->identifier;
+        if (!reference.assetPath.empty()) {
+            const std::string path = resolveAsset(reference.assetPath, reference.baseDirectory);
+            const Layer& layer = loadLayer(path, reference.location, what);
+            targetStack = &stackFor(layer);
+            layerName = path;
+        }
+        std::string targetPath = reference.primPath;
+        if (targetPath.empty()) {
+            const std::string& defaultPrim = targetStack->root->info.defaultPrim;
+            if (defaultPrim.empty()) {
+                throw InputError(reference.location.toString() + ": '" + layerName +
+                                 "' has no defaultPrim, so the " +
+                                 (arc == ArcType::Payload ? "payload" : "reference") +
+                                 " must name a prim (@file@</Prim>)");
+            }
+            targetPath = defaultPrim[0] == '/' ? defaultPrim : "/" + defaultPrim;
+        }
+        if (targetPath[0] != '/' || targetPath.size() < 2 || targetPath.find_first_of("{}.[]") != std::string::npos) {
+            throw InputError(reference.location.toString() + ": unsupported prim path <" + targetPath +
+                             "> in a reference (expected an absolute prim path such as </World/asset>)");
+        }
+        for (const Node* ancestor : chain) {
+            if (ancestor->stack != targetStack) continue;
+            const std::string ancestorPath = primPathOf(ancestor->site);
+            if (hasPathPrefix(ancestorPath, targetPath) || hasPathPrefix(targetPath, ancestorPath)) {
+                throw InputError(reference.location.toString() + ": reference cycle: <" + targetPath + "> in '" +
+                                 layerName + "' is already being composed as <" + ancestorPath + ">");
+            }
+        }
+        Node child;
+        child.stack = targetStack;
+        child.site = stepsOf(targetPath);
+        child.arc = arc;
+        child.depth = depth;
+        child.sibling = sibling++;
+        child.mapSource = targetPath;
+        child.mapTarget = primPathOf(node.site);
+        fillSpecs(child);
+        if (child.specs.empty()) {
+            throw InputError(reference.location.toString() + ": " +
+                             (arc == ArcType::Payload ? "payload" : "referenced") + " prim <" + targetPath +
+                             "> does not exist in '" + layerName + "'");
+        }
+        node.children.push_back(std::move(child));
+    }
+
+    // Fills the node's specs for its site and adds the arcs they author
+    // (variants, references, payloads), recursively.
+    void expand(Node& node, std::vector<const Node*>& chain, int depth, const Node& indexRoot) {
+        if (++nodeCount_ > kMaxIndexNodes) {
+            throw InputError(node.stack->root->identifier + ": composition of <" + primPathOf(node.site) +
+                             "> reaches more than " + std::to_string(kMaxIndexNodes) + " layer sites");
+        }
+        fillSpecs(node);
+        chain.push_back(&node);
+        if (!node.specs.empty()) {
+            int sibling = static_cast<int>(node.children.size());
+            // Variant sets: the names listed in variantSets, then any other authored set.
+            std::vector<std::string> setNames = composeListOp<std::string>(
+                node.specs, [](const PrimSpec& spec) -> const ListOp<std::string>& { return spec.variantSetNames; });
+            for (size_t i = node.specs.size(); i-- > 0;) {
+                for (const detail::VariantSetSpec& set : node.specs[i]->variantSets) {
+                    if (std::find(setNames.begin(), setNames.end(), set.name) == setNames.end()) {
+                        setNames.push_back(set.name);
+                    }
+                }
+            }
+            for (const std::string& setName : setNames) {
+                const std::string* selection = variantSelection(indexRoot, setName);
+                if (!selection) continue;
+                bool authored = false;
+                for (const PrimSpec* spec : node.specs) authored = authored || spec->variant(setName, *selection);
+                if (!authored) continue;
+                Node child;
+                child.stack = node.stack;
+                child.site = node.site;
+                child.site.push_back(Step{true, setName, *selection});
+                child.arc = ArcType::Variant;
+                child.depth = depth;
+                child.sibling = sibling++;
+                node.children.push_back(std::move(child));
+            }
+            const std::vector<Reference> references = composeListOp<Reference>(
+                node.specs, [](const PrimSpec& spec) -> const ListOp<Reference>& { return spec.references; });
+            for (const Reference& reference : references) {
+                addReferenceArc(node, reference, ArcType::Reference, depth, sibling, chain);
+            }
+            const std::vector<Reference> payloads = composeListOp<Reference>(
+                node.specs, [](const PrimSpec& spec) -> const ListOp<Reference>& { return spec.payloads; });
+            for (const Reference& payload : payloads) {
+                addReferenceArc(node, payload, ArcType::Payload, depth, sibling, chain);
+            }
+        }
+        std::stable_sort(node.children.begin(), node.children.end(), [](const Node& a, const Node& b) {
+            if (a.arc != b.arc) return a.arc < b.arc;
+            if (a.depth != b.depth) return a.depth > b.depth;  // direct arcs before ancestral ones
+            return a.sibling < b.sibling;
+        });
+        for (Node& child : node.children) expand(child, chain, depth, indexRoot);
+        chain.pop_back();
+        node.children.erase(std::remove_if(node.children.begin(), node.children.end(),
+                                           [](const Node& child) { return !child.hasSpecs(); }),
+                            node.children.end());
+    }
+
+    // Strength order: a node, then its arcs' subtrees in order.
+    static void collectOpinions(const Node& node, Mappings mappings, std::deque<Mappings>& storage,
+                                std::vector<Opinion>& out) {
+        mappings.insert(mappings.begin(), {node.mapSource, node.mapTarget});
+        storage.push_back(mappings);
+        const Mappings* stored = &storage.back();
+        for (const PrimSpec* spec : node.specs) out.push_back(Opinion{spec, stored});
+        for (const Node& child : node.children) collectOpinions(child, mappings, storage, out);
+    }
+
+    static Attribute composeAttribute(const std::string& name,
+                                      const std::vector<std::pair<const AttributeSpec*, const Mappings*>>& specs) {
+        Attribute attribute;
+        attribute.name = name;
+        attribute.location = specs.front().first->location;
+        bool typed = false;
+        bool valueSourceFound = false;
+        for (const auto& [spec, mappings] : specs) {
+            if (!typed && !spec->typeName.empty()) {
+                typed = true;
+                attribute.typeName = spec->typeName;
+                attribute.isUniform = spec->isUniform;
+                attribute.isCustom = spec->isCustom;
+            }
+            if (!attribute.defaultValue && spec->defaultValue) attribute.defaultValue = spec->defaultValue;
+            if (!valueSourceFound) {
+                // The strongest spec with any value decides: its time samples, or
+                // its default (which then hides weaker time samples).
+                if (spec->hasTimeSamples) {
+                    attribute.timeSamples = spec->timeSamples;
+                    valueSourceFound = true;
+                } else if (spec->defaultValue) {
+                    valueSourceFound = true;
+                }
+            }
+            for (const auto& [key, value] : spec->metadata) mergeMetadatum(attribute.metadata, key, value);
+        }
+        for (size_t i = specs.size(); i-- > 0;) {
+            const ListOp<std::string>& op = specs[i].first->connections;
+            if (op.empty()) continue;
+            ListOp<std::string> remapped = op;
+            for (auto* list : {&remapped.explicitItems, &remapped.prepended, &remapped.appended, &remapped.added,
+                               &remapped.deleted}) {
+                for (std::string& path : *list) path = mapPath(path, *specs[i].second);
+            }
+            remapped.applyTo(attribute.connections);
+        }
+        return attribute;
+    }
+
+    static Relationship composeRelationship(
+        const std::string& name, const std::vector<std::pair<const RelationshipSpec*, const Mappings*>>& specs) {
+        Relationship relationship;
+        relationship.name = name;
+        relationship.location = specs.front().first->location;
+        for (size_t i = specs.size(); i-- > 0;) {
+            ListOp<std::string> remapped = specs[i].first->targets;
+            for (auto* list : {&remapped.explicitItems, &remapped.prepended, &remapped.appended, &remapped.added,
+                               &remapped.deleted}) {
+                for (std::string& path : *list) path = mapPath(path, *specs[i].second);
+            }
+            remapped.applyTo(relationship.targets);
+        }
+        return relationship;
+    }
+
+    static void composePrim(Prim& prim, const std::vector<Opinion>& opinions) {
+        prim.location = opinions.front().spec->location;
+        bool specifierFound = false;
+        prim.specifier = Specifier::Over;
+        for (const Opinion& opinion : opinions) {
+            const PrimSpec& spec = *opinion.spec;
+            if (!specifierFound && spec.specifier != Specifier::Over) {
+                prim.specifier = spec.specifier;
+                specifierFound = true;
+            }
+            if (prim.typeName.empty()) prim.typeName = spec.typeName;
+            for (const auto& [key, value] : spec.metadata) mergeMetadatum(prim.metadata, key, value);
+        }
+        if (auto it = prim.metadata.find("kind"); it != prim.metadata.end()) {
+            prim.kind = it->second.stringOr();
+            prim.metadata.erase(it);
+        }
+        if (auto it = prim.metadata.find("active"); it != prim.metadata.end()) {
+            prim.active = it->second.isBlocked || it->second.numberOr(1.0) != 0.0;
+            prim.metadata.erase(it);
+        }
+        std::vector<const PrimSpec*> specs;
+        for (const Opinion& opinion : opinions) specs.push_back(opinion.spec);
+        prim.apiSchemas = composeListOp<std::string>(
+            specs, [](const PrimSpec& spec) -> const ListOp<std::string>& { return spec.apiSchemas; });
+        std::vector<std::string> variantSets = composeListOp<std::string>(
+            specs, [](const PrimSpec& spec) -> const ListOp<std::string>& { return spec.variantSetNames; });
+        if (!variantSets.empty()) {
+            Value value;
+            value.typeName = "string[]";
+            value.isArray = true;
+            value.strings = std::move(variantSets);
+            prim.metadata["variantSets"] = std::move(value);
+        }
+
+        std::map<std::string, std::vector<std::pair<const AttributeSpec*, const Mappings*>>> attributes;
+        std::map<std::string, std::vector<std::pair<const RelationshipSpec*, const Mappings*>>> relationships;
+        for (const Opinion& opinion : opinions) {
+            for (const auto& [name, spec] : opinion.spec->attributes) {
+                attributes[name].emplace_back(&spec, opinion.mappings);
+            }
+            for (const auto& [name, spec] : opinion.spec->relationships) {
+                relationships[name].emplace_back(&spec, opinion.mappings);
+            }
+        }
+        for (const auto& [name, specList] : attributes) prim.attributes[name] = composeAttribute(name, specList);
+        for (const auto& [name, specList] : relationships) {
+            prim.relationships[name] = composeRelationship(name, specList);
+        }
+    }
+
+    void composeChildren(Prim& parent, const Node& parentIndex, int depth) {
+        if (depth >= kMaxNamespaceDepth) {
+            throw InputError(parent.location.toString() + ": prim <" + parent.path + "> is nested deeper than " +
+                             std::to_string(kMaxNamespaceDepth) + " levels");
+        }
+        // Child names: weakest opinions first, stronger ones appending new names.
+        std::vector<Opinion> opinions;
+        std::deque<Mappings> storage;
+        collectOpinions(parentIndex, Mappings(), storage, opinions);
+        std::vector<std::string> names;
+        for (size_t i = opinions.size(); i-- > 0;) {
+            for (const auto& child : opinions[i].spec->children) {
+                if (std::find(names.begin(), names.end(), child->name) == names.end()) names.push_back(child->name);
+            }
+        }
+        for (const std::string& name : names) {
+            Node index = mapToChild(parentIndex, name);
+            std::vector<const Node*> chain;
+            nodeCount_ = 0;
+            expand(index, chain, depth + 1, index);
+            if (!index.hasSpecs()) continue;
+            std::vector<Opinion> childOpinions;
+            std::deque<Mappings> childStorage;
+            collectOpinions(index, Mappings(), childStorage, childOpinions);
+            auto prim = std::make_unique<Prim>();
+            prim->name = name;
+            prim->path = (parent.path == "/" ? "/" : parent.path + "/") + name;
+            prim->parent = &parent;
+            composePrim(*prim, childOpinions);
+            Prim* raw = prim.get();
+            parent.children.push_back(std::move(prim));
+            if (raw->active) composeChildren(*raw, index, depth + 1);
+        }
+    }
+
+    std::map<std::string, std::unique_ptr<Layer>> layers_;
+    std::map<const Layer*, std::unique_ptr<LayerStack>> stacks_;
+    size_t nodeCount_ = 0;
+};
+
+}  // namespace
+
+std::unique_ptr<Stage> StageComposer::openFile(const std::string& path) {
+    std::string contents, error;
+    if (!readFile(path, contents, error)) throw InputError("cannot open '" + path + "': " + error);
+    const std::string absolute = absoluteNormal(path);
+    Composer composer;
+    const Layer& root = composer.addRootLayer(
+        absolute, detail::parseLayer(contents, path, fs::path(absolute).parent_path().string()));
+    auto stage = std::make_unique<Stage>();
+    stage->pseudoRoot_ = composer.composeStage(root);
+    stage->info_ = root.info;
+    stage->rootLayerPath_ = absolute;
+    return stage;
+}
+
+std::unique_ptr<Stage> StageComposer::openText(const std::string& text, const std::string& identifier,
+                                               const std::string& baseDirectory) {
+    Composer composer;
+    const Layer& root = composer.addRootLayer(
+        std::string("\x01memory:") + identifier,
+        detail::parseLayer(text, identifier, absoluteNormal(baseDirectory.empty() ? "." : baseDirectory)));
+    auto stage = std::make_unique<Stage>();
+    stage->pseudoRoot_ = composer.composeStage(root);
+    stage->info_ = root.info;
+    stage->rootLayerPath_ = identifier;
+    return stage;
+}
+
+}  // namespace hdhair::usda
