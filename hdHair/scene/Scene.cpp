@@ -1,6 +1,17 @@
 #include "hdHair/scene/Scene.h"
 
+#include <atomic>
+
 namespace hdhair {
+
+namespace {
+
+uint64_t nextVersion() {
+    static std::atomic<uint64_t> counter{0};
+    return ++counter;
+}
+
+}  // namespace
 
 const char* toString(LightType type) {
     switch (type) {
@@ -20,7 +31,7 @@ void Scene::set(Entries<Prim>& entries, Prim prim) {
     if (!entries.count(path)) remove(path);
     SceneEntry<Prim>& entry = entries[path];
     entry.prim = std::make_shared<const Prim>(std::move(prim));
-    entry.version = ++version_;
+    entry.version = version_ = nextVersion();
 }
 
 void Scene::setCurves(CurvesPrim prim) { set(curves_, std::move(prim)); }
@@ -31,7 +42,7 @@ void Scene::setLight(LightPrim prim) { set(lights_, std::move(prim)); }
 bool Scene::remove(const std::string& path) {
     size_t erased = curves_.erase(path) + meshes_.erase(path) + cameras_.erase(path) +
                     lights_.erase(path);
-    if (erased) ++version_;
+    if (erased) version_ = nextVersion();
     return erased > 0;
 }
 
@@ -40,7 +51,7 @@ void Scene::clear() {
     meshes_.clear();
     cameras_.clear();
     lights_.clear();
-    ++version_;
+    version_ = nextVersion();
 }
 
 const CameraPrim* Scene::findCamera(const std::string& path) const {

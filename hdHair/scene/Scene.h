@@ -32,7 +32,10 @@ struct StageInfo {
 template <typename Prim>
 struct SceneEntry {
     std::shared_ptr<const Prim> prim;
-    uint64_t version = 0;  // unique across the scene: a changed prim never repeats a version
+    // Unique across the process, not just this scene: a cache that outlives a
+    // scene (the renderer's prepared curves) must never mistake a prim of a
+    // new scene, or of the next frame, for one it has already seen.
+    uint64_t version = 0;
 };
 
 class Scene {
@@ -59,7 +62,7 @@ public:
     StageInfo& info() { return info_; }
     const StageInfo& info() const { return info_; }
 
-    // Bumped by every change; equal versions mean an identical scene.
+    // Changes with every edit; equal versions mean an identical scene.
     uint64_t version() const { return version_; }
 
 private:

@@ -5,6 +5,7 @@
 
 #include <glm/geometric.hpp>
 
+
 namespace hdhair {
 namespace {
 
@@ -25,8 +26,9 @@ KajiyaKayTerms evaluateKajiyaKay(const glm::vec3& t, const glm::vec3& l, const g
     float sinTe = std::sqrt(std::max(0.0f, 1.0f - te * te));
     float cosToCone = std::clamp(sinTl * sinTe - tl * te, 0.0f, 1.0f);
     KajiyaKayTerms terms;
-    terms.diffuse = parameters.diffuse * sinTl;
-    terms.specular = parameters.specular * std::pow(cosToCone, std::max(parameters.shininess, 1.0f));
+    constexpr float inversePi = 0.31830988618379067f;
+    terms.diffuse = parameters.diffuse * inversePi * sinTl;
+    terms.specular = parameters.specular * inversePi * std::pow(cosToCone, std::max(parameters.shininess, 1.0f));
     return terms;
 }
 

@@ -4,9 +4,13 @@
 //
 // Kajiya & Kay 1989, "Rendering fur with three dimensional textures", §3.1;
 // Svoboda 2012, §1.4.1. A fibre is an infinitely thin cylinder with tangent t.
-//   diffuse:  Kd · sin(t, l)                  (Lambert integrated over the lit half of the cylinder)
-//   specular: Ks · cos^p(θe − θr)             θr: the mirror cone, angle(t, r) = π − angle(t, l)
+//   diffuse:  Kd/π · sin(t, l)                (Lambert integrated over the lit half of the cylinder)
+//   specular: Ks/π · cos^p(θe − θr)           θr: the mirror cone, angle(t, r) = π − angle(t, l)
 //             cos(θe − θr) = sin(t,l)·sin(t,e) − (t·l)(t·e)
+// The 1/π is Lambert's normalisation: with Kd = 1, a fibre lit head-on by a
+// light of irradiance E reflects E·displayColor/π, as a Lambertian surface of
+// that albedo does in physically based renderers (RenderMan, Arnold, Karma),
+// so USD light intensities mean the same thing in hdHair as beside them.
 // l points towards the light, e towards the eye. The outgoing radiance from a
 // light of irradiance E is E·(diffuse·hairColour + specular): the specular
 // highlight is white, as on a dielectric fibre surface.
@@ -27,8 +31,8 @@ struct KajiyaKayParameters {
 };
 
 struct KajiyaKayTerms {
-    float diffuse = 0.0f;   // in [0, Kd]
-    float specular = 0.0f;  // in [0, Ks]
+    float diffuse = 0.0f;   // in [0, Kd/π]
+    float specular = 0.0f;  // in [0, Ks/π]
 };
 
 // t, l and e need not be normalised; zero vectors are treated as

@@ -1,9 +1,12 @@
 // Kajiya-Kay hair shading (Kajiya & Kay 1989, "Rendering fur with three
 // dimensional textures", section 3.1; Svoboda 2012 section 1.4.1).
 // Must match hdHair/shading/KajiyaKay.h, which documents the parameters.
-//   diffuse  = Kd sin(t, l)
-//   specular = Ks cos^p(theta_e - theta_r), the eye's angle to the mirror cone
-//              angle(t, r) = pi - angle(t, l):  cos = sin_tl sin_te - (t.l)(t.e)
+//   diffuse  = Kd / pi * sin(t, l)
+//   specular = Ks / pi * cos^p(theta_e - theta_r), the eye's angle to the mirror
+//              cone angle(t, r) = pi - angle(t, l):  cos = sin_tl sin_te - (t.l)(t.e)
+// The 1/pi puts USD light units on the scale of physically based renderers:
+// with Kd = 1 a fibre lit head-on reflects like a Lambertian surface of
+// albedo displayColor.
 // t: unit tangent; l: unit direction to the light; e: unit direction to the eye.
 struct KajiyaKayTerms {
     float diffuse;
@@ -18,7 +21,8 @@ KajiyaKayTerms kajiyaKay(vec3 t, vec3 l, vec3 e, float Kd, float Ks, float p) {
     float sinTe = sqrt(max(0.0, 1.0 - te * te));
     float cosToCone = clamp(sinTl * sinTe - tl * te, 0.0, 1.0);
     KajiyaKayTerms terms;
-    terms.diffuse = Kd * sinTl;
-    terms.specular = Ks * pow(cosToCone, p);
+    const float inversePi = 0.31830988618379067;
+    terms.diffuse = Kd * inversePi * sinTl;
+    terms.specular = Ks * inversePi * pow(cosToCone, max(p, 1.0));
     return terms;
 }

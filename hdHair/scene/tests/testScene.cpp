@@ -47,3 +47,13 @@ TEST(Scene, PathNamesOnePrimWhateverItsKind) {
     EXPECT_TRUE(scene.curves().empty());
     EXPECT_EQ(scene.lights().size(), 1u);
 }
+
+TEST(Scene, VersionsAreNeverReusedAcrossScenes) {
+    // The renderer caches prepared curves by path and version across scenes.
+    CurvesPrim curves;
+    curves.path = "/World/hair";
+    Scene first, second;
+    first.setCurves(curves);
+    second.setCurves(curves);
+    EXPECT_NE(first.curves().at("/World/hair").version, second.curves().at("/World/hair").version);
+}

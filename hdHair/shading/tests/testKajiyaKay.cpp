@@ -13,13 +13,15 @@ using namespace hdhair;
 
 namespace {
 
+constexpr float kInversePi = 0.31830988618379067f;
+
 void expectBounded(const KajiyaKayTerms& terms, const KajiyaKayParameters& p) {
     EXPECT_TRUE(std::isfinite(terms.diffuse));
     EXPECT_TRUE(std::isfinite(terms.specular));
     EXPECT_GE(terms.diffuse, 0.0f);
-    EXPECT_LE(terms.diffuse, p.diffuse * (1.0f + 1e-6f));
+    EXPECT_LE(terms.diffuse, p.diffuse * kInversePi * (1.0f + 1e-6f));
     EXPECT_GE(terms.specular, 0.0f);
-    EXPECT_LE(terms.specular, p.specular * (1.0f + 1e-6f));
+    EXPECT_LE(terms.specular, p.specular * kInversePi * (1.0f + 1e-6f));
 }
 
 }  // namespace
@@ -27,10 +29,10 @@ void expectBounded(const KajiyaKayTerms& terms, const KajiyaKayParameters& p) {
 TEST(KajiyaKay, DiffuseIsSineOfTangentToLight) {
     KajiyaKayParameters p;
     glm::vec3 t(1, 0, 0), e(0, 0, 1);
-    EXPECT_NEAR(evaluateKajiyaKay(t, {0, 1, 0}, e, p).diffuse, p.diffuse, 1e-6f);
+    EXPECT_NEAR(evaluateKajiyaKay(t, {0, 1, 0}, e, p).diffuse, p.diffuse * kInversePi, 1e-6f);
     EXPECT_NEAR(evaluateKajiyaKay(t, {1, 0, 0}, e, p).diffuse, 0.0f, 1e-6f);
     EXPECT_NEAR(evaluateKajiyaKay(t, glm::normalize(glm::vec3(1, 1, 0)), e, p).diffuse,
-                p.diffuse * std::sqrt(0.5f), 1e-6f);
+                p.diffuse * kInversePi * std::sqrt(0.5f), 1e-6f);
 }
 
 TEST(KajiyaKay, SpecularPeaksOnTheMirrorCone) {
@@ -40,8 +42,8 @@ TEST(KajiyaKay, SpecularPeaksOnTheMirrorCone) {
     glm::vec3 l(std::cos(1.0472f), std::sin(1.0472f), 0.0f);
     glm::vec3 onCone(std::cos(2.0944f), 0.0f, std::sin(2.0944f));     // any azimuth on the cone
     glm::vec3 offCone(std::cos(1.0472f), 0.0f, std::sin(1.0472f));    // same side as the light
-    EXPECT_NEAR(evaluateKajiyaKay(t, l, onCone, p).specular, p.specular, 1e-4f);
-    EXPECT_LT(evaluateKajiyaKay(t, l, offCone, p).specular, 0.01f * p.specular);
+    EXPECT_NEAR(evaluateKajiyaKay(t, l, onCone, p).specular, p.specular * kInversePi, 1e-4f);
+    EXPECT_LT(evaluateKajiyaKay(t, l, offCone, p).specular, 0.01f * p.specular * kInversePi);
 }
 
 TEST(KajiyaKay, TangentParallelToLightOrEye) {

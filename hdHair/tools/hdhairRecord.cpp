@@ -1,0 +1,258 @@
+// hdhair-record: renders a USD stage to images, with usdrecord's options
+// where they apply. Reads the stage with the embedded .usda reader.
+//
+//   hdhair-record [options] usdFile outputImagePath
+//
+// Exit status: 0 on success; non-zero with one line "hdhair-record: error: ..."
+// on failure (bad arguments, unreadable stage, no GL context, unwritable output).
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "hdHair/base/Diagnostics.h"
+#include "hdHair/base/InputError.h"
+#include "hdHair/gl/GlContext.h"
+#include "hdHair/image/ImageWriter.h"
+#include "hdHair/render/CameraView.h"
+#include "hdHair/render/Renderer.h"
+#include "hdHair/scene/Scene.h"
+#include "hdHair/tools/FrameSpec.h"
+#include "hdHair/usda/SceneReader.h"
+#include "hdHair/usda/Stage.h"
+
+namespace {
+
+using namespace hdhair;
+using Clock = std::chrono::steady_clock;
+
+constexpr size_t kWarningsPrinted = 20;
+
+struct Options {
+    std::string usdFile, outputPath, camera, frames, complexity = "low", gl, statsFile, purposes = "proxy";
+    int imageWidth = 960;
+    bool defaultTime = false, verbose = false, explain = false;
+    std::vector<std::string> settings;
+};
+
+double millisecondsSince(Clock::time_point start) {
+    return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
+
+void writeTextAtomically(const std::string& path, const std::string& text) {
+    std::filesystem::path target = std::filesystem::absolute(path);
+    std::filesystem::path temporary = target.parent_path() / ("." + target.filename().string() + ".tmp");
+    {
+        std::ofstream out(temporary);
+        out << text;
+        if (!out.good()) throw std::runtime_error("cannot write '" + path + "'");
+    }
+    std::filesystem::rename(temporary, target);
+}
+
+// The time codes to render: --frames, the Default time (NaN) with
+// --defaultTime, else the stage's earliest time (usdrecord's default).
+std::vector<double> timesToRender(const Options& options, const usda::Stage& stage) {
+    if (!options.frames.empty()) return parseFrameSpec(options.frames);
+    if (options.defaultTime) return {std::numeric_limits<double>::quiet_NaN()};
+    // UsdTimeCode::EarliestTime(): every attribute takes its first sample.
+    return {stage.info().startTimeCode.value_or(-std::numeric_limits<double>::infinity())};
+}
+
+usda::SceneReadOptions purposesFrom(const std::string& purposes) {
+    usda::SceneReadOptions read;
+    read.renderPurpose = read.proxyPurpose = read.guidePurpose = false;
+    std::string item;
+    std::string list = purposes + ",";
+    for (char c : list) {
+        if (c != ',' && c != ' ') {
+            item += c;
+            continue;
+        }
+        if (item == "render") read.renderPurpose = true;
+        else if (item == "proxy") read.proxyPurpose = true;
+        else if (item == "guide") read.guidePurpose = true;
+        else if (!item.empty() && item != "default")
+            throw std::invalid_argument("unknown purpose '" + item + "' (use render, proxy, guide)");
+        item.clear();
+    }
+    return read;
+}
+
+int run(const Options& options) {
+    RenderSettings settings;
+    Complexity complexity;
+    if (!parseComplexity(options.complexity, &complexity))
+        throw std::invalid_argument("--complexity must be low, medium, high or veryhigh");
+    settings.setComplexity(complexity);
+    for (const std::string& assignment : options.settings) settings.setFromAssignment(assignment);
+    if (options.imageWidth < 1 || options.imageWidth > 16384)
+        throw std::invalid_argument("--imageWidth must be between 1 and 16384");
+    if (!isSupportedImagePath(options.outputPath))
+        throw std::invalid_argument("cannot write '" + options.outputPath +
+                                    "': unsupported image extension (use .exr, .png, .tif, .tiff, .jpg or .jpeg)");
+    gl::GlBackend backend = gl::defaultGlBackend();
+    if (!options.gl.empty() && !gl::parseGlBackend(options.gl, &backend))
+        throw std::invalid_argument("--gl must be egl or osmesa");
+    usda::SceneReadOptions readOptions = purposesFrom(options.purposes);
+
+    Diagnostics diagnostics;
+    size_t printed = 0;
+    diagnostics.setListener([&](const Diagnostic& warning) {
+        if (printed++ < kWarningsPrinted)
+            std::fprintf(stderr, "hdhair-record: warning: %s: %s\n", warning.where.c_str(), warning.message.c_str());
+    });
+
+    Clock::time_point readStart = Clock::now();
+    std::unique_ptr<usda::Stage> stage = usda::Stage::open(options.usdFile);
+    double readMilliseconds = millisecondsSince(readStart);
+    std::vector<double> times = timesToRender(options, *stage);
+    if (times.size() > 1 && !hasFramePlaceholder(options.outputPath))
+        throw std::invalid_argument("rendering " + std::to_string(times.size()) +
+                                    " frames needs a '#' placeholder in the output name, e.g. out.####.png");
+
+    Renderer renderer(backend);
+    if (options.verbose)
+        std::printf("hdhair-record: GL %s (%s); read %s in %.1f ms\n", gl::toString(backend),
+                    renderer.glDescription().c_str(), options.usdFile.c_str(), readMilliseconds);
+
+    nlohmann::json allStats = nlohmann::json::array();
+    for (double time : times) {
+        Scene scene;
+        Clock::time_point sceneStart = Clock::now();
+        usda::readScene(*stage, time, scene, diagnostics, readOptions);
+        double sceneMilliseconds = millisecondsSince(sceneStart);
+
+        CameraView camera;
+        std::string cameraName;
+        if (!options.camera.empty()) {
+            const CameraPrim* prim = scene.findCamera(options.camera);
+            if (!prim) {
+                std::string known;
+                for (const auto& [path, entry] : scene.cameras()) known += (known.empty() ? "" : ", ") + path;
+                throw InputError(options.usdFile + ": no camera at '" + options.camera + "'" +
+                                 (known.empty() ? " (the stage has no cameras)" : " (cameras: " + known + ")"));
+            }
+            camera = cameraViewFromPrim(*prim, options.imageWidth);
+            cameraName = options.camera;
+        } else {
+            SceneBounds bounds = renderer.prepare(scene, diagnostics);
+            FramingStyle style = settings.getToken("framing") == "usdrecord" ? FramingStyle::UsdRecord
+                                                                             : FramingStyle::FitAll;
+            camera = frameBounds(bounds.min, bounds.max, scene.info().upAxis, options.imageWidth, style);
+            cameraName = "framing camera (" + settings.getToken("framing") + ")";
+        }
+
+        RenderResult result = renderer.render(scene, camera, settings, diagnostics);
+        result.stats.camera = cameraName;
+        result.stats.time = time;
+        result.stats.passes.insert(result.stats.passes.begin(), PassTiming{"readScene", sceneMilliseconds});
+
+        std::string outputPath = std::isnan(time) ? options.outputPath : expandFramePlaceholder(options.outputPath, time);
+        Clock::time_point writeStart = Clock::now();
+        writeImage(result.color, outputPath);
+        result.stats.passes.push_back({"writeImage", millisecondsSince(writeStart)});
+
+        if (options.explain)
+            std::printf("hdhair-record: plan for %s:\n%s", std::isnan(time) ? "the default time" : fmt::format("time {}", time).c_str(),
+                        result.plan.describe().c_str());
+        if (options.verbose || options.explain) {
+            std::string passes;
+            for (const PassTiming& pass : result.stats.passes)
+                passes += fmt::format("{}{} {:.1f} ms", passes.empty() ? "" : ", ", pass.name, pass.milliseconds);
+            std::printf("hdhair-record: %s: %dx%d, camera %s, %llu curves, %llu segments; %s; wrote %s\n",
+                        std::isnan(time) ? "default time" : fmt::format("time {}", time).c_str(), camera.imageWidth,
+                        camera.imageHeight, cameraName.c_str(),
+                        static_cast<unsigned long long>(result.stats.curves),
+                        static_cast<unsigned long long>(result.stats.segments), passes.c_str(), outputPath.c_str());
+        }
+        nlohmann::json frameStats = result.stats.toJson();
+        frameStats["output"] = outputPath;
+        allStats.push_back(frameStats);
+    }
+    if (printed > kWarningsPrinted)
+        std::fprintf(stderr, "hdhair-record: warning: %zu more warnings not shown (see --stats)\n",
+                     printed - kWarningsPrinted);
+
+    if (!options.statsFile.empty()) {
+        nlohmann::json stats;
+        stats["stage"] = options.usdFile;
+        stats["frames"] = allStats;
+        stats["warnings"] = nlohmann::json::array();
+        for (const Diagnostic& warning : diagnostics.warnings())
+            stats["warnings"].push_back({{"where", warning.where}, {"message", warning.message}});
+        writeTextAtomically(options.statsFile, stats.dump(2) + "\n");
+    }
+    return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    Options options;
+    CLI::App app{"Renders a USD stage's hair curves to images, like usdrecord, with hdHair's engine.",
+                 "hdhair-record"};
+    app.add_option("usdFile", options.usdFile, "The stage to render (.usda)")->required();
+    app.add_option("outputImagePath", options.outputPath,
+                   "Output image (.exr: linear half float; .png/.tif/.jpg: 8-bit sRGB). A '#' run is replaced "
+                   "by the frame number")
+        ->required();
+    app.add_option("--camera", options.camera,
+                   "Camera prim path; without it, a camera framing the whole stage is used");
+    app.add_option("--imageWidth,-w", options.imageWidth,
+                   "Image width in pixels; the height follows the camera's aspect ratio")
+        ->capture_default_str();
+    auto* frames = app.add_option("--frames,-f", options.frames,
+                                  "Frames to render: 12, 1:10, 1:10x2, or a comma-separated list");
+    app.add_flag("--defaultTime,-d", options.defaultTime,
+                 "Render at the Default time code (otherwise the earliest time)")
+        ->excludes(frames);
+    app.add_option("--complexity,-c", options.complexity, "Tessellation density: low, medium, high, veryhigh")
+        ->capture_default_str();
+    app.add_option("--setting,-s", options.settings,
+                   "A renderer setting NAME=VALUE (repeatable); --help-settings lists them");
+    app.add_option("--purposes", options.purposes,
+                   "Purposes rendered besides 'default': comma-separated render, proxy, guide")
+        ->capture_default_str();
+    app.add_option("--gl", options.gl, "OpenGL context: egl (default, or $HDHAIR_GL) or osmesa");
+    app.add_option("--stats", options.statsFile, "Write what was rendered (prims, curves, segments, pass times, "
+                                                 "settings) to this JSON file");
+    app.add_flag("--verbose,-v", options.verbose, "Print what was done and how long each pass took");
+    app.add_flag("--explain", options.explain, "Print the render plan: which passes run and why");
+    bool listSettings = false;
+    app.add_flag("--help-settings", listSettings, "List the renderer settings with defaults and exit");
+
+    // --help-settings needs no positional arguments.
+    for (int i = 1; i < argc; ++i) {
+        if (std::string(argv[i]) == "--help-settings") {
+            for (const SettingDescriptor& descriptor : RenderSettings::descriptors())
+                std::printf("%-22s default %-8s %s\n", descriptor.name.c_str(), descriptor.defaultValue.c_str(),
+                            descriptor.description.c_str());
+            return 0;
+        }
+    }
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::CallForHelp& help) {
+        return app.exit(help);
+    } catch (const CLI::ParseError& error) {
+        std::fprintf(stderr, "hdhair-record: error: %s (see --help)\n", error.what());
+        return 2;
+    }
+    try {
+        return run(options);
+    } catch (const std::exception& error) {
+        std::fprintf(stderr, "hdhair-record: error: %s\n", error.what());
+        return 1;
+    }
+}

@@ -1,0 +1,170 @@
+// hdhair-record as a user meets it: exit codes, one-line reasons, outputs,
+// frames and --stats. Each test runs the real binary.
+
+#include <sys/wait.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "hdHair/image/ImageWriter.h"
+
+using namespace hdhair;
+namespace fs = std::filesystem;
+
+namespace {
+
+struct RecordRun {
+    int exitCode = -1;
+    std::string output;  // stdout and stderr together
+};
+
+RecordRun record(const std::string& arguments, const std::string& environment = "") {
+    std::string command = environment + " " HDHAIR_RECORD " " + arguments + " 2>&1";
+    RecordRun run;
+    FILE* pipe = ::popen(command.c_str(), "r");
+    if (!pipe) return run;
+    char buffer[4096];
+    size_t read;
+    while ((read = std::fread(buffer, 1, sizeof buffer, pipe)) > 0) run.output.append(buffer, read);
+    int status = ::pclose(pipe);
+    run.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    return run;
+}
+
+std::string example(const std::string& name) { return std::string(HDHAIR_SOURCE_DIR) + "/examples/" + name; }
+
+class HdhairRecord : public ::testing::Test {
+protected:
+    void SetUp() override {
+        directory = fs::temp_directory_path() /
+                    ("hdhair-record-" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+        fs::remove_all(directory);
+        fs::create_directories(directory);
+    }
+    void TearDown() override { fs::remove_all(directory); }
+    std::string file(const std::string& name) const { return (directory / name).string(); }
+    std::string write(const std::string& name, const std::string& text) const {
+        std::ofstream(directory / name) << text;
+        return file(name);
+    }
+    fs::path directory;
+};
+
+}  // namespace
+
+TEST_F(HdhairRecord, RendersAnExampleWithItsCameraAndReportsStats) {
+    RecordRun run = record("--camera /World/main_cam --imageWidth 200 --stats " + file("stats.json") + " " +
+                     example("straight_strands.usda") + " " + file("out.png"));
+    ASSERT_EQ(run.exitCode, 0) << run.output;
+    Image image = readImage(file("out.png"));
+    EXPECT_EQ(image.width, 200);
+    EXPECT_EQ(image.height, 145);  // usdrecord's rule: floor(200 / (20.955 / 15.2908)) = floor(145.9)
+
+    nlohmann::json stats = nlohmann::json::parse(std::ifstream(file("stats.json")));
+    const nlohmann::json& frame = stats["frames"][0];
+    EXPECT_EQ(frame["prims"]["basisCurves"], 1);
+    EXPECT_EQ(frame["curves"], 40);
+    EXPECT_EQ(frame["segments"], 40 * 4);  // 7 catmullRom points: 4 spans each
+    EXPECT_EQ(frame["camera"], "/World/main_cam");
+    EXPECT_EQ(frame["settings"]["complexity"], "low");
+    bool strandsTimed = false;
+    for (const auto& pass : frame["passes"]) strandsTimed = strandsTimed || pass["name"] == "strands";
+    EXPECT_TRUE(strandsTimed) << frame.dump(2);
+}
+
+TEST_F(HdhairRecord, ExrOutputIsLinearHalfFloatWithAlpha) {
+    RecordRun run = record("--imageWidth 64 " + example("wavy_strands.usda") + " " + file("out.exr"));
+    ASSERT_EQ(run.exitCode, 0) << run.output;
+    Image image = readImage(file("out.exr"));
+    EXPECT_EQ(image.channels, 4);
+    EXPECT_EQ(image.width, 64);
+}
+
+TEST_F(HdhairRecord, FramesFillTheOutputPlaceholder) {
+    std::string stage = std::string(HDHAIR_SOURCE_DIR) + "/testenv/stages/xforms.usda";
+    RecordRun run = record("--frames 1:10x9 --imageWidth 48 " + stage + " " + file("frame.####.png"));
+    ASSERT_EQ(run.exitCode, 0) << run.output;
+    EXPECT_TRUE(fs::exists(file("frame.0001.png")));
+    EXPECT_TRUE(fs::exists(file("frame.0010.png")));
+    // The stage's translate is animated: each frame shows its own time.
+    EXPECT_NE(readImage(file("frame.0001.png")).pixels, readImage(file("frame.0010.png")).pixels);
+    RecordRun noPlaceholder = record("--frames 1:2 " + stage + " " + file("frame.png"));
+    EXPECT_NE(noPlaceholder.exitCode, 0);
+    EXPECT_NE(noPlaceholder.output.find("needs a '#' placeholder"), std::string::npos) << noPlaceholder.output;
+}
+
+TEST_F(HdhairRecord, ExplainPrintsThePlanAndVerbosePrintsPassTimes) {
+    RecordRun run = record("--explain --verbose --imageWidth 64 " + example("straight_strands.usda") + " " + file("o.png"));
+    ASSERT_EQ(run.exitCode, 0) << run.output;
+    EXPECT_NE(run.output.find("plan for"), std::string::npos) << run.output;
+    EXPECT_NE(run.output.find("strands    on"), std::string::npos) << run.output;
+    EXPECT_NE(run.output.find("readback"), std::string::npos) << run.output;
+}
+
+TEST_F(HdhairRecord, MissingStageIsAOneLineError) {
+    RecordRun run = record(file("missing.usda") + " " + file("out.png"));
+    EXPECT_EQ(run.exitCode, 1);
+    EXPECT_EQ(run.output, "hdhair-record: error: cannot open '" + file("missing.usda") +
+                              "': No such file or directory\n");
+    EXPECT_FALSE(fs::exists(file("out.png")));
+}
+
+TEST_F(HdhairRecord, MalformedStageNamesFileLineAndColumn) {
+    std::string stage = write("bad.usda", "#usda 1.0\ndef BasisCurves \"hair\" {\n    int[] curveVertexCounts = [4,\n}\n");
+    RecordRun run = record(stage + " " + file("out.png"));
+    EXPECT_EQ(run.exitCode, 1);
+    EXPECT_EQ(run.output.rfind("hdhair-record: error: " + stage + ":4:", 0), 0u) << run.output;
+    EXPECT_EQ(std::count(run.output.begin(), run.output.end(), '\n'), 1) << run.output;
+}
+
+TEST_F(HdhairRecord, BadArgumentsAreOneLineErrors) {
+    std::string stage = example("straight_strands.usda");
+    RecordRun badSetting = record("--setting bogus=1 " + stage + " " + file("o.png"));
+    EXPECT_EQ(badSetting.exitCode, 1);
+    EXPECT_EQ(badSetting.output.rfind("hdhair-record: error: unknown setting 'bogus'", 0), 0u) << badSetting.output;
+    RecordRun badCamera = record("--camera /World/nope " + stage + " " + file("o.png"));
+    EXPECT_EQ(badCamera.exitCode, 1);
+    EXPECT_NE(badCamera.output.find("no camera at '/World/nope' (cameras: /World/main_cam)"), std::string::npos)
+        << badCamera.output;
+    RecordRun badExtension = record(stage + " " + file("o.bmpx"));
+    EXPECT_EQ(badExtension.exitCode, 1);
+    EXPECT_NE(badExtension.output.find("unsupported image extension"), std::string::npos);
+    RecordRun badGl = record("--gl vulkan " + stage + " " + file("o.png"));
+    EXPECT_EQ(badGl.output, "hdhair-record: error: --gl must be egl or osmesa\n");
+    RecordRun noArguments = record("");
+    EXPECT_NE(noArguments.exitCode, 0);
+}
+
+TEST_F(HdhairRecord, NoGlContextIsAClearErrorNotACrash) {
+    RecordRun run = record("--gl egl " + example("straight_strands.usda") + " " + file("o.png"),
+                     "__EGL_VENDOR_LIBRARY_FILENAMES=/nonexistent.json");
+    EXPECT_EQ(run.exitCode, 1);
+    EXPECT_EQ(run.output.rfind("hdhair-record: error: no usable OpenGL 4.5 context through EGL (tried: ", 0), 0u)
+        << run.output;
+    EXPECT_EQ(std::count(run.output.begin(), run.output.end(), '\n'), 1) << run.output;
+}
+
+TEST_F(HdhairRecord, OsMesaFallbackRenders) {
+    RecordRun run = record("--gl osmesa --imageWidth 64 " + example("straight_strands.usda") + " " + file("o.png"));
+    EXPECT_EQ(run.exitCode, 0) << run.output;
+    EXPECT_TRUE(fs::exists(file("o.png")));
+    RecordRun fromEnvironment =
+        record("--imageWidth 64 " + example("straight_strands.usda") + " " + file("e.png"), "HDHAIR_GL=osmesa");
+    EXPECT_EQ(fromEnvironment.exitCode, 0) << fromEnvironment.output;
+}
+
+TEST_F(HdhairRecord, HelpListsUsdrecordOptions) {
+    RecordRun run = record("--help");
+    EXPECT_EQ(run.exitCode, 0);
+    for (const char* option : {"--camera", "--imageWidth", "--frames", "--defaultTime", "--complexity", "--setting",
+                               "--gl", "--stats"})
+        EXPECT_NE(run.output.find(option), std::string::npos) << option;
+    RecordRun settings = record("--help-settings");
+    EXPECT_EQ(settings.exitCode, 0);
+    EXPECT_NE(settings.output.find("maxSegmentsPerSpan"), std::string::npos);
+}

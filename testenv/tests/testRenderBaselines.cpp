@@ -1,0 +1,135 @@
+// Image tests: every example and testenv stage renders through the engine and
+// matches its checked-in baseline, compared as the 8-bit sRGB PNG a user sees.
+//
+// Threshold (stated, as OpenUSD's image tests state theirs): at most 1% of
+// pixels may differ by more than 4/255 in any channel, and the mean absolute
+// difference must stay under 1/255. Rasterisation of sub-pixel strand edges
+// can differ between CPUs, which is why a small fraction of pixels may move.
+//
+// To accept new pictures after an intended change:
+//   HDHAIR_UPDATE_BASELINES=1 ctest -R Baseline     (then review the PNGs in git)
+// Failing renders are left in build/testenv-output/ for inspection.
+
+#include <cstdlib>
+#include <filesystem>
+
+#include <gtest/gtest.h>
+
+#include "StageRendering.h"
+#include "hdHair/image/ImageComparison.h"
+#include "hdHair/image/ImageWriter.h"
+
+using namespace hdhair;
+using namespace hdhair::testenv;
+namespace fs = std::filesystem;
+
+namespace {
+
+struct BaselineCase {
+    const char* name;
+    const char* stage;
+    const char* camera;
+    int width;
+    double time;
+};
+
+const BaselineCase kCases[] = {
+    {"straight_strands", "examples/straight_strands.usda", "/World/main_cam", 320, 0.0},
+    {"wavy_strands", "examples/wavy_strands.usda", "/World/main_cam", 320, 0.0},
+    {"dense_clump", "examples/dense_clump.usda", "/World/main_cam", 320, 0.0},
+    {"bases", "testenv/stages/bases.usda", "/World/main_cam", 320, 0.0},
+    {"interpolations", "testenv/stages/interpolations.usda", "/World/main_cam", 256, 0.0},
+    {"xforms_time1", "testenv/stages/xforms.usda", "/World/main_cam", 256, 1.0},
+    {"xforms_time10", "testenv/stages/xforms.usda", "/World/main_cam", 256, 10.0},
+    {"composition", "testenv/stages/composition/root.usda", "/World/main_cam", 256, 0.0},
+    {"framing_camera", "examples/wavy_strands.usda", "", 256, 0.0},
+};
+
+class Baseline : public ::testing::TestWithParam<BaselineCase> {};
+
+}  // namespace
+
+TEST_P(Baseline, MatchesCheckedInImage) {
+    const BaselineCase& c = GetParam();
+    StageRender render = renderStage({c.stage, c.camera, c.width, c.time, {}});
+    EXPECT_TRUE(render.warnings.empty()) << render.warnings.front().where << ": " << render.warnings.front().message;
+
+    fs::path outputDirectory = fs::path(HDHAIR_BINARY_DIR) / "testenv-output";
+    fs::create_directories(outputDirectory);
+    fs::path actualPath = outputDirectory / (std::string(c.name) + ".png");
+    writeImage(render.result.color, actualPath.string());
+    fs::path baselinePath = fs::path(sourcePath("testenv/baselines")) / (std::string(c.name) + ".png");
+
+    const char* update = std::getenv("HDHAIR_UPDATE_BASELINES");
+    if (update && std::string(update) == "1") {
+        fs::copy_file(actualPath, baselinePath, fs::copy_options::overwrite_existing);
+        GTEST_SKIP() << "baseline updated: " << baselinePath;
+    }
+    ASSERT_TRUE(fs::exists(baselinePath)) << "no baseline " << baselinePath
+                                          << " (create it with HDHAIR_UPDATE_BASELINES=1)";
+    ImageTolerance tolerance{4.0 / 255.0, 0.01, 1.0};
+    ImageDifference difference = compareImages(readImage(actualPath.string()), readImage(baselinePath.string()),
+                                               tolerance.threshold);
+    EXPECT_TRUE(withinTolerance(difference, tolerance) && difference.meanDifference < 1.0 / 255.0)
+        << c.name << ": " << describe(difference, tolerance) << ", mean " << difference.meanDifference
+        << "; actual image: " << actualPath;
+    if (!HasFailure()) fs::remove(actualPath);
+}
+
+INSTANTIATE_TEST_SUITE_P(Stages, Baseline, ::testing::ValuesIn(kCases),
+                         [](const ::testing::TestParamInfo<BaselineCase>& stage) { return std::string(stage.param.name); });
+
+TEST(Rendering, EmptyStageRendersBackgroundOnly) {
+    StageRender render = renderStage({"testenv/stages/empty.usda", "/World/main_cam", 128, 0.0, {}});
+    for (float value : render.result.color.pixels) ASSERT_EQ(value, 0.0f);
+    for (float depth : render.result.depth.pixels) ASSERT_EQ(depth, 1.0f);
+}
+
+TEST(Rendering, DoublingEveryWidthIncreasesCoveredPixels) {
+    double thin = coverage(renderStage({"testenv/stages/widths.usda", "/World/main_cam", 256, 0.0, {}}).result.color);
+    double thick =
+        coverage(renderStage({"testenv/stages/widths_doubled.usda", "/World/main_cam", 256, 0.0, {}}).result.color);
+    EXPECT_GT(thin, 0.0);
+    // Ribbons twice as wide cover about twice the pixels; demand a clear increase.
+    EXPECT_GT(thick, 1.5 * thin) << "thin " << thin << ", doubled " << thick;
+}
+
+TEST(Rendering, RenderedPixelsAreFiniteAndPremultiplied) {
+    StageRender render = renderStage({"examples/dense_clump.usda", "/World/main_cam", 160, 0.0, {}});
+    const Image& color = render.result.color;
+    for (size_t p = 0; p < color.pixels.size(); p += 4) {
+        for (int c = 0; c < 4; ++c) ASSERT_TRUE(std::isfinite(color.pixels[p + size_t(c)]));
+        ASSERT_GE(color.pixels[p + 3], 0.0f);
+        ASSERT_LE(color.pixels[p + 3], 1.0f);
+        if (color.pixels[p + 3] == 0.0f) {
+            ASSERT_EQ(color.pixels[p], 0.0f);
+        }
+    }
+    EXPECT_GT(coverage(color), 0.02);
+}
+
+TEST(Rendering, AnimatedTransformMovesTheStrands) {
+    Image start = renderStage({"testenv/stages/xforms.usda", "/World/main_cam", 128, 1.0, {}}).result.color;
+    Image end = renderStage({"testenv/stages/xforms.usda", "/World/main_cam", 128, 10.0, {}}).result.color;
+    EXPECT_GT(compareImages(start, end, 0.05).fractionOverThreshold, 0.001);
+}
+
+TEST(Rendering, EglAndOsMesaAgree) {
+    StageRenderRequest request{"examples/straight_strands.usda", "/World/main_cam", 200, 0.0, {}};
+    Image egl = renderStage(request, gl::GlBackend::Egl).result.color;
+    Image osmesa = renderStage(request, gl::GlBackend::OsMesa).result.color;
+    ImageTolerance tolerance{1.0 / 255.0, 0.001, 1.0};
+    ImageDifference difference = compareImages(egl, osmesa, tolerance.threshold);
+    EXPECT_TRUE(withinTolerance(difference, tolerance)) << describe(difference, tolerance);
+}
+
+TEST(Rendering, HigherComplexityTessellatesMoreFinelyButLooksAlike) {
+    StageRenderRequest coarse{"examples/wavy_strands.usda", "/World/main_cam", 256, 0.0, {"maxSegmentsPerSpan=1"}};
+    StageRenderRequest fine{"examples/wavy_strands.usda", "/World/main_cam", 256, 0.0,
+                            {"maxSegmentsPerSpan=32", "pixelsPerSegment=1"}};
+    Image a = renderStage(coarse).result.color, b = renderStage(fine).result.color;
+    // One segment per span visibly straightens the waves; the fine render is the reference.
+    double difference = compareImages(a, b, 0.05).fractionOverThreshold;
+    EXPECT_GT(difference, 0.001);
+    EXPECT_LT(difference, 0.2);
+}
