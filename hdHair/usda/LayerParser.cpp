@@ -790,6 +790,11 @@ void Parser::parseLayerMetadata() {
         if (name == "framesPerSecond") info.framesPerSecond = value.numberOr(info.framesPerSecond);
         info.metadata[name] = std::move(value);
     });
+    // As UsdStage::GetTimeCodesPerSecond: an unauthored timeCodesPerSecond
+    // falls back to an authored framesPerSecond.
+    if (!info.metadata.count("timeCodesPerSecond") && info.metadata.count("framesPerSecond")) {
+        info.timeCodesPerSecond = info.framesPerSecond;
+    }
 }
 
 void Parser::handlePrimMetadata(PrimSpec& spec, const std::string& key, ListOpKind op, const std::string& owner) {

@@ -85,8 +85,9 @@ struct Reference {
     SourceLocation location;    // where it was authored
     std::string baseDirectory;  // directory of the layer that authored it
 
+    // As SdfReference: items of a list op compare by their authored value.
     bool operator==(const Reference& other) const {
-        return assetPath == other.assetPath && primPath == other.primPath && baseDirectory == other.baseDirectory;
+        return assetPath == other.assetPath && primPath == other.primPath;
     }
 };
 

@@ -5,9 +5,12 @@
 //
 // Composition supported: subLayers (stronger first), references and payloads
 // (external files with an optional prim path, defaultPrim otherwise, and
-// internal references "</Path>"), list ops (prepend/append/add/delete are all
-// treated as adding, in order), def/over/class specifiers. The strongest
-// opinion of each attribute, relationship and metadatum wins.
+// internal references "</Path>"), the selected variant of each variant set,
+// list ops with SdfListOp semantics (explicit, prepend, append, add, delete;
+// reorder is ignored), def/over/class specifiers. The strongest opinion of
+// each attribute, relationship and metadatum wins (dictionaries merge key by
+// key). Layer offsets are parsed but not applied; inherits and specializes
+// are kept as metadata but not composed.
 
 #include <map>
 #include <memory>
@@ -42,6 +45,8 @@ struct Attribute {
     // vectors component-wise, arrays only when both samples have the same
     // size), other types are held from the sample at or before the time.
     // Before the first or after the last sample, the end sample is held.
+    // Quaternions are slerped. A blocked value (None, as the default or as
+    // the sample in effect) gives std::nullopt, as does no value at all.
     std::optional<Value> valueAt(double time) const;
     bool isTimeVarying() const { return timeSamples.size() > 1; }
 };
@@ -67,7 +72,7 @@ struct Prim {
     std::map<std::string, Relationship> relationships;
     std::vector<std::unique_ptr<Prim>> children;    // in authored order
     const Prim* parent = nullptr;
-    SourceLocation location;                        // strongest "def"/"over"
+    SourceLocation location;                        // strongest "def"/"over"/"class" or variant
 
     const Attribute* attribute(const std::string& attributeName) const;
     const Prim* child(const std::string& childName) const;
@@ -98,13 +103,16 @@ public:
                                                  const std::string& baseDirectory = ".");
 
     const LayerInfo& info() const { return info_; }     // the root layer's metadata
+    // open(): the absolute, normalized path; openFromString(): the identifier.
     const std::string& rootLayerPath() const { return rootLayerPath_; }
     const Prim& pseudoRoot() const { return *pseudoRoot_; }
     // Absolute path ("/World/hair"); nullptr when there is no such prim.
     const Prim* findPrim(const std::string& path) const;
     // Every prim below the pseudo-root, depth first in authored order. Inactive
-    // prims and their descendants, and prims with the "class" specifier, are
-    // skipped (as UsdPrimDefaultPredicate does).
+    // prims, prims with the "class" specifier and prims that only have "over"
+    // opinions (not defined), each with its descendants, are skipped (as
+    // UsdPrimDefaultPredicate does). findPrim still finds them; the children
+    // of an inactive prim are not composed at all.
     std::vector<const Prim*> traverse() const;
 
 private:

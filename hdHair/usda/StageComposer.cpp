@@ -7,6 +7,7 @@
 #include <deque>
 #include <filesystem>
 #include <functional>
+#include <unordered_set>
 
 #include "hdHair/base/InputError.h"
 #include "hdHair/usda/LayerParser.h"
@@ -519,9 +520,10 @@ private:
         std::deque<Mappings> storage;
         collectOpinions(parentIndex, Mappings(), storage, opinions);
         std::vector<std::string> names;
+        std::unordered_set<std::string> seen;
         for (size_t i = opinions.size(); i-- > 0;) {
             for (const auto& child : opinions[i].spec->children) {
-                if (std::find(names.begin(), names.end(), child->name) == names.end()) names.push_back(child->name);
+                if (seen.insert(child->name).second) names.push_back(child->name);
             }
         }
         for (const std::string& name : names) {
