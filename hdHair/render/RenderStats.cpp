@@ -8,7 +8,10 @@ nlohmann::json RenderStats::toJson() const {
     nlohmann::json json;
     json["image"] = {{"width", imageWidth}, {"height", imageHeight}};
     json["camera"] = camera;
-    json["time"] = std::isnan(time) ? nlohmann::json("default") : nlohmann::json(time);
+    // UsdTimeCode's special times have no JSON number: name them.
+    json["time"] = std::isnan(time) ? nlohmann::json("default")
+                   : std::isinf(time) ? nlohmann::json(time < 0 ? "earliest" : "latest")
+                                      : nlohmann::json(time);
     json["prims"] = {{"basisCurves", curvesPrims}, {"meshes", meshPrims}, {"lights", lights}};
     json["curves"] = curves;
     json["segments"] = segments;

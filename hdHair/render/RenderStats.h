@@ -18,7 +18,7 @@ struct PassTiming {
 struct RenderStats {
     int imageWidth = 0, imageHeight = 0;
     std::string camera;           // prim path, or "framing camera"
-    double time = 0.0;            // time code rendered; NaN for the default time
+    double time = 0.0;            // time code; NaN: UsdTimeCode::Default(), -inf: EarliestTime()
     size_t curvesPrims = 0, meshPrims = 0, lights = 0;
     uint64_t curves = 0, segments = 0;
     std::vector<PassTiming> passes;

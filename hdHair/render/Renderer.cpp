@@ -110,7 +110,7 @@ SceneBounds Renderer::prepare(const Scene& scene, Diagnostics& diagnostics) {
             for (auto& [prim, cached] : changed) cached->buffer.reset();
         });
     }
-    lastPrepareMilliseconds_ = millisecondsSince(start);
+    pendingPrepareMilliseconds_ += millisecondsSince(start);
 
     SceneBounds bounds;
     for (const auto& [path, entry] : scene.curves()) {
@@ -140,7 +140,8 @@ RenderResult Renderer::render(const Scene& scene, const CameraView& camera, cons
     RenderResult result;
     size_t warningsBefore = diagnostics.warningCount();
     prepare(scene, diagnostics);
-    result.stats.passes.push_back({"prepareCurves", lastPrepareMilliseconds_});
+    result.stats.passes.push_back({"prepareCurves", pendingPrepareMilliseconds_});
+    pendingPrepareMilliseconds_ = 0.0;
 
     std::vector<std::pair<std::string, CachedCurves*>> visible;
     uint64_t segments = 0, curveCount = 0;

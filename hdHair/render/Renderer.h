@@ -73,7 +73,8 @@ private:
     std::unique_ptr<gl::StrandPass> strandPass_;
     std::unique_ptr<gl::RenderTarget> target_;
     std::map<std::string, CachedCurves> curves_;
-    double lastPrepareMilliseconds_ = 0.0;
+    // Preparation time since the last render (framing may prepare first).
+    double pendingPrepareMilliseconds_ = 0.0;
 };
 
 }  // namespace hdhair

@@ -45,6 +45,12 @@ struct Options {
     std::vector<std::string> settings;
 };
 
+std::string describeTime(double time) {
+    if (std::isnan(time)) return "default time";
+    if (std::isinf(time)) return "earliest time";
+    return fmt::format("time {}", time);
+}
+
 double millisecondsSince(Clock::time_point start) {
     return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
 }
@@ -60,13 +66,13 @@ void writeTextAtomically(const std::string& path, const std::string& text) {
     std::filesystem::rename(temporary, target);
 }
 
-// The time codes to render: --frames, the Default time (NaN) with
-// --defaultTime, else the stage's earliest time (usdrecord's default).
-std::vector<double> timesToRender(const Options& options, const usda::Stage& stage) {
+// The time codes to render, as usdrecord chooses them: --frames; the Default
+// time code (NaN) with --defaultTime; else UsdTimeCode::EarliestTime()
+// (-infinity), at which every attribute takes its first time sample.
+std::vector<double> timesToRender(const Options& options) {
     if (!options.frames.empty()) return parseFrameSpec(options.frames);
     if (options.defaultTime) return {std::numeric_limits<double>::quiet_NaN()};
-    // UsdTimeCode::EarliestTime(): every attribute takes its first sample.
-    return {stage.info().startTimeCode.value_or(-std::numeric_limits<double>::infinity())};
+    return {-std::numeric_limits<double>::infinity()};
 }
 
 usda::SceneReadOptions purposesFrom(const std::string& purposes) {
@@ -116,7 +122,7 @@ int run(const Options& options) {
     Clock::time_point readStart = Clock::now();
     std::unique_ptr<usda::Stage> stage = usda::Stage::open(options.usdFile);
     double readMilliseconds = millisecondsSince(readStart);
-    std::vector<double> times = timesToRender(options, *stage);
+    std::vector<double> times = timesToRender(options);
     if (times.size() > 1 && !hasFramePlaceholder(options.outputPath))
         throw std::invalid_argument("rendering " + std::to_string(times.size()) +
                                     " frames needs a '#' placeholder in the output name, e.g. out.####.png");
@@ -158,20 +164,21 @@ int run(const Options& options) {
         result.stats.time = time;
         result.stats.passes.insert(result.stats.passes.begin(), PassTiming{"readScene", sceneMilliseconds});
 
-        std::string outputPath = std::isnan(time) ? options.outputPath : expandFramePlaceholder(options.outputPath, time);
+        std::string outputPath =
+            std::isfinite(time) ? expandFramePlaceholder(options.outputPath, time) : options.outputPath;
         Clock::time_point writeStart = Clock::now();
         writeImage(result.color, outputPath);
         result.stats.passes.push_back({"writeImage", millisecondsSince(writeStart)});
 
         if (options.explain)
-            std::printf("hdhair-record: plan for %s:\n%s", std::isnan(time) ? "the default time" : fmt::format("time {}", time).c_str(),
+            std::printf("hdhair-record: plan (%s):\n%s", describeTime(time).c_str(),
                         result.plan.describe().c_str());
         if (options.verbose || options.explain) {
             std::string passes;
             for (const PassTiming& pass : result.stats.passes)
                 passes += fmt::format("{}{} {:.1f} ms", passes.empty() ? "" : ", ", pass.name, pass.milliseconds);
             std::printf("hdhair-record: %s: %dx%d, camera %s, %llu curves, %llu segments; %s; wrote %s\n",
-                        std::isnan(time) ? "default time" : fmt::format("time {}", time).c_str(), camera.imageWidth,
+                        describeTime(time).c_str(), camera.imageWidth,
                         camera.imageHeight, cameraName.c_str(),
                         static_cast<unsigned long long>(result.stats.curves),
                         static_cast<unsigned long long>(result.stats.segments), passes.c_str(), outputPath.c_str());

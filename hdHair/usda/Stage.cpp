@@ -41,7 +41,9 @@ void slerpQuaternions(const Value& a, const Value& b, double t, Value& out) {
 }  // namespace
 
 std::optional<Value> Attribute::valueAt(double time) const {
-    if (!timeSamples.empty()) {
+    // NaN stands for UsdTimeCode::Default(): only the default value counts,
+    // whatever samples exist (an attribute with samples only has no value).
+    if (!std::isnan(time) && !timeSamples.empty()) {
         auto upper = timeSamples.lower_bound(time);  // first sample at or after `time`
         if (upper == timeSamples.end()) upper = std::prev(upper);
         if (upper->first == time || upper == timeSamples.begin() || !(time < upper->first)) {

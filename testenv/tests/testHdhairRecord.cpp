@@ -101,7 +101,7 @@ TEST_F(HdhairRecord, FramesFillTheOutputPlaceholder) {
 TEST_F(HdhairRecord, ExplainPrintsThePlanAndVerbosePrintsPassTimes) {
     RecordRun run = record("--explain --verbose --imageWidth 64 " + example("straight_strands.usda") + " " + file("o.png"));
     ASSERT_EQ(run.exitCode, 0) << run.output;
-    EXPECT_NE(run.output.find("plan for"), std::string::npos) << run.output;
+    EXPECT_NE(run.output.find("plan (earliest time)"), std::string::npos) << run.output;
     EXPECT_NE(run.output.find("strands    on"), std::string::npos) << run.output;
     EXPECT_NE(run.output.find("readback"), std::string::npos) << run.output;
 }

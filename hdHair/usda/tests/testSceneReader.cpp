@@ -1,3 +1,5 @@
+#include <limits>
+
 #include <gtest/gtest.h>
 
 #include <memory>
@@ -636,6 +638,26 @@ def SphereLight "light"
 
     auto end = read(text, 10.0);
     EXPECT_FLOAT_EQ(end->scene.findCurves("/hair")->points[1].x, 10.0f);
+}
+
+TEST(SceneReader, DefaultAndEarliestTimeCodes) {
+    // hdhair-record passes NaN for UsdTimeCode::Default() (--defaultTime) and
+    // -infinity for UsdTimeCode::EarliestTime() (usdrecord's default).
+    const std::string text = R"(
+def SphereLight "light"
+{
+    float inputs:intensity = 3
+    float inputs:intensity.timeSamples = { 2: 7, 10: 11 }
+    float inputs:exposure.timeSamples = { 2: 1, 10: 2 }
+}
+)";
+    auto atDefault = read(text, std::numeric_limits<double>::quiet_NaN());
+    const LightPrim& light = *atDefault->scene.lights().at("/light").prim;
+    EXPECT_FLOAT_EQ(light.intensity, 3.0f);  // the default value, samples ignored
+    EXPECT_FLOAT_EQ(light.exposure, 0.0f);   // samples only: no value, the schema fallback
+    auto earliest = read(text, -std::numeric_limits<double>::infinity());
+    EXPECT_FLOAT_EQ(earliest->scene.lights().at("/light").prim->intensity, 7.0f);
+    EXPECT_FLOAT_EQ(earliest->scene.lights().at("/light").prim->exposure, 1.0f);
 }
 
 TEST(SceneReader, BadTypesWarnAndSkipThePrim) {
