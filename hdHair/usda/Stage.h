@@ -47,6 +47,7 @@ struct Attribute {
     // Before the first or after the last sample, the end sample is held.
     // Quaternions are slerped. A blocked value (None, as the default or as
     // the sample in effect) gives std::nullopt, as does no value at all.
+    // A NaN time means UsdTimeCode::Default(): only the default value counts.
     std::optional<Value> valueAt(double time) const;
     bool isTimeVarying() const { return timeSamples.size() > 1; }
 };

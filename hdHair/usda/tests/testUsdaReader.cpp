@@ -692,6 +692,10 @@ def "p"
     EXPECT_EQ(one.valueAt(-100)->numbers[0], 42.0);
     EXPECT_EQ(one.valueAt(100)->numbers[0], 42.0);
     EXPECT_EQ(attr(*stage, "/p", "onlyDefault").valueAt(3)->numbers[0], 7.0);
+    // NaN is UsdTimeCode::Default(): the default only, never the samples.
+    const double defaultTime = std::nan("");
+    EXPECT_EQ(attr(*stage, "/p", "onlyDefault").valueAt(defaultTime)->numbers[0], 7.0);
+    EXPECT_FALSE(one.valueAt(defaultTime).has_value());
 }
 
 // ------------------------------------------------------------------ composition
