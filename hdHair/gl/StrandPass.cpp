@@ -1,5 +1,7 @@
 #include "hdHair/gl/StrandPass.h"
 
+#include <algorithm>
+
 #include "hdHair/curves/PreparedCurves.h"
 
 namespace hdhair::gl {
@@ -42,10 +44,21 @@ void StrandPass::draw(const FrameUniforms& frame, const LightUniforms& lights,
     glDisable(GL_BLEND);
     glDisable(GL_CULL_FACE);  // ribbons are seen from both sides
     glPatchParameteri(GL_PATCH_VERTICES, 4);
+    // Mesa 22.3's llvmpipe draws triangles between unrelated vertices (long
+    // spikes across the image, and 50x slower frames) once one draw's
+    // tessellator emits too many vertices: examples/dense_clump.usda broke at
+    // 22+ segments per span in single draws of 27,900 patches. Draws of at
+    // most 2,048 emitted vertices (2 * (level + 1) per patch) render correctly
+    // at every level with no measurable cost from the extra draw calls.
+    // testRenderBaselines' DenseStrandsAtHighTessellationStayIntact guards it.
+    const GLsizei verticesPerPatch = 2 * (GLsizei(frame.maxSegmentsPerSpan) + 1);
+    const GLsizei patchesPerDraw = std::max<GLsizei>(1, 2048 / verticesPerPatch);
     for (const StrandBuffer* strand : strands) {
         if (strand->controlPointCount() == 0) continue;
         glVertexArrayVertexBuffer(vertexArray_.get(), 0, strand->buffer(), 0, sizeof(StrandControlPoint));
-        glDrawArrays(GL_PATCHES, 0, strand->controlPointCount());
+        GLsizei patches = strand->controlPointCount() / 4;
+        for (GLsizei first = 0; first < patches; first += patchesPerDraw)
+            glDrawArrays(GL_PATCHES, first * 4, std::min(patchesPerDraw, patches - first) * 4);
     }
     glBindVertexArray(0);
     glUseProgram(0);

@@ -95,7 +95,7 @@ TEST(Rendering, DoublingEveryWidthIncreasesCoveredPixels) {
 }
 
 TEST(Rendering, RenderedPixelsAreFiniteAndPremultiplied) {
-    StageRender render = renderStage({"examples/dense_clump.usda", "/World/main_cam", 160, 0.0, {}});
+    StageRender render = renderStage({"examples/dense_clump.usda", "/World/main_cam", 256, 0.0, {}});
     const Image& color = render.result.color;
     for (size_t p = 0; p < color.pixels.size(); p += 4) {
         for (int c = 0; c < 4; ++c) ASSERT_TRUE(std::isfinite(color.pixels[p + size_t(c)]));
@@ -132,4 +132,17 @@ TEST(Rendering, HigherComplexityTessellatesMoreFinelyButLooksAlike) {
     double difference = compareImages(a, b, 0.05).fractionOverThreshold;
     EXPECT_GT(difference, 0.001);
     EXPECT_LT(difference, 0.2);
+}
+
+TEST(Rendering, DenseStrandsAtHighTessellationStayIntact) {
+    // llvmpipe corrupts draws whose tessellation emits too many vertices
+    // (hdHair/gl/StrandPass.cpp): spikes add coverage. Finer tessellation of
+    // the same strands must cover the same pixels, give or take edges.
+    auto coverageAt = [](const char* level) {
+        return coverage(renderStage({"examples/dense_clump.usda", "/World/main_cam", 256, 0.0,
+                                     {"pixelsPerSegment=0.25", std::string("maxSegmentsPerSpan=") + level}})
+                            .result.color);
+    };
+    double moderate = coverageAt("12"), fine = coverageAt("32");
+    EXPECT_NEAR(fine, moderate, 0.03 * moderate) << "12 segments/span: " << moderate << ", 32: " << fine;
 }
