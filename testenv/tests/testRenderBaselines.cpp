@@ -18,6 +18,9 @@
 #include "StageRendering.h"
 #include "hdHair/image/ImageComparison.h"
 #include "hdHair/image/ImageWriter.h"
+#include "hdHair/render/CameraView.h"
+#include "hdHair/scene/Scene.h"
+#include "hdHair/usda/SceneReader.h"
 
 using namespace hdhair;
 using namespace hdhair::testenv;
@@ -145,4 +148,28 @@ TEST(Rendering, DenseStrandsAtHighTessellationStayIntact) {
     };
     double moderate = coverageAt("12"), fine = coverageAt("32");
     EXPECT_NEAR(fine, moderate, 0.03 * moderate) << "12 segments/span: " << moderate << ", 32: " << fine;
+}
+
+TEST(Rendering, SceneEditsBetweenFramesShowUpInTheNextFrame) {
+    // Hydra edits the scene one prim at a time between frames; the renderer's
+    // caches must follow: a changed prim is re-prepared, a removed one disappears.
+    Diagnostics diagnostics;
+    Scene scene;
+    usda::readSceneFile(sourcePath("testenv/stages/widths.usda"), 0.0, scene, diagnostics);
+    Renderer& renderer = sharedRenderer();
+    CameraView camera = cameraViewFromPrim(*scene.findCamera("/World/main_cam"), 128);
+    RenderSettings settings;
+    double before = coverage(renderer.render(scene, camera, settings, diagnostics).color);
+    ASSERT_GT(before, 0.0);
+
+    std::string path = scene.curves().begin()->first;
+    CurvesPrim wider = *scene.curves().begin()->second.prim;
+    for (float& width : wider.primvars.at("widths").values) width *= 3.0f;
+    scene.setCurves(wider);
+    double widened = coverage(renderer.render(scene, camera, settings, diagnostics).color);
+    EXPECT_GT(widened, before * 1.5);
+
+    for (const auto& [curvesPath, entry] : Scene::Entries<CurvesPrim>(scene.curves())) scene.remove(curvesPath);
+    EXPECT_EQ(coverage(renderer.render(scene, camera, settings, diagnostics).color), 0.0);
+    EXPECT_TRUE(diagnostics.warnings().empty());
 }
