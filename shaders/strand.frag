@@ -9,8 +9,17 @@
 layout(location = 0) in vec3 worldPosition;
 layout(location = 1) in vec3 worldTangent;
 layout(location = 2) in vec4 colorOpacity;
+layout(location = 3) flat in int elementId;
+
+// x: the prim's id (Hydra's primId), y: first segment of the draw (unused here).
+layout(location = 0) uniform ivec2 drawIds;
 
 layout(location = 0) out vec4 outColor;
+// Picking and selection outputs; the render target binds them only when a
+// host asks for them (otherwise these writes go nowhere and cost nothing).
+layout(location = 1) out int outPrimId;
+layout(location = 2) out int outInstanceId;
+layout(location = 3) out int outElementId;
 
 void main() {
     vec3 t = normalize(worldTangent);
@@ -26,4 +35,7 @@ void main() {
     }
     // Opaque strands for now: alpha is coverage, which is 1 inside the ribbon.
     outColor = vec4(radiance, 1.0);
+    outPrimId = drawIds.x;
+    outInstanceId = 0;  // curves are not instanced yet: instance 0 of the prim
+    outElementId = elementId;
 }

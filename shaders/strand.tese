@@ -14,6 +14,15 @@ layout(location = 1) in vec4 tcsColorOpacity[];
 layout(location = 0) out vec3 worldPosition;
 layout(location = 1) out vec3 worldTangent;
 layout(location = 2) out vec4 colorOpacity;
+layout(location = 3) flat out int elementId;
+
+// Per segment: the index of its curve in the prim (Hydra's elementId).
+layout(std430, binding = 2) readonly buffer SegmentCurves {
+    uint segmentCurve[];
+};
+// x: the prim's id, y: the first segment of this draw (draws are batched, and
+// gl_PrimitiveID counts patches from the start of each draw).
+layout(location = 0) uniform ivec2 drawIds;
 
 void main() {
     float u = gl_TessCoord.x, v = gl_TessCoord.y;
@@ -46,5 +55,6 @@ void main() {
     worldPosition = position;
     worldTangent = tangent;
     colorOpacity = vec4(max(shade.rgb, vec3(0.0)), clamp(shade.a, 0.0, 1.0));
+    elementId = int(segmentCurve[drawIds.y + gl_PrimitiveID]);
     gl_Position = frame.viewProjection * vec4(position, 1.0);
 }

@@ -9,6 +9,7 @@ namespace hdhair::gl {
 StrandBuffer::StrandBuffer(const PreparedCurves& curves)
     : buffer_(createBuffer(curves.controlPoints.data(),
                            curves.controlPoints.size() * sizeof(StrandControlPoint))),
+      segmentCurves_(createBuffer(curves.segmentCurve.data(), curves.segmentCurve.size() * sizeof(uint32_t))),
       controlPointCount_(static_cast<GLsizei>(curves.controlPoints.size())) {}
 
 StrandPass::StrandPass()
@@ -29,8 +30,7 @@ StrandPass::StrandPass()
     checkGlError("setting up the strand pass");
 }
 
-void StrandPass::draw(const FrameUniforms& frame, const LightUniforms& lights,
-                      const std::vector<const StrandBuffer*>& strands) {
+void StrandPass::draw(const FrameUniforms& frame, const LightUniforms& lights, const std::vector<StrandDraw>& draws) {
     glNamedBufferSubData(frameBlock_.get(), 0, sizeof(frame), &frame);
     glNamedBufferSubData(lightBlock_.get(), 0, sizeof(lights), &lights);
     glBindBufferBase(GL_UNIFORM_BUFFER, 0, frameBlock_.get());
@@ -53,12 +53,16 @@ void StrandPass::draw(const FrameUniforms& frame, const LightUniforms& lights,
     // testRenderBaselines' DenseStrandsAtHighTessellationStayIntact guards it.
     const GLsizei verticesPerPatch = 2 * (GLsizei(frame.maxSegmentsPerSpan) + 1);
     const GLsizei patchesPerDraw = std::max<GLsizei>(1, 2048 / verticesPerPatch);
-    for (const StrandBuffer* strand : strands) {
+    for (const StrandDraw& draw : draws) {
+        const StrandBuffer* strand = draw.strands;
         if (strand->controlPointCount() == 0) continue;
         glVertexArrayVertexBuffer(vertexArray_.get(), 0, strand->buffer(), 0, sizeof(StrandControlPoint));
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, strand->segmentCurves());
         GLsizei patches = strand->controlPointCount() / 4;
-        for (GLsizei first = 0; first < patches; first += patchesPerDraw)
+        for (GLsizei first = 0; first < patches; first += patchesPerDraw) {
+            glUniform2i(0, draw.primId, first);  // drawIds in strand.tese and strand.frag
             glDrawArrays(GL_PATCHES, first * 4, std::min(patchesPerDraw, patches - first) * 4);
+        }
     }
     glBindVertexArray(0);
     glUseProgram(0);

@@ -14,23 +14,31 @@ struct PreparedCurves;
 
 namespace hdhair::gl {
 
-// The GPU copy of one prim's prepared curves.
+// The GPU copy of one prim's prepared curves: control points (vertex
+// attributes) and each segment's curve index (a storage buffer, for elementId).
 class StrandBuffer {
 public:
     explicit StrandBuffer(const PreparedCurves& curves);
     GLuint buffer() const { return buffer_.get(); }
+    GLuint segmentCurves() const { return segmentCurves_.get(); }
     GLsizei controlPointCount() const { return controlPointCount_; }
 
 private:
     Buffer buffer_;
+    Buffer segmentCurves_;
     GLsizei controlPointCount_ = 0;
+};
+
+// One prim to draw, with the id it writes into the primId output.
+struct StrandDraw {
+    const StrandBuffer* strands = nullptr;
+    int primId = -1;
 };
 
 class StrandPass {
 public:
     StrandPass();  // compiles the strand program; throws on driver errors
-    void draw(const FrameUniforms& frame, const LightUniforms& lights,
-              const std::vector<const StrandBuffer*>& strands);
+    void draw(const FrameUniforms& frame, const LightUniforms& lights, const std::vector<StrandDraw>& draws);
 
 private:
     Program program_;

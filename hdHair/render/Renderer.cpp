@@ -135,7 +135,7 @@ SceneBounds Renderer::prepare(const Scene& scene, Diagnostics& diagnostics) {
 }
 
 RenderResult Renderer::render(const Scene& scene, const CameraView& camera, const RenderSettings& settings,
-                              Diagnostics& diagnostics) {
+                              Diagnostics& diagnostics, const RenderOutputs& outputs) {
     Clock::time_point frameStart = Clock::now();
     RenderResult result;
     size_t warningsBefore = diagnostics.warningCount();
@@ -143,12 +143,12 @@ RenderResult Renderer::render(const Scene& scene, const CameraView& camera, cons
     result.stats.passes.push_back({"prepareCurves", pendingPrepareMilliseconds_});
     pendingPrepareMilliseconds_ = 0.0;
 
-    std::vector<std::pair<std::string, CachedCurves*>> visible;
+    std::vector<std::pair<int, CachedCurves*>> visible;  // prim id, cached data
     uint64_t segments = 0, curveCount = 0;
     for (const auto& [path, entry] : scene.curves()) {
         CachedCurves& cached = curves_.at(path);
         if (!entry.prim->visible || cached.prepared->empty()) continue;
-        visible.emplace_back(path, &cached);
+        visible.emplace_back(entry.prim->primId, &cached);
         segments += cached.prepared->segmentCount();
         curveCount += cached.prepared->curveCount;
     }
@@ -158,21 +158,22 @@ RenderResult Renderer::render(const Scene& scene, const CameraView& camera, cons
 
     glThread_->run([&] {
         Clock::time_point uploadStart = Clock::now();
-        for (auto& [path, cached] : visible)
+        for (auto& [primId, cached] : visible)
             if (!cached->buffer) cached->buffer = std::make_unique<gl::StrandBuffer>(*cached->prepared);
         glFinish();
         result.stats.passes.push_back({"upload", millisecondsSince(uploadStart)});
 
-        if (!target_ || target_->width() != camera.imageWidth || target_->height() != camera.imageHeight)
-            target_ = std::make_unique<gl::RenderTarget>(camera.imageWidth, camera.imageHeight);
+        if (!target_ || target_->width() != camera.imageWidth || target_->height() != camera.imageHeight ||
+            target_->hasIds() != outputs.ids)
+            target_ = std::make_unique<gl::RenderTarget>(camera.imageWidth, camera.imageHeight, outputs.ids);
         // Empty pixels are transparent black: pre-multiplied "nothing".
         target_->bindAndClear(glm::vec4(0.0f));
 
         if (result.plan.isEnabled("strands")) {
             Clock::time_point passStart = Clock::now();
-            std::vector<const gl::StrandBuffer*> buffers;
-            for (auto& [path, cached] : visible) buffers.push_back(cached->buffer.get());
-            strandPass_->draw(frame, lights, buffers);
+            std::vector<gl::StrandDraw> draws;
+            for (auto& [primId, cached] : visible) draws.push_back({cached->buffer.get(), primId});
+            strandPass_->draw(frame, lights, draws);
             glFinish();
             result.stats.passes.push_back({"strands", millisecondsSince(passStart)});
         }
@@ -182,6 +183,11 @@ RenderResult Renderer::render(const Scene& scene, const CameraView& camera, cons
         result.color.pixels = target_->readColor();
         result.depth = Image(camera.imageWidth, camera.imageHeight, 1);
         result.depth.pixels = target_->readDepth();
+        if (outputs.ids) {
+            result.primIds = target_->readIds(0);
+            result.instanceIds = target_->readIds(1);
+            result.elementIds = target_->readIds(2);
+        }
         result.stats.passes.push_back({"readback", millisecondsSince(readStart)});
     });
 

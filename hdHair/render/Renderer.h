@@ -10,6 +10,7 @@
 #include <map>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include <glm/vec3.hpp>
 
@@ -38,9 +39,18 @@ struct SceneBounds {
     bool empty() const { return min.x > max.x; }
 };
 
+// What a frame must produce besides colour and depth.
+struct RenderOutputs {
+    // primId, instanceId and elementId images (for Hydra's picking and
+    // selection). Off by default: id attachments are made only when asked for.
+    bool ids = false;
+};
+
 struct RenderResult {
     Image color;  // RGBA, scene-linear, pre-multiplied
     Image depth;  // one channel, window depth in [0, 1], 1 where empty
+    // With RenderOutputs::ids: per pixel, rows from the top down; -1 where empty.
+    std::vector<int32_t> primIds, instanceIds, elementIds;
     RenderPlan plan;
     RenderStats stats;
 };
@@ -58,7 +68,7 @@ public:
     SceneBounds prepare(const Scene& scene, Diagnostics& diagnostics);
 
     RenderResult render(const Scene& scene, const CameraView& camera, const RenderSettings& settings,
-                        Diagnostics& diagnostics);
+                        Diagnostics& diagnostics, const RenderOutputs& outputs = {});
 
     const std::string& glDescription() const;
 

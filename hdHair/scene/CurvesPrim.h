@@ -40,6 +40,8 @@ struct CurvesPrim {
     std::map<std::string, Primvar> primvars;
     glm::dmat4 worldTransform{1.0};
     bool visible = true;
+    // Written to the primId output for picking: Hydra's HdRprim::GetPrimId().
+    int primId = -1;
 
     const Primvar* findPrimvar(const std::string& name) const {
         auto it = primvars.find(name);

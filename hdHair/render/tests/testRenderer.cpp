@@ -1,0 +1,112 @@
+// The Renderer on scenes built in code: id outputs for picking, and what a
+// frame costs when nothing asks for them.
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <gtest/gtest.h>
+
+#include "hdHair/base/Diagnostics.h"
+#include "hdHair/render/Renderer.h"
+#include "hdHair/scene/Scene.h"
+
+using namespace hdhair;
+
+namespace {
+
+// Horizontal linear strands at heights y, one curve each, 0.2 wide, in the
+// plane z = 0, from x = -1 to 1.
+CurvesPrim horizontalStrands(const std::string& path, int primId, const std::vector<float>& heights) {
+    CurvesPrim prim;
+    prim.path = path;
+    prim.primId = primId;
+    prim.type = CurveType::Linear;
+    for (float y : heights) {
+        prim.curveVertexCounts.push_back(2);
+        prim.points.push_back({-1.0f, y, 0.0f});
+        prim.points.push_back({1.0f, y, 0.0f});
+    }
+    Primvar widths;
+    widths.name = "widths";
+    widths.values = {0.2f};
+    prim.primvars["widths"] = widths;
+    return prim;
+}
+
+// An orthographic camera looking down -Z at the unit square [-1.2, 1.2]^2.
+CameraView squareCamera(int pixels) {
+    CameraPrim camera;
+    camera.projection = Projection::Orthographic;
+    camera.horizontalAperture = camera.verticalAperture = 24.0f;  // tenths of a unit: 2.4 units
+    camera.worldTransform = glm::translate(glm::dmat4(1.0), glm::dvec3(0.0, 0.0, 5.0));
+    return cameraViewFromPrim(camera, pixels);
+}
+
+int pixelRow(const CameraView& camera, float y) {
+    return int(camera.worldToPixel(glm::dvec3(0.0, y, 0.0)).y);
+}
+
+}  // namespace
+
+TEST(Renderer, IdOutputsNamePrimAndCurveUnderEachPixel) {
+    Scene scene;
+    scene.setCurves(horizontalStrands("/a", 7, {0.8f, 0.4f}));
+    scene.setCurves(horizontalStrands("/b", 9, {-0.4f, -0.8f}));
+    Renderer renderer(gl::GlBackend::Egl);
+    Diagnostics diagnostics;
+    CameraView camera = squareCamera(96);
+    RenderResult result = renderer.render(scene, camera, RenderSettings{}, diagnostics, RenderOutputs{true});
+    ASSERT_EQ(result.primIds.size(), size_t(96 * 96));
+    auto at = [&](const std::vector<int32_t>& ids, float y) { return ids[size_t(pixelRow(camera, y)) * 96 + 48]; };
+    EXPECT_EQ(at(result.primIds, 0.8f), 7);
+    EXPECT_EQ(at(result.elementIds, 0.8f), 0);
+    EXPECT_EQ(at(result.elementIds, 0.4f), 1);
+    EXPECT_EQ(at(result.primIds, -0.4f), 9);
+    EXPECT_EQ(at(result.elementIds, -0.4f), 0);
+    EXPECT_EQ(at(result.elementIds, -0.8f), 1);
+    EXPECT_EQ(at(result.instanceIds, -0.8f), 0);
+    // Between strands there is nothing: -1, Hydra's empty id.
+    EXPECT_EQ(at(result.primIds, 0.0f), -1);
+    EXPECT_EQ(at(result.elementIds, 0.0f), -1);
+    EXPECT_EQ(at(result.instanceIds, 0.0f), -1);
+    EXPECT_TRUE(diagnostics.warnings().empty());
+}
+
+TEST(Renderer, ElementIdsSurviveDrawBatching) {
+    // Many curves in one prim are drawn in several batches; gl_PrimitiveID
+    // restarts in each, so the batch's first segment must be added back.
+    std::vector<float> heights;
+    for (int i = 0; i < 300; ++i) heights.push_back(-1.0f + 2.0f * float(i) / 299.0f);
+    Scene scene;
+    CurvesPrim many = horizontalStrands("/many", 3, heights);
+    many.primvars["widths"].values = {0.04f};  // about a pixel, overlapping neighbours
+    scene.setCurves(many);
+    Renderer renderer(gl::GlBackend::Egl);
+    Diagnostics diagnostics;
+    CameraView camera = squareCamera(64);
+    RenderSettings settings;
+    settings.set("maxSegmentsPerSpan", "64");  // 130 vertices a patch: 15 patches a batch
+    RenderResult result = renderer.render(scene, camera, settings, diagnostics, RenderOutputs{true});
+    // Curve i lies at height -1 + 2i/299: down the centre column the ids must
+    // fall steadily from the last curve to the first. Ids restarting at each
+    // batch would break the order.
+    int previous = 1 << 30, covered = 0;
+    for (int row = 0; row < 64; ++row) {
+        int id = result.elementIds[size_t(row) * 64 + 32];
+        if (id < 0) continue;
+        ++covered;
+        EXPECT_LE(id, previous) << "row " << row;
+        previous = id;
+    }
+    EXPECT_GT(covered, 50);
+    EXPECT_GT(result.elementIds[size_t(pixelRow(camera, 0.99f)) * 64 + 32], 290);
+    EXPECT_LT(result.elementIds[size_t(pixelRow(camera, -0.99f)) * 64 + 32], 10);
+}
+
+TEST(Renderer, NoIdImagesUnlessAskedFor) {
+    Scene scene;
+    scene.setCurves(horizontalStrands("/a", 7, {0.0f}));
+    Renderer renderer(gl::GlBackend::Egl);
+    Diagnostics diagnostics;
+    RenderResult result = renderer.render(scene, squareCamera(32), RenderSettings{}, diagnostics);
+    EXPECT_TRUE(result.primIds.empty());
+    EXPECT_TRUE(result.elementIds.empty());
+}
