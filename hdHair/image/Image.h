@@ -2,6 +2,7 @@
 // A float image in memory: rows from the top down, channels interleaved.
 // Colour images are scene-linear RGBA with pre-multiplied alpha.
 
+#include <cstddef>
 #include <vector>
 
 namespace hdhair {

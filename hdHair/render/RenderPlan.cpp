@@ -33,18 +33,32 @@ nlohmann::json RenderPlan::toJson() const {
 RenderPlan makeRenderPlan(const Scene& scene, const RenderSettings& settings, const CameraView& camera,
                           size_t segmentCount) {
     RenderPlan plan;
-    std::vector<const LightPrim*> lights;
-    for (const auto& [path, entry] : scene.lights()) lights.push_back(entry.prim.get());
-    plan.lights = toShadingLights(lights);
+    std::vector<const LightPrim*> stageLights;
+    const LightPrim* hostCameraLight = nullptr;
+    for (const auto& [path, entry] : scene.lights()) {
+        if (entry.prim->hostCameraLight) {
+            if (!hostCameraLight && entry.prim->visible) hostCameraLight = entry.prim.get();
+        } else {
+            stageLights.push_back(entry.prim.get());
+        }
+    }
+    plan.lights = toShadingLights(stageLights);
 
     std::string cameraLight = settings.getToken("cameraLight");
     bool stageHasLight = !plan.lights.lights.empty() || glm::length(plan.lights.ambient) > 0.0f;
     plan.cameraLight = cameraLight == "on" || (cameraLight == "auto" && !stageHasLight);
     if (plan.cameraLight) {
-        // The camera looks down its -Z: the light comes from +Z of the view.
-        glm::dmat4 cameraToWorld = glm::inverse(camera.view);
-        glm::vec3 towardsCamera = glm::normalize(glm::vec3(cameraToWorld * glm::dvec4(0.0, 0.0, 1.0, 0.0)));
-        plan.lights.lights.push_back(hdhair::cameraLight(towardsCamera));
+        if (hostCameraLight) {
+            // The host's light follows its camera: use it as it is.
+            ShadingLights host = toShadingLights({hostCameraLight});
+            plan.lights.lights.insert(plan.lights.lights.end(), host.lights.begin(), host.lights.end());
+        } else {
+            // The camera looks down its -Z: the light comes from +Z of the view.
+            glm::dmat4 cameraToWorld = glm::inverse(camera.view);
+            glm::vec3 towardsCamera =
+                glm::normalize(glm::vec3(cameraToWorld * glm::dvec4(0.0, 0.0, 1.0, 0.0)));
+            plan.lights.lights.push_back(hdhair::cameraLight(towardsCamera));
+        }
     }
 
     PlannedPass strands{"strands", segmentCount > 0, ""};

@@ -29,6 +29,11 @@ struct LightPrim {
     float coneSoftness = 0.0f;              // shaping:cone:softness
     glm::dmat4 worldTransform{1.0};         // lights emit along their -Z axis
     bool visible = true;
+    // A light the host adds at the camera (usdview's and usdrecord's default
+    // camera light), not one of the stage's. It is used or not by the
+    // cameraLight setting, like the engine's own camera light, so a stage
+    // looks the same in hdhair-record, usdrecord and usdview.
+    bool hostCameraLight = false;
 };
 
 }  // namespace hdhair

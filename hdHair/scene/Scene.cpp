@@ -54,6 +54,21 @@ void Scene::clear() {
     version_ = nextVersion();
 }
 
+Scene Scene::subset(const std::function<bool(const std::string& path)>& keep) const {
+    Scene result;
+    auto copy = [&](const auto& from, auto& to) {
+        for (const auto& [path, entry] : from)
+            if (keep(path)) to.emplace(path, entry);
+    };
+    copy(curves_, result.curves_);
+    copy(meshes_, result.meshes_);
+    copy(cameras_, result.cameras_);
+    copy(lights_, result.lights_);
+    result.info_ = info_;
+    result.version_ = version_;
+    return result;
+}
+
 const CameraPrim* Scene::findCamera(const std::string& path) const {
     auto it = cameras_.find(path);
     return it == cameras_.end() ? nullptr : it->second.prim.get();

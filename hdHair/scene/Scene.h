@@ -7,6 +7,7 @@
 // Not internally synchronised: one writer at a time.
 
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <memory>
 #include <string>
@@ -50,6 +51,9 @@ public:
     // Removes the prim at path, whatever its kind. Returns false if there was none.
     bool remove(const std::string& path);
     void clear();
+    // The prims whose path `keep` accepts, with their versions: a filtered
+    // view (by Hydra render tag, say) that the renderer's caches still know.
+    Scene subset(const std::function<bool(const std::string& path)>& keep) const;
 
     const Entries<CurvesPrim>& curves() const { return curves_; }
     const Entries<MeshPrim>& meshes() const { return meshes_; }

@@ -57,3 +57,16 @@ TEST(Scene, VersionsAreNeverReusedAcrossScenes) {
     second.setCurves(curves);
     EXPECT_NE(first.curves().at("/World/hair").version, second.curves().at("/World/hair").version);
 }
+
+TEST(Scene, SubsetKeepsVersions) {
+    Scene scene;
+    CurvesPrim a, b;
+    a.path = "/a";
+    b.path = "/b";
+    scene.setCurves(a);
+    scene.setCurves(b);
+    Scene onlyB = scene.subset([](const std::string& path) { return path == "/b"; });
+    ASSERT_EQ(onlyB.curves().size(), 1u);
+    EXPECT_EQ(onlyB.curves().at("/b").version, scene.curves().at("/b").version);
+    EXPECT_EQ(onlyB.curves().at("/b").prim, scene.curves().at("/b").prim);
+}

@@ -1,0 +1,59 @@
+#include <glm/gtc/matrix_transform.hpp>
+#include <gtest/gtest.h>
+
+#include "hdHair/render/CameraView.h"
+#include "hdHair/render/RenderPlan.h"
+#include "hdHair/render/RenderSettings.h"
+#include "hdHair/scene/Scene.h"
+
+using namespace hdhair;
+
+namespace {
+
+LightPrim hostLight() {
+    LightPrim light;
+    light.path = "/host/light0";
+    light.type = LightType::Distant;
+    light.hostCameraLight = true;
+    // Pointing along +X (its -Z turned to +X): direction towards the light is -X.
+    light.worldTransform = glm::rotate(glm::dmat4(1.0), glm::radians(-90.0), glm::dvec3(0, 1, 0));
+    return light;
+}
+
+CameraView cameraAtPlusZ() {
+    CameraView camera;
+    camera.view = glm::lookAt(glm::dvec3(0, 0, 5), glm::dvec3(0), glm::dvec3(0, 1, 0));
+    return camera;
+}
+
+}  // namespace
+
+TEST(RenderPlan, HostCameraLightIsUsedOnlyLikeTheEnginesOwn) {
+    Scene scene;
+    scene.setLight(hostLight());
+    RenderSettings settings;
+    RenderPlan alone = makeRenderPlan(scene, settings, cameraAtPlusZ(), 10);
+    ASSERT_TRUE(alone.cameraLight);
+    ASSERT_EQ(alone.lights.lights.size(), 1u);
+    EXPECT_NEAR(alone.lights.lights[0].directionOrPosition.x, -1.0f, 1e-6f) << "the host's light, not a new one";
+
+    LightPrim key;
+    key.path = "/World/key";
+    scene.setLight(key);
+    RenderPlan withStageLight = makeRenderPlan(scene, settings, cameraAtPlusZ(), 10);
+    EXPECT_FALSE(withStageLight.cameraLight);
+    EXPECT_EQ(withStageLight.lights.lights.size(), 1u);
+
+    settings.set("cameraLight", "on");
+    EXPECT_EQ(makeRenderPlan(scene, settings, cameraAtPlusZ(), 10).lights.lights.size(), 2u);
+    settings.set("cameraLight", "off");
+    EXPECT_EQ(makeRenderPlan(Scene{}, settings, cameraAtPlusZ(), 10).lights.lights.size(), 0u);
+}
+
+TEST(RenderPlan, EnginesCameraLightShinesFromTheCamera) {
+    RenderPlan plan = makeRenderPlan(Scene{}, RenderSettings{}, cameraAtPlusZ(), 10);
+    ASSERT_EQ(plan.lights.lights.size(), 1u);
+    EXPECT_NEAR(plan.lights.lights[0].directionOrPosition.z, 1.0f, 1e-6f);
+    EXPECT_TRUE(plan.isEnabled("strands"));
+    EXPECT_FALSE(makeRenderPlan(Scene{}, RenderSettings{}, cameraAtPlusZ(), 0).isEnabled("strands"));
+}
