@@ -168,3 +168,12 @@ TEST_F(HdhairRecord, HelpListsUsdrecordOptions) {
     EXPECT_EQ(settings.exitCode, 0);
     EXPECT_NE(settings.output.find("maxSegmentsPerSpan"), std::string::npos);
 }
+
+#if !HDHAIR_WITH_USD
+TEST_F(HdhairRecord, UsdReaderWithoutOpenUsdIsAOneLineError) {
+    RecordRun run = record("--reader usd " + example("straight_strands.usda") + " " + file("o.png"));
+    EXPECT_EQ(run.exitCode, 1);
+    EXPECT_EQ(run.output, "hdhair-record: error: --reader usd needs hdHair built with OpenUSD (see README, 'Hydra "
+                          "plugin'); this build has only --reader embedded\n");
+}
+#endif
