@@ -148,10 +148,19 @@ private:
         if (!peek().is(punct)) fail(peek(), std::string("expected '") + punct + "' " + context + found(peek()));
         return next();
     }
-    void endStatement(const std::string& what) {
+    // A statement ends at a new line, '}', ';' or the end of the text.
+    bool atStatementEnd() const {
         const Token& t = peek();
-        if (t.kind == TokenKind::End || t.is('}') || t.is(';') || t.newlineBefore) return;
-        fail(t, "expected a new line after " + what + found(t));
+        return t.kind == TokenKind::End || t.is('}') || t.is(';') || t.newlineBefore;
+    }
+    void endStatement(const std::string& what) {
+        if (!atStatementEnd()) fail(peek(), "expected a new line after " + what + found(peek()));
+    }
+    static Value stringValue(std::string text) {
+        Value value;
+        value.typeName = "string";
+        value.strings.push_back(std::move(text));
+        return value;
     }
 
     // --- values ---
@@ -166,13 +175,30 @@ private:
     Value parseGeneric(const std::string& what);
     Value parseDictionary(const std::string& what);
     Value parseMetadataValue(const std::string& key, const std::string& what);
-    std::vector<std::string> parsePathList(const std::string& what);
-    std::vector<std::string> parseStringList(const std::string& what);
+    template <class ReadItem>
+    void parseCounted(int count, const char* nouns, const std::string& scalar, const std::string& what,
+                      ReadItem&& readItem);
+    template <class ReadItem>
+    void parseItemsUntil(char close, const char* where, const std::string& what, ReadItem&& readItem);
+    template <class ReadItem>
+    void parseListOpItems(const char* where, const std::string& what, ReadItem&& readItem);
+    std::vector<std::string> parseTokenList(TokenKind kind, std::string (*decode)(const Token&), const char* item,
+                                            const char* itemOrList, const char* where, const std::string& what);
+    std::vector<std::string> parsePathList(const std::string& what) {
+        return parseTokenList(TokenKind::Path, Tokenizer::decodePath, "a path <...>",
+                              "a path <...>, a list of paths or None", "in the path list of ", what);
+    }
+    std::vector<std::string> parseStringList(const std::string& what) {
+        return parseTokenList(TokenKind::String, Tokenizer::decodeString, "a quoted string",
+                              "a quoted string or a list of strings", "in the list of ", what);
+    }
     std::vector<Reference> parseReferences(const std::string& what);
     void parseLayerOffset(double& offset, double& scale, const std::string& what);
     std::map<double, Value> parseTimeSamples(const std::string& scalar, bool isArray, const std::string& what);
 
     // --- structure ---
+    template <class Unclosed, class ReadEntry>
+    void parseEntriesUntil(char close, const char* skipped, Unclosed&& unclosed, ReadEntry&& readEntry);
     template <class Handler>
     void parseMetadataList(const std::string& owner, Handler&& handle);
     void parseLayerMetadata();
@@ -247,6 +273,57 @@ double Parser::number(const Token& t, const std::string& what, bool allowBool) {
     fail(t, "expected a number in " + what + found(t));
 }
 
+// Reads `count` items separated by ',' (readItem reads one); `nouns` names
+// them in messages ("components", "rows").
+template <class ReadItem>
+void Parser::parseCounted(int count, const char* nouns, const std::string& scalar, const std::string& what,
+                          ReadItem&& readItem) {
+    for (int i = 0; i < count; ++i) {
+        if (i > 0) {
+            if (peek().is(')')) {
+                fail(peek(), "expected " + std::to_string(count) + " " + nouns + " in a " + scalar + " value in " +
+                                 what + ", found " + std::to_string(i));
+            }
+            expectPunct(',', std::string("between the ") + nouns + " of a " + scalar + " value in " + what);
+        }
+        readItem();
+    }
+}
+
+// Reads "item, item, ..." (a trailing ',' allowed) and then `close`; the opening
+// punctuation is already read. A missing separator fails with
+// "expected ',' or '<close>' " + where + what.
+template <class ReadItem>
+void Parser::parseItemsUntil(char close, const char* where, const std::string& what, ReadItem&& readItem) {
+    while (!peek().is(close)) {
+        readItem();
+        if (peek().is(',')) {
+            next();
+        } else if (!peek().is(close)) {
+            fail(peek(), std::string("expected ',' or '") + close + "' " + where + what + found(peek()));
+        }
+    }
+    next();
+}
+
+// The forms a list-op value takes: None (no items), one item alone, or
+// [item, item, ...]. readItem(inList) reads one item and fails, with its own
+// message, where there is none; `where` is as for parseItemsUntil.
+template <class ReadItem>
+void Parser::parseListOpItems(const char* where, const std::string& what, ReadItem&& readItem) {
+    const Token t = peek();
+    if (t.isIdentifier("None")) {
+        next();
+        return;
+    }
+    if (!t.is('[')) {
+        readItem(false);
+        return;
+    }
+    next();
+    parseItemsUntil(']', where, what, [&] { readItem(true); });
+}
+
 void Parser::parseTuple(int count, const std::string& scalar, Value& out, const std::string& what) {
     Token open = peek();
     if (!open.is('(')) {
@@ -254,16 +331,7 @@ void Parser::parseTuple(int count, const std::string& scalar, Value& out, const 
                        what + found(open));
     }
     next();
-    for (int i = 0; i < count; ++i) {
-        if (i > 0) {
-            if (peek().is(')')) {
-                fail(peek(), "expected " + std::to_string(count) + " components in a " + scalar + " value in " +
-                                 what + ", found " + std::to_string(i));
-            }
-            expectPunct(',', "between the components of a " + scalar + " value in " + what);
-        }
-        out.numbers.push_back(number(next(), what, false));
-    }
+    parseCounted(count, "components", scalar, what, [&] { out.numbers.push_back(number(next(), what, false)); });
     if (peek().is(',')) next();  // trailing comma
     if (!peek().is(')')) {
         if (peek().kind == TokenKind::Number) {
@@ -303,16 +371,7 @@ void Parser::parseScalar(const std::string& scalar, Value& out, const std::strin
         Token open = peek();
         if (!open.is('(')) fail(open, "expected '(' to start a " + scalar + " value in " + what + found(open));
         next();
-        for (int row = 0; row < matrixDim; ++row) {
-            if (row > 0) {
-                if (peek().is(')')) {
-                    fail(peek(), "expected " + std::to_string(matrixDim) + " rows in a " + scalar + " value in " +
-                                     what + ", found " + std::to_string(row));
-                }
-                expectPunct(',', "between the rows of a " + scalar + " value in " + what);
-            }
-            parseTuple(matrixDim, scalar + " row", out, what);
-        }
+        parseCounted(matrixDim, "rows", scalar, what, [&] { parseTuple(matrixDim, scalar + " row", out, what); });
         if (peek().is(',')) next();
         expectPunct(')', "to close a " + scalar + " value in " + what);
         return;
@@ -344,19 +403,12 @@ Value Parser::parseTyped(const std::string& scalar, bool isArray, const std::str
     Token open = peek();
     if (!open.is('[')) fail(open, "expected '[' to start the " + scalar + "[] value of " + what + found(open));
     next();
-    while (true) {
-        if (peek().is(']')) break;
+    parseItemsUntil(']', "in the array value of ", what, [&] {
         if (peek().kind == TokenKind::End) {
             fail(peek(), "expected ']' to close the array opened at " + at(open) + " in " + what + found(peek()));
         }
         parseScalar(scalar, value, what);
-        if (peek().is(',')) {
-            next();
-            continue;
-        }
-        if (!peek().is(']')) fail(peek(), "expected ',' or ']' in the array value of " + what + found(peek()));
-    }
-    next();
+    });
     return value;
 }
 
@@ -405,38 +457,26 @@ Value Parser::parseGeneric(const std::string& what) {
     if (t.is('(')) {
         next();
         value.typeName = "tuple";
-        while (!peek().is(')')) {
+        parseItemsUntil(')', "in a tuple in ", what, [&] {
             if (peek().is('(')) {
                 Value inner = parseGeneric(what);
                 value.numbers.insert(value.numbers.end(), inner.numbers.begin(), inner.numbers.end());
             } else {
                 value.numbers.push_back(number(next(), what, false));
             }
-            if (peek().is(',')) {
-                next();
-            } else if (!peek().is(')')) {
-                fail(peek(), "expected ',' or ')' in a tuple in " + what + found(peek()));
-            }
-        }
-        next();
+        });
         value.tupleSize = std::max<int>(1, static_cast<int>(value.numbers.size()));
         return value;
     }
     if (t.is('[')) {
         next();
         std::vector<Value> elements;
-        while (!peek().is(']')) {
+        parseItemsUntil(']', "in a list in ", what, [&] {
             if (peek().kind == TokenKind::End) {
                 fail(peek(), "expected ']' to close the list opened at " + at(t) + " in " + what + found(peek()));
             }
             elements.push_back(parseGeneric(what));
-            if (peek().is(',')) {
-                next();
-            } else if (!peek().is(']')) {
-                fail(peek(), "expected ',' or ']' in a list in " + what + found(peek()));
-            }
-        }
-        next();
+        });
         value.isArray = true;
         // A homogeneous list becomes an array of that type; anything else a "list".
         bool sameType = !elements.empty();
@@ -480,19 +520,8 @@ Value Parser::parseDictionary(const std::string& what) {
         dictionary.keys.push_back(std::move(key));
         dictionary.items.push_back(std::move(v));
     };
-    while (true) {
-        const Token t = peek();
-        if (t.is('}')) {
-            next();
-            break;
-        }
-        if (t.is(';') || t.is(',')) {
-            next();
-            continue;
-        }
-        if (t.kind == TokenKind::End) {
-            fail(t, "expected '}' to close the dictionary opened at " + at(open) + " in " + what + found(t));
-        }
+    auto unclosed = [&] { return "the dictionary opened at " + at(open) + " in " + what; };
+    parseEntriesUntil('}', ";,", unclosed, [&](const Token& t) {
         if (t.kind == TokenKind::Identifier) {
             // typed entry: type[] key = value
             next();
@@ -522,7 +551,7 @@ Value Parser::parseDictionary(const std::string& what) {
                                                             : parseTyped(scalar, isArray, "'" + key + "' in " + what);
             set(std::move(key), std::move(v));
             endStatement("dictionary entry '" + dictionary.keys.back() + "'");
-            continue;
+            return;
         }
         if (t.kind == TokenKind::String || t.kind == TokenKind::Path) {
             // untyped entry: "key": value  (relocates, prefixSubstitutions, ...)
@@ -530,10 +559,10 @@ Value Parser::parseDictionary(const std::string& what) {
             std::string key = t.kind == TokenKind::String ? Tokenizer::decodeString(t) : Tokenizer::decodePath(t);
             expectPunct(':', "after the key " + Tokenizer::describe(t) + " in a dictionary in " + what);
             set(std::move(key), parseGeneric(what));
-            continue;
+            return;
         }
         fail(t, "expected a dictionary entry ('type name = value') or '}' in " + what + found(t));
-    }
+    });
     return dictionary;
 }
 
@@ -553,58 +582,20 @@ Value Parser::parseMetadataValue(const std::string& key, const std::string& what
     return parseTypedName(type, what);
 }
 
-std::vector<std::string> Parser::parsePathList(const std::string& what) {
-    std::vector<std::string> paths;
-    const Token t = peek();
-    if (t.isIdentifier("None")) {
-        next();
-        return paths;
-    }
-    if (t.kind == TokenKind::Path) {
-        paths.push_back(Tokenizer::decodePath(next()));
-        return paths;
-    }
-    if (!t.is('[')) fail(t, "expected a path <...>, a list of paths or None for " + what + found(t));
-    next();
-    while (!peek().is(']')) {
-        const Token& p = peek();
-        if (p.kind != TokenKind::Path) fail(p, "expected a path <...> or ']' in " + what + found(p));
-        paths.push_back(Tokenizer::decodePath(next()));
-        if (peek().is(',')) {
-            next();
-        } else if (!peek().is(']')) {
-            fail(peek(), "expected ',' or ']' in the path list of " + what + found(peek()));
+// A list-op value of Path or String tokens. `item` and `itemOrList` name what
+// was expected in messages; `where` is as for parseItemsUntil.
+std::vector<std::string> Parser::parseTokenList(TokenKind kind, std::string (*decode)(const Token&), const char* item,
+                                                const char* itemOrList, const char* where, const std::string& what) {
+    std::vector<std::string> items;
+    parseListOpItems(where, what, [&](bool inList) {
+        const Token& t = peek();
+        if (t.kind != kind) {
+            fail(t, inList ? "expected " + std::string(item) + " or ']' in " + what + found(t)
+                           : "expected " + std::string(itemOrList) + " for " + what + found(t));
         }
-    }
-    next();
-    return paths;
-}
-
-std::vector<std::string> Parser::parseStringList(const std::string& what) {
-    std::vector<std::string> strings;
-    const Token t = peek();
-    if (t.isIdentifier("None")) {
-        next();
-        return strings;
-    }
-    if (t.kind == TokenKind::String) {
-        strings.push_back(Tokenizer::decodeString(next()));
-        return strings;
-    }
-    if (!t.is('[')) fail(t, "expected a quoted string or a list of strings for " + what + found(t));
-    next();
-    while (!peek().is(']')) {
-        const Token& s = peek();
-        if (s.kind != TokenKind::String) fail(s, "expected a quoted string or ']' in " + what + found(s));
-        strings.push_back(Tokenizer::decodeString(next()));
-        if (peek().is(',')) {
-            next();
-        } else if (!peek().is(']')) {
-            fail(peek(), "expected ',' or ']' in the list of " + what + found(peek()));
-        }
-    }
-    next();
-    return strings;
+        items.push_back(decode(next()));
+    });
+    return items;
 }
 
 void Parser::parseLayerOffset(double& offset, double& scale, const std::string& what) {
@@ -621,7 +612,10 @@ void Parser::parseLayerOffset(double& offset, double& scale, const std::string& 
 
 std::vector<Reference> Parser::parseReferences(const std::string& what) {
     std::vector<Reference> references;
-    auto item = [&]() {
+    parseListOpItems("in the list of ", what, [&](bool inList) {
+        if (inList && peek().kind == TokenKind::End) {
+            fail(peek(), "expected ']' to close the list of " + what + found(peek()));
+        }
         const Token t = peek();
         Reference reference;
         reference.location = location(t);
@@ -639,27 +633,7 @@ std::vector<Reference> Parser::parseReferences(const std::string& what) {
         }
         if (peek().is('(')) parseLayerOffset(reference.offset, reference.scale, what);
         references.push_back(std::move(reference));
-    };
-    const Token t = peek();
-    if (t.isIdentifier("None")) {
-        next();
-        return references;
-    }
-    if (!t.is('[')) {
-        item();
-        return references;
-    }
-    next();
-    while (!peek().is(']')) {
-        if (peek().kind == TokenKind::End) fail(peek(), "expected ']' to close the list of " + what + found(peek()));
-        item();
-        if (peek().is(',')) {
-            next();
-        } else if (!peek().is(']')) {
-            fail(peek(), "expected ',' or ']' in the list of " + what + found(peek()));
-        }
-    }
-    next();
+    });
     return references;
 }
 
@@ -668,15 +642,8 @@ std::map<double, Value> Parser::parseTimeSamples(const std::string& scalar, bool
     const Token open = peek();
     if (!open.is('{')) fail(open, "expected '{' to start the timeSamples of " + what + found(open));
     next();
-    while (true) {
-        const Token t = peek();
-        if (t.is('}')) {
-            next();
-            break;
-        }
-        if (t.kind == TokenKind::End) {
-            fail(t, "expected '}' to close the timeSamples of " + what + " opened at " + at(open) + found(t));
-        }
+    auto unclosed = [&] { return "the timeSamples of " + what + " opened at " + at(open); };
+    parseEntriesUntil('}', "", unclosed, [&](const Token& t) {
         if (t.kind != TokenKind::Number && !t.isIdentifier("inf") && !t.isIdentifier("nan")) {
             fail(t, "expected a time code (a number) or '}' in the timeSamples of " + what + found(t));
         }
@@ -691,30 +658,43 @@ std::map<double, Value> Parser::parseTimeSamples(const std::string& scalar, bool
             fail(peek(), "expected ',' or '}' after the sample at time " + std::string(t.text) + " of " + what +
                              found(peek()));
         }
-    }
+    });
     return samples;
 }
 
 // ---------------------------------------------------------------- structure
+
+// Reads entries up to `close`, then `close` itself: readEntry(t) reads the one
+// that starts at t. Any of the `skipped` punctuation between entries is passed
+// over; the end of the text fails with "expected '<close>' to close " + unclosed().
+template <class Unclosed, class ReadEntry>
+void Parser::parseEntriesUntil(char close, const char* skipped, Unclosed&& unclosed, ReadEntry&& readEntry) {
+    while (true) {
+        const Token t = peek();
+        if (t.is(close)) {
+            next();
+            return;
+        }
+        bool skip = false;
+        for (const char* c = skipped; *c; ++c) skip = skip || t.is(*c);
+        if (skip) {
+            next();
+            continue;
+        }
+        if (t.kind == TokenKind::End) {
+            fail(t, std::string("expected '") + close + "' to close " + unclosed() + found(t));
+        }
+        readEntry(t);
+    }
+}
 
 template <class Handler>
 void Parser::parseMetadataList(const std::string& owner, Handler&& handle) {
     const Token open = peek();
     DepthGuard guard(*this, open);
     next();  // '('
-    while (true) {
-        const Token t = peek();
-        if (t.is(';')) {
-            next();
-            continue;
-        }
-        if (t.is(')')) {
-            next();
-            return;
-        }
-        if (t.kind == TokenKind::End) {
-            fail(t, "expected ')' to close the metadata of " + owner + " opened at " + at(open) + found(t));
-        }
+    auto unclosed = [&] { return "the metadata of " + owner + " opened at " + at(open); };
+    parseEntriesUntil(')', ";", unclosed, [&](const Token& t) {
         if (t.kind == TokenKind::String) {
             handle(t, ListOpKind::Explicit);  // a bare string: the comment / doc
         } else {
@@ -733,7 +713,7 @@ void Parser::parseMetadataList(const std::string& owner, Handler&& handle) {
         if (!(after.is(')') || after.is(';') || after.newlineBefore || after.kind == TokenKind::End)) {
             fail(after, "expected a new line, ';' or ')' after a metadata entry of " + owner + found(after));
         }
-    }
+    });
 }
 
 void Parser::parseLayerMetadata() {
@@ -742,10 +722,7 @@ void Parser::parseLayerMetadata() {
         if (key.kind == TokenKind::String) {
             next();
             std::string text = Tokenizer::decodeString(key);
-            Value v;
-            v.typeName = "string";
-            v.strings.push_back(text);
-            info.metadata["comment"] = v;
+            info.metadata["comment"] = stringValue(text);
             if (info.doc.empty()) info.doc = text;
             return;
         }
@@ -758,7 +735,7 @@ void Parser::parseLayerMetadata() {
             Value list;
             list.typeName = "asset[]";
             list.isArray = true;
-            while (!peek().is(']')) {
+            parseItemsUntil(']', "in subLayers", std::string(), [&] {
                 const Token item = peek();
                 if (item.kind != TokenKind::Asset) fail(item, "expected an asset path @...@ or ']' in subLayers" + found(item));
                 next();
@@ -769,13 +746,7 @@ void Parser::parseLayerMetadata() {
                 info.subLayers.push_back(sub.assetPath);
                 list.strings.push_back(sub.assetPath);
                 layer_->subLayers.push_back(std::move(sub));
-                if (peek().is(',')) {
-                    next();
-                } else if (!peek().is(']')) {
-                    fail(peek(), "expected ',' or ']' in subLayers" + found(peek()));
-                }
-            }
-            next();
+            });
             info.metadata[name] = std::move(list);
             return;
         }
@@ -856,10 +827,7 @@ void Parser::parsePrim(PrimSpec& parent, const std::string& parentPath) {
         parseMetadataList(owner, [&](const Token& key, ListOpKind op) {
             if (key.kind == TokenKind::String) {
                 next();
-                Value v;
-                v.typeName = "string";
-                v.strings.push_back(Tokenizer::decodeString(key));
-                target.metadata["comment"] = std::move(v);
+                target.metadata["comment"] = stringValue(Tokenizer::decodeString(key));
                 return;
             }
             handlePrimMetadata(target, std::string(key.text), op, owner);
@@ -875,19 +843,8 @@ void Parser::parsePrim(PrimSpec& parent, const std::string& parentPath) {
 }
 
 void Parser::parsePrimBody(PrimSpec& spec, const std::string& path, const Token& open) {
-    while (true) {
-        const Token t = peek();
-        if (t.is('}')) {
-            next();
-            return;
-        }
-        if (t.is(';')) {
-            next();
-            continue;
-        }
-        if (t.kind == TokenKind::End) {
-            fail(t, "expected '}' to close prim <" + path + "> opened at " + at(open) + found(t));
-        }
+    auto unclosed = [&] { return "prim <" + path + "> opened at " + at(open); };
+    parseEntriesUntil('}', ";", unclosed, [&](const Token& t) {
         if (t.kind != TokenKind::Identifier) {
             fail(t, "expected a property, a child prim or '}' in prim <" + path + ">" + found(t));
         }
@@ -898,7 +855,7 @@ void Parser::parsePrimBody(PrimSpec& spec, const std::string& path, const Token&
         } else {
             parseProperty(spec, path);
         }
-    }
+    });
 }
 
 void Parser::parseProperty(PrimSpec& spec, const std::string& primPath) {
@@ -989,18 +946,14 @@ void Parser::parseProperty(PrimSpec& spec, const std::string& primPath) {
     } else if (peek().is('=')) {
         next();
         attr.defaultValue = parseTyped(scalar, isArray, owner);
-    } else if (!peek().is('(') && !(peek().newlineBefore || peek().is('}') || peek().is(';') ||
-                                     peek().kind == TokenKind::End)) {
+    } else if (!peek().is('(') && !atStatementEnd()) {
         fail(peek(), "expected '=' or '(' after attribute name '" + name + "'" + found(peek()));
     }
     if (peek().is('(')) {
         parseMetadataList(owner, [&](const Token& key, ListOpKind) {
             if (key.kind == TokenKind::String) {
                 next();
-                Value v;
-                v.typeName = "string";
-                v.strings.push_back(Tokenizer::decodeString(key));
-                attr.metadata["comment"] = std::move(v);
+                attr.metadata["comment"] = stringValue(Tokenizer::decodeString(key));
                 return;
             }
             handlePropertyMetadata(attr.metadata, std::string(key.text), owner);
@@ -1031,8 +984,7 @@ void Parser::parseRelationship(PrimSpec& spec, const std::string& primPath, cons
     if (peek().is('=')) {
         next();
         rel.targets.set(op, parsePathList(owner));
-    } else if (!peek().is('(') && !(peek().newlineBefore || peek().is('}') || peek().is(';') ||
-                                     peek().kind == TokenKind::End)) {
+    } else if (!peek().is('(') && !atStatementEnd()) {
         fail(peek(), "expected '=' or '(' after relationship name '" + name + "'" + found(peek()));
     }
     if (peek().is('(')) {
@@ -1070,15 +1022,8 @@ void Parser::parseVariantSet(PrimSpec& spec, const std::string& primPath) {
         set->name = setName;
         set->location = location(keyword);
     }
-    while (true) {
-        const Token t = peek();
-        if (t.is('}')) {
-            next();
-            break;
-        }
-        if (t.kind == TokenKind::End) {
-            fail(t, "expected '}' to close variantSet \"" + setName + "\" opened at " + at(open) + found(t));
-        }
+    auto unclosed = [&] { return "variantSet \"" + setName + "\" opened at " + at(open); };
+    parseEntriesUntil('}', "", unclosed, [&](const Token& t) {
         if (t.kind != TokenKind::String) {
             fail(t, "expected a variant name in quotes or '}' in variantSet \"" + setName + "\"" + found(t));
         }
@@ -1105,7 +1050,7 @@ void Parser::parseVariantSet(PrimSpec& spec, const std::string& primPath) {
         PrimSpec* raw = variant.get();
         set->variants.emplace_back(variantName, std::move(variant));
         parsePrimBody(*raw, path, body);
-    }
+    });
     endStatement("variantSet \"" + setName + "\"");
 }
 

@@ -71,6 +71,13 @@ private:
                                 const std::string& expected, const Value& found) const;
     void warn(const Prim& prim, const std::string& name, const std::string& message) const;
 
+    // The value of the first of `names` that has one, checked to be a numeric
+    // scalar of `count` components (SkipPrim naming `expected` otherwise);
+    // nullopt when none has a value.
+    std::optional<Value> readNumericScalar(const Prim& prim,
+                                           std::initializer_list<const char*> names, size_t count,
+                                           const char* expected) const;
+
     // Typed accessors: the value, `fallback` when unauthored, SkipPrim when
     // authored with the wrong type. Each takes the names to try in order.
     float readFloat(const Prim& prim, std::initializer_list<const char*> names, float fallback) const;
@@ -129,42 +136,38 @@ void Reader::warn(const Prim& prim, const std::string& name, const std::string& 
     diagnostics_.warn(locationOf(prim, name), prim.path + "." + name + ": " + message);
 }
 
-float Reader::readFloat(const Prim& prim, std::initializer_list<const char*> names,
-                        float fallback) const {
+std::optional<Value> Reader::readNumericScalar(const Prim& prim,
+                                               std::initializer_list<const char*> names,
+                                               size_t count, const char* expected) const {
     for (const char* name : names) {
         std::optional<Value> value = valueOf(prim, name);
         if (!value) continue;
-        if (!value->isNumeric() || value->isArray || value->numbers.size() != 1)
-            typeError(prim, name, "a float", *value);
-        return static_cast<float>(value->numbers[0]);
+        if (!value->isNumeric() || value->isArray || value->numbers.size() != count)
+            typeError(prim, name, expected, *value);
+        return value;
     }
-    return fallback;
+    return std::nullopt;
+}
+
+float Reader::readFloat(const Prim& prim, std::initializer_list<const char*> names,
+                        float fallback) const {
+    std::optional<Value> value = readNumericScalar(prim, names, 1, "a float");
+    return value ? static_cast<float>(value->numbers[0]) : fallback;
 }
 
 bool Reader::readBool(const Prim& prim, std::initializer_list<const char*> names,
                       bool fallback) const {
-    for (const char* name : names) {
-        std::optional<Value> value = valueOf(prim, name);
-        if (!value) continue;
-        if (!value->isNumeric() || value->isArray || value->numbers.size() != 1)
-            typeError(prim, name, "a bool", *value);
-        return value->numbers[0] != 0.0;
-    }
-    return fallback;
+    std::optional<Value> value = readNumericScalar(prim, names, 1, "a bool");
+    return value ? value->numbers[0] != 0.0 : fallback;
 }
 
 glm::vec3 Reader::readColor(const Prim& prim, std::initializer_list<const char*> names,
                             glm::vec3 fallback) const {
-    for (const char* name : names) {
-        std::optional<Value> value = valueOf(prim, name);
-        if (!value) continue;
-        if (!value->isNumeric() || value->isArray || value->numbers.size() != 3)
-            typeError(prim, name, "color3f", *value);
-        return glm::vec3(static_cast<float>(value->numbers[0]),
-                         static_cast<float>(value->numbers[1]),
-                         static_cast<float>(value->numbers[2]));
-    }
-    return fallback;
+    std::optional<Value> value = readNumericScalar(prim, names, 3, "color3f");
+    if (!value) return fallback;
+    return glm::vec3(static_cast<float>(value->numbers[0]),
+                     static_cast<float>(value->numbers[1]),
+                     static_cast<float>(value->numbers[2]));
 }
 
 std::optional<std::string> Reader::readToken(const Prim& prim, const std::string& name) const {

@@ -81,6 +81,13 @@ const TypeInfo* lookup(const std::string& scalarTypeName) {
     return nullptr;
 }
 
+// One field of a scalar type's TypeInfo; `unknown` for a type the reader does not accept.
+template <class T>
+T typeInfoField(const std::string& scalarTypeName, T TypeInfo::*field, T unknown) {
+    const TypeInfo* info = lookup(scalarTypeName);
+    return info ? info->*field : unknown;
+}
+
 }  // namespace
 
 std::string scalarTypeNameOf(const std::string& typeName) {
@@ -91,28 +98,23 @@ std::string scalarTypeNameOf(const std::string& typeName) {
 }
 
 int tupleSizeOf(const std::string& scalarTypeName) {
-    const TypeInfo* info = lookup(scalarTypeName);
-    return info ? info->tupleSize : 0;
+    return typeInfoField(scalarTypeName, &TypeInfo::tupleSize, 0);
 }
 
 bool isFloatingPointType(const std::string& scalarTypeName) {
-    const TypeInfo* info = lookup(scalarTypeName);
-    return info && info->floating;
+    return typeInfoField(scalarTypeName, &TypeInfo::floating, false);
 }
 
 int matrixDimensionOf(const std::string& scalarTypeName) {
-    const TypeInfo* info = lookup(scalarTypeName);
-    return info ? info->matrixDim : 0;
+    return typeInfoField(scalarTypeName, &TypeInfo::matrixDim, 0);
 }
 
 bool isQuaternionType(const std::string& scalarTypeName) {
-    const TypeInfo* info = lookup(scalarTypeName);
-    return info && info->quaternion;
+    return typeInfoField(scalarTypeName, &TypeInfo::quaternion, false);
 }
 
 bool Value::isStringType() const {
-    const TypeInfo* info = lookup(scalarTypeNameOf(typeName));
-    return info && info->stringType;
+    return typeInfoField(scalarTypeNameOf(typeName), &TypeInfo::stringType, false);
 }
 
 const Value* Value::find(const std::string& key) const {
