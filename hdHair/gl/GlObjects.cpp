@@ -43,19 +43,14 @@ GLenum stageOf(const std::string& name) {
     throw std::runtime_error("shader '" + name + "' has no known stage extension");
 }
 
-std::string shaderLog(GLuint shader) {
+// The info log of a shader (glGetShaderiv, glGetShaderInfoLog) or a program
+// (glGetProgramiv, glGetProgramInfoLog): the two pairs share their signatures.
+std::string infoLog(GLuint object, PFNGLGETSHADERIVPROC getObjectiv,
+                    PFNGLGETSHADERINFOLOGPROC getInfoLog) {
     GLint length = 0;
-    glGetShaderiv(shader, GL_INFO_LOG_LENGTH, &length);
+    getObjectiv(object, GL_INFO_LOG_LENGTH, &length);
     std::string log(static_cast<size_t>(length > 0 ? length : 1), '\0');
-    glGetShaderInfoLog(shader, length, nullptr, log.data());
-    return log.c_str();
-}
-
-std::string programLog(GLuint program) {
-    GLint length = 0;
-    glGetProgramiv(program, GL_INFO_LOG_LENGTH, &length);
-    std::string log(static_cast<size_t>(length > 0 ? length : 1), '\0');
-    glGetProgramInfoLog(program, length, nullptr, log.data());
+    getInfoLog(object, length, nullptr, log.data());
     return log.c_str();
 }
 
@@ -77,7 +72,7 @@ Program createProgram(const std::vector<std::string>& shaderNames) {
         GLint compiled = GL_FALSE;
         glGetShaderiv(shader, GL_COMPILE_STATUS, &compiled);
         if (!compiled) {
-            std::string log = shaderLog(shader);
+            std::string log = infoLog(shader, glGetShaderiv, glGetShaderInfoLog);
             release();
             throw std::runtime_error("shaders/" + name + " does not compile:\n" + log);
         }
@@ -91,7 +86,7 @@ Program createProgram(const std::vector<std::string>& shaderNames) {
         std::string names;
         for (const std::string& name : shaderNames) names += (names.empty() ? "" : ", ") + name;
         throw std::runtime_error("shader program (" + names + ") does not link:\n" +
-                                 programLog(program.get()));
+                                 infoLog(program.get(), glGetProgramiv, glGetProgramInfoLog));
     }
     return program;
 }
