@@ -3,7 +3,6 @@
 
 #include <gtest/gtest.h>
 
-#include <random>
 #include <string>
 #include <vector>
 
@@ -14,6 +13,7 @@
 #include "hdHair/curves/CatmullRomEvaluation.h"
 #include "hdHair/curves/CurveTopology.h"
 #include "hdHair/curves/ReferenceCurveEvaluator.h"
+#include "hdHair/curves/tests/RandomCurves.h"
 
 using namespace hdhair;
 
@@ -21,20 +21,7 @@ namespace {
 
 constexpr double kTolerance = 1e-5;
 
-CurvesPrim randomPrim(const CurveKind& kind, const std::vector<int>& counts, unsigned seed) {
-    CurvesPrim prim;
-    prim.path = "/World/hair";
-    prim.type = kind.type;
-    prim.basis = kind.basis;
-    prim.wrap = kind.wrap;
-    prim.curveVertexCounts = counts;
-    std::mt19937 rng(seed);
-    std::uniform_real_distribution<float> coordinate(-1.0f, 1.0f);
-    int total = 0;
-    for (int n : counts) total += n;
-    for (int i = 0; i < total; ++i) prim.points.emplace_back(coordinate(rng), coordinate(rng), coordinate(rng));
-    return prim;
-}
+using test::randomPrim;
 
 // The span's Catmull-Rom controls, as the prepared curves hold them (positions only).
 std::array<StrandControlPoint, 4> convertedSpan(const CurvesPrim& prim, const CurveTopology& topology, size_t curve,

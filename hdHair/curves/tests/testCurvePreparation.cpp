@@ -17,25 +17,13 @@
 #include "hdHair/curves/CurveTopology.h"
 #include "hdHair/curves/PreparedCurves.h"
 #include "hdHair/curves/ReferenceCurveEvaluator.h"
+#include "hdHair/curves/tests/RandomCurves.h"
 
 using namespace hdhair;
 
 namespace {
 
-CurvesPrim randomPrim(CurveType type, CurveBasis basis, CurveWrap wrap, const std::vector<int>& counts, unsigned seed) {
-    CurvesPrim prim;
-    prim.path = "/World/hair";
-    prim.type = type;
-    prim.basis = basis;
-    prim.wrap = wrap;
-    prim.curveVertexCounts = counts;
-    std::mt19937 rng(seed);
-    std::uniform_real_distribution<float> coordinate(-1.0f, 1.0f);
-    int total = 0;
-    for (int n : counts) total += n;
-    for (int i = 0; i < total; ++i) prim.points.emplace_back(coordinate(rng), coordinate(rng), coordinate(rng));
-    return prim;
-}
+using test::randomPrim;
 
 Primvar makePrimvar(const std::string& name, int tupleSize, Interpolation interpolation, std::vector<float> values) {
     Primvar primvar;

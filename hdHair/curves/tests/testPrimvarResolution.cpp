@@ -4,6 +4,7 @@
 #include <limits>
 #include <string>
 #include <tuple>
+#include <utility>
 #include <vector>
 
 #include "hdHair/base/Diagnostics.h"
@@ -31,7 +32,27 @@ Primvar makePrimvar(size_t count, int tupleSize, Interpolation interpolation, bo
     return primvar;
 }
 
+// These values, with an authored interpolation.
+Primvar primvarOf(Interpolation interpolation, std::vector<float> values, int tupleSize = 1) {
+    Primvar primvar;
+    primvar.tupleSize = tupleSize;
+    primvar.interpolation = interpolation;
+    primvar.interpolationAuthored = true;
+    primvar.values = std::move(values);
+    return primvar;
+}
+
 std::string fullText(const Diagnostic& d) { return d.where + ": " + d.message; }
+
+// `widths` resolves to the constant fallback width with the one warning `expected` ("where: message").
+void expectFallbackWidth(const Primvar& widths, const CurveTopology& topology, const std::string& expected) {
+    Diagnostics diagnostics;
+    const ResolvedPrimvar result = resolvePrimvar(widths, topology, kFallbackWidth, kPath, "widths", diagnostics);
+    EXPECT_EQ(result.interpolation, Interpolation::Constant);
+    EXPECT_EQ(result.values, kFallbackWidth);
+    ASSERT_EQ(diagnostics.warningCount(), 1u);
+    EXPECT_EQ(fullText(diagnostics.warnings()[0]), expected);
+}
 
 }  // namespace
 
@@ -188,10 +209,7 @@ INSTANTIATE_TEST_SUITE_P(
 TEST(PrimvarResolution, PinnedVaryingAcceptsTheImplementedSize) {
     const CurveTopology topology(cubic(CurveBasis::Bspline, CurveWrap::Pinned), {5, 2, 3});
     ASSERT_EQ(topology.varyingTotal(), 3u + 2u + 2u);
-    Primvar widths;
-    widths.interpolation = Interpolation::Varying;
-    widths.interpolationAuthored = true;
-    widths.values = {1, 2, 3, 4, 5, 6, 8};
+    const Primvar widths = primvarOf(Interpolation::Varying, {1, 2, 3, 4, 5, 6, 8});
     Diagnostics diagnostics;
     const ResolvedPrimvar result = resolvePrimvar(widths, topology, kFallbackWidth, kPath, "widths", diagnostics);
     EXPECT_EQ(diagnostics.warningCount(), 0u);
@@ -203,10 +221,7 @@ TEST(PrimvarResolution, PinnedVaryingAcceptsTheImplementedSize) {
 
 TEST(PrimvarResolution, PinnedVaryingAcceptsOneValuePerVertex) {
     const CurveTopology topology(cubic(CurveBasis::CatmullRom, CurveWrap::Pinned), {5, 2});
-    Primvar widths;
-    widths.interpolation = Interpolation::Varying;
-    widths.interpolationAuthored = true;
-    widths.values = {1, 2, 3, 4, 5, 6, 7};
+    const Primvar widths = primvarOf(Interpolation::Varying, {1, 2, 3, 4, 5, 6, 7});
     Diagnostics diagnostics;
     const ResolvedPrimvar result = resolvePrimvar(widths, topology, kFallbackWidth, kPath, "widths", diagnostics);
     EXPECT_EQ(diagnostics.warningCount(), 0u);
@@ -215,25 +230,15 @@ TEST(PrimvarResolution, PinnedVaryingAcceptsOneValuePerVertex) {
 
 TEST(PrimvarResolution, PinnedVaryingOfAnotherSizeNamesBothAcceptedSizes) {
     const CurveTopology topology(cubic(CurveBasis::CatmullRom, CurveWrap::Pinned), {5, 5});
-    Primvar widths;
-    widths.interpolation = Interpolation::Varying;
-    widths.interpolationAuthored = true;
-    widths.values = {1, 2, 3, 4, 5, 6, 7, 8};
-    Diagnostics diagnostics;
-    const ResolvedPrimvar result = resolvePrimvar(widths, topology, kFallbackWidth, kPath, "widths", diagnostics);
-    EXPECT_EQ(result.interpolation, Interpolation::Constant);
-    EXPECT_EQ(result.values, kFallbackWidth);
-    ASSERT_EQ(diagnostics.warningCount(), 1u);
-    EXPECT_EQ(fullText(diagnostics.warnings()[0]),
-              "/World/hair.widths: varying interpolation needs 6 values (or 10), found 8; using the fallback 1");
+    expectFallbackWidth(
+        primvarOf(Interpolation::Varying, {1, 2, 3, 4, 5, 6, 7, 8}), topology,
+        "/World/hair.widths: varying interpolation needs 6 values (or 10), found 8; using the fallback 1");
 }
 
 TEST(PrimvarResolution, LinearPeriodicVaryingAcceptsNPlusOne) {
     const CurveTopology topology(linear(CurveWrap::Periodic), {3, 4});
-    Primvar opacity;
-    opacity.interpolation = Interpolation::Varying;
-    opacity.interpolationAuthored = true;
-    opacity.values = {1, 2, 3, 1, 4, 5, 6, 7, 4};  // each curve closes on its first value
+    const Primvar opacity =
+        primvarOf(Interpolation::Varying, {1, 2, 3, 1, 4, 5, 6, 7, 4});  // each curve closes on its first value
     Diagnostics diagnostics;
     const ResolvedPrimvar result =
         resolvePrimvar(opacity, topology, kFallbackDisplayOpacity, kPath, "displayOpacity", diagnostics);
@@ -301,11 +306,7 @@ TEST(PrimvarResolution, ConstantWithSeveralValuesKeepsTheFirst) {
 
 TEST(PrimvarResolution, IndicesAreFollowed) {
     const CurveTopology topology(cubic(CurveBasis::Bspline, CurveWrap::Nonperiodic), {4, 4});
-    Primvar color;
-    color.tupleSize = 3;
-    color.interpolation = Interpolation::Uniform;
-    color.interpolationAuthored = true;
-    color.values = {1, 0, 0, 0, 1, 0};
+    Primvar color = primvarOf(Interpolation::Uniform, {1, 0, 0, 0, 1, 0}, 3);
     color.indices = {1, 0};
     Diagnostics diagnostics;
     const ResolvedPrimvar result =
@@ -317,10 +318,7 @@ TEST(PrimvarResolution, IndicesAreFollowed) {
 
 TEST(PrimvarResolution, OutOfRangeIndexUsesTheFallbackForThatElement) {
     const CurveTopology topology(cubic(CurveBasis::Bezier, CurveWrap::Nonperiodic), {4});
-    Primvar widths;
-    widths.interpolation = Interpolation::Vertex;
-    widths.interpolationAuthored = true;
-    widths.values = {0.5f, 0.25f};
+    Primvar widths = primvarOf(Interpolation::Vertex, {0.5f, 0.25f});
     widths.indices = {0, 1, 7, -1};
     Diagnostics diagnostics;
     const ResolvedPrimvar result = resolvePrimvar(widths, topology, kFallbackWidth, kPath, "widths", diagnostics);
@@ -334,10 +332,7 @@ TEST(PrimvarResolution, OutOfRangeIndexUsesTheFallbackForThatElement) {
 
 TEST(PrimvarResolution, IndexedVertexDataTooLongIsTruncated) {
     const CurveTopology topology(cubic(CurveBasis::Bezier, CurveWrap::Nonperiodic), {4});
-    Primvar widths;
-    widths.interpolation = Interpolation::Vertex;
-    widths.interpolationAuthored = true;
-    widths.values = {1, 2, 3};
+    Primvar widths = primvarOf(Interpolation::Vertex, {1, 2, 3});
     widths.indices = {0, 1, 2, 1, 0, 2};
     Diagnostics diagnostics;
     const ResolvedPrimvar result = resolvePrimvar(widths, topology, kFallbackWidth, kPath, "widths", diagnostics);
@@ -413,13 +408,9 @@ TEST(PrimvarResolution, WrongTupleSizeWarnsAndUsesTheFallback) {
     const CurveTopology topology(cubic(CurveBasis::Bezier, CurveWrap::Nonperiodic), {4});
     Primvar widths = makePrimvar(4, 3, Interpolation::Vertex);
     widths.typeName = "float3[]";
-    Diagnostics diagnostics;
-    const ResolvedPrimvar result = resolvePrimvar(widths, topology, kFallbackWidth, kPath, "widths", diagnostics);
-    EXPECT_EQ(result.interpolation, Interpolation::Constant);
-    EXPECT_EQ(result.values, kFallbackWidth);
-    ASSERT_EQ(diagnostics.warningCount(), 1u);
-    EXPECT_EQ(fullText(diagnostics.warnings()[0]),
-              "/World/hair.widths: expects 1 component per element, found 3 (float3[]); using the fallback 1");
+    expectFallbackWidth(
+        widths, topology,
+        "/World/hair.widths: expects 1 component per element, found 3 (float3[]); using the fallback 1");
 }
 
 TEST(PrimvarResolution, PartialTrailingElementIsIgnored) {

@@ -207,22 +207,21 @@ TEST(XformOps, MissingOpAttributeNamesFileLineAndOp) {
 }
 
 TEST(XformOps, UnknownOpTypeAndWrongShapeAreInputErrors) {
-    EXPECT_THROW(local(R"(
+    const char* const cases[] = {
+        R"(
         double3 xformOp:twist = (1, 2, 3)
-        uniform token[] xformOpOrder = ["xformOp:twist"])"),
-                 InputError);
-    EXPECT_THROW(local(R"(
+        uniform token[] xformOpOrder = ["xformOp:twist"])",
+        R"(
         float xformOp:translate = 1
-        uniform token[] xformOpOrder = ["xformOp:translate"])"),
-                 InputError);
-    EXPECT_THROW(local(R"(
+        uniform token[] xformOpOrder = ["xformOp:translate"])",
+        R"(
         token xformOp:rotateX = "up"
-        uniform token[] xformOpOrder = ["xformOp:rotateX"])"),
-                 InputError);
-    EXPECT_THROW(local(R"(
+        uniform token[] xformOpOrder = ["xformOp:rotateX"])",
+        R"(
         double3 xformOp:translate = (1, 2, 3)
-        uniform token[] xformOpOrder = ["translate"])"),
-                 InputError);
+        uniform token[] xformOpOrder = ["translate"])",
+    };
+    for (const char* attributes : cases) EXPECT_THROW(local(attributes), InputError) << attributes;
 }
 
 TEST(XformOps, OpValueCounts) {
