@@ -1,0 +1,143 @@
+#include "hdHair/tools/YukselHairReader.h"
+
+#include <cmath>
+#include <cstring>
+#include <stdexcept>
+
+#include <fmt/format.h>
+
+namespace hdhair::convert {
+
+namespace {
+
+constexpr uint64_t kHeaderSize = 128;
+constexpr uint32_t kSegmentsBit = 1u << 0, kPointsBit = 1u << 1, kThicknessBit = 1u << 2,
+                   kTransparencyBit = 1u << 3, kColorsBit = 1u << 4;
+
+[[noreturn]] void fail(const std::string& name, const std::string& what) {
+    throw std::runtime_error(name + ": " + what);
+}
+
+template <typename T>
+T readValue(const std::vector<uint8_t>& bytes, uint64_t offset) {
+    T value{};
+    std::memcpy(&value, bytes.data() + offset, sizeof value);  // little-endian hosts only
+    return value;
+}
+
+// Walks the arrays after the header, checking each against the file size.
+class ArrayCursor {
+public:
+    ArrayCursor(const std::vector<uint8_t>& bytes, const std::string& name) : bytes_(bytes), name_(name) {}
+
+    // Reserves `count` elements of `elementSize` bytes and returns their byte offset.
+    uint64_t take(const std::string& what, uint64_t count, uint64_t elementSize) {
+        const uint64_t at = offset_, size = count * elementSize, fileSize = bytes_.size();
+        if (at > fileSize || size > fileSize - at)
+            fail(name_, fmt::format("{} ({} x {} bytes) at byte {} run past the end of the {}-byte file (they end "
+                                    "at byte {})",
+                                    what, count, elementSize, at, fileSize, at + size));
+        offset_ += size;
+        return at;
+    }
+
+private:
+    const std::vector<uint8_t>& bytes_;
+    const std::string& name_;
+    uint64_t offset_ = kHeaderSize;
+};
+
+float finite(const std::string& name, float value, const std::string& what, uint64_t point) {
+    if (!std::isfinite(value)) fail(name, fmt::format("the {} of point {} is not finite ({})", what, point, value));
+    return value;
+}
+
+}  // namespace
+
+HairStrands parseYukselHair(const std::vector<uint8_t>& bytes, const std::string& name) {
+    if (bytes.size() < kHeaderSize)
+        fail(name, fmt::format("the {}-byte file is too small for a .hair header ({} bytes)", bytes.size(),
+                               kHeaderSize));
+    if (std::memcmp(bytes.data(), "HAIR", 4) != 0) fail(name, "not a .hair file (the first 4 bytes are not \"HAIR\")");
+    const uint32_t hairCount = readValue<uint32_t>(bytes, 4), pointCount = readValue<uint32_t>(bytes, 8),
+                   arrays = readValue<uint32_t>(bytes, 12), defaultSegments = readValue<uint32_t>(bytes, 16);
+    const float defaultThickness = readValue<float>(bytes, 20), defaultTransparency = readValue<float>(bytes, 24);
+    const Float3 defaultColor{readValue<float>(bytes, 28), readValue<float>(bytes, 32), readValue<float>(bytes, 36)};
+
+    if (hairCount == 0) fail(name, "the header says the file has 0 hairs");
+    if (!(arrays & kPointsBit)) fail(name, "the file has no points array (bit 1 of the array bit field is 0)");
+
+    ArrayCursor cursor(bytes, name);
+    HairStrands out;
+    out.source = name;
+    out.format = "Cem Yuksel .hair";
+    out.vertexCounts.resize(hairCount);
+    uint64_t sum = 0;
+    if (arrays & kSegmentsBit) {
+        const uint64_t at = cursor.take("segment counts", hairCount, 2);
+        for (uint32_t h = 0; h < hairCount; ++h) {
+            const uint16_t segments = readValue<uint16_t>(bytes, at + uint64_t{h} * 2);
+            if (segments == 0) fail(name, fmt::format("hair {} has 0 segments", h));
+            out.vertexCounts[h] = segments + 1;
+            sum += segments + 1u;
+        }
+    } else {
+        if (defaultSegments == 0 || defaultSegments > 65535)
+            fail(name, fmt::format("the header's default segment count is {} (1 to 65535) and there is no segments "
+                                   "array",
+                                   defaultSegments));
+        out.vertexCounts.assign(hairCount, static_cast<int>(defaultSegments + 1));
+        sum = uint64_t{hairCount} * (defaultSegments + 1);
+    }
+    if (sum != pointCount)
+        fail(name, fmt::format("the header says {} points but the {} hairs' segments need {}", pointCount, hairCount,
+                               sum));
+
+    const uint64_t pointsAt = cursor.take("points", pointCount, 12);
+    out.points.resize(pointCount);
+    for (uint64_t i = 0; i < pointCount; ++i) {
+        const uint64_t at = pointsAt + i * 12;
+        out.points[i] = {finite(name, readValue<float>(bytes, at), "position", i),
+                         finite(name, readValue<float>(bytes, at + 4), "position", i),
+                         finite(name, readValue<float>(bytes, at + 8), "position", i)};
+    }
+    if (arrays & kThicknessBit) {
+        const uint64_t at = cursor.take("thicknesses", pointCount, 4);
+        out.widths.resize(pointCount);
+        for (uint64_t i = 0; i < pointCount; ++i) {
+            const float w = finite(name, readValue<float>(bytes, at + i * 4), "thickness", i);
+            if (w < 0.0f) fail(name, fmt::format("the thickness of point {} is negative ({})", i, w));
+            out.widths[i] = w;
+        }
+    } else if (std::isfinite(defaultThickness) && defaultThickness > 0.0f) {
+        out.defaultWidth = defaultThickness;
+    }
+    if (arrays & kTransparencyBit) {
+        const uint64_t at = cursor.take("transparencies", pointCount, 4);
+        out.opacities.resize(pointCount);
+        for (uint64_t i = 0; i < pointCount; ++i)
+            out.opacities[i] = 1.0f - finite(name, readValue<float>(bytes, at + i * 4), "transparency", i);
+    } else if (std::isfinite(defaultTransparency) && defaultTransparency > 0.0f) {
+        out.defaultOpacity = 1.0f - defaultTransparency;
+    }
+    if (arrays & kColorsBit) {
+        const uint64_t at = cursor.take("colors", pointCount, 12);
+        out.colors.resize(pointCount);
+        for (uint64_t i = 0; i < pointCount; ++i) {
+            const uint64_t p = at + i * 12;
+            out.colors[i] = {finite(name, readValue<float>(bytes, p), "color", i),
+                             finite(name, readValue<float>(bytes, p + 4), "color", i),
+                             finite(name, readValue<float>(bytes, p + 8), "color", i)};
+        }
+    } else if (std::isfinite(defaultColor.x) && std::isfinite(defaultColor.y) && std::isfinite(defaultColor.z) &&
+               !(defaultColor == Float3{})) {
+        out.defaultColor = defaultColor;
+    }
+    return out;
+}
+
+HairStrands readYukselHair(const std::string& path) {
+    return parseYukselHair(readFileBytes(path), displayName(path));
+}
+
+}  // namespace hdhair::convert
