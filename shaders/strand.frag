@@ -1,18 +1,17 @@
 #version 450 core
 #extension GL_GOOGLE_include_directive : require
-// Kajiya-Kay shading of opaque strands: displayColor is the fibre colour,
-// lit by every light of the stage plus the dome light's ambient term.
+// Strands drawn straight into the frame: opaque (alpha 1, depth written) or
+// pre-multiplied (colour x alpha, alpha; blended ONE, ONE_MINUS_SRC_ALPHA
+// over what is behind, in the order the draw-order buffer gives).
 #include "include/frameUniforms.glsl"
 #include "include/lights.glsl"
 #include "include/kajiyaKay.glsl"
+#include "include/strandShading.glsl"
 
 layout(location = 0) in vec3 worldPosition;
 layout(location = 1) in vec3 worldTangent;
-layout(location = 2) in vec4 colorOpacity;
-layout(location = 3) flat in int elementId;
-
-// x: the prim's id (Hydra's primId), y: first segment of the draw (unused here).
-layout(location = 0) uniform ivec2 drawIds;
+layout(location = 2) in vec4 colorAlpha;
+layout(location = 3) flat in ivec2 ids;
 
 layout(location = 0) out vec4 outColor;
 // Picking and selection outputs; the render target binds them only when a
@@ -22,20 +21,18 @@ layout(location = 2) out int outInstanceId;
 layout(location = 3) out int outElementId;
 
 void main() {
-    vec3 t = normalize(worldTangent);
-    vec3 e = directionToEye(worldPosition);
-    vec3 hairColor = colorOpacity.rgb;
-    vec3 radiance = lights.ambient.rgb * hairColor;
-    vec3 kk = lights.kajiyaKayParameters.xyz;
-    for (int i = 0; i < lights.lightCount.x; ++i) {
-        vec3 l;
-        vec3 irradiance = lightIrradiance(i, worldPosition, l);
-        KajiyaKayTerms terms = kajiyaKay(t, l, e, kk.x, kk.y, kk.z);
-        radiance += irradiance * (terms.diffuse * hairColor + terms.specular);
+    // Nothing to add: not even an id (opacity 0 strands produce nothing).
+    if (frame.drawMode != 0 && colorAlpha.a <= 0.0) discard;
+    // The depth-and-ids pass under transparency keeps what a user would pick:
+    // strands at least 10% opaque (Storm's default alpha threshold).
+    if (frame.drawMode == 2 && colorAlpha.a < 0.1) discard;
+    vec3 radiance = strandRadiance(worldPosition, worldTangent, colorAlpha.rgb);
+    if (frame.drawMode == 0) {
+        outColor = vec4(radiance, 1.0);
+    } else {
+        outColor = vec4(radiance * colorAlpha.a, colorAlpha.a);
     }
-    // Opaque strands for now: alpha is coverage, which is 1 inside the ribbon.
-    outColor = vec4(radiance, 1.0);
-    outPrimId = drawIds.x;
+    outPrimId = ids.x;
     outInstanceId = 0;  // curves are not instanced yet: instance 0 of the prim
-    outElementId = elementId;
+    outElementId = ids.y;
 }

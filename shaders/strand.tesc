@@ -10,14 +10,17 @@ layout(vertices = 4) out;
 
 layout(location = 0) in vec4 vsPositionWidth[];
 layout(location = 1) in vec4 vsColorOpacity[];
+layout(location = 2) flat in int vsSegment[];
 layout(location = 0) out vec4 tcsPositionWidth[];
 layout(location = 1) out vec4 tcsColorOpacity[];
+layout(location = 2) flat out int tcsSegment[];
 
 vec2 toPixels(vec4 clip) { return (clip.xy / clip.w * 0.5 + 0.5) * frame.viewportSize; }
 
 void main() {
     tcsPositionWidth[gl_InvocationID] = vsPositionWidth[gl_InvocationID];
     tcsColorOpacity[gl_InvocationID] = vsColorOpacity[gl_InvocationID];
+    tcsSegment[gl_InvocationID] = vsSegment[gl_InvocationID];
     if (gl_InvocationID != 0) return;
 
     vec3 c0 = vsPositionWidth[0].xyz, c1 = vsPositionWidth[1].xyz;
@@ -27,16 +30,21 @@ void main() {
     vec3 hull[4] = vec3[4](c1, c1 + (c2 - c0) / 6.0, c2 - (c3 - c1) / 6.0, c2);
     float halfWidth = 0.5 * max(max(vsPositionWidth[1].w, vsPositionWidth[2].w),
                                 max(vsPositionWidth[0].w, vsPositionWidth[3].w));
+
     vec4 clip[4];
     for (int i = 0; i < 4; ++i) clip[i] = frame.viewProjection * vec4(hull[i], 1.0);
 
-    // Outside one frustum plane with every hull point (widened by the strand's
-    // half width, scaled as clip coordinates scale with w) -> culled.
+    // Outside one frustum plane with every hull point -> culled. The margin is
+    // the ribbon's half width on screen (at least half the minimum drawn
+    // width, plus a pixel), turned into clip units at that point's depth.
     bool culled = false;
     for (int axis = 0; axis < 3 && !culled; ++axis) {
         bool allBelow = true, allAbove = true;
         for (int i = 0; i < 4; ++i) {
-            float margin = halfWidth * abs(clip[i].w) + 1e-6;
+            float w = max(abs(clip[i].w), 1e-12);
+            float marginPixels = max(halfWidth * frame.pixelsPerUnit / w, 0.5 * frame.minPixelWidth) + 1.0;
+            float extent = axis == 1 ? frame.viewportSize.y : frame.viewportSize.x;
+            float margin = marginPixels * 2.0 / extent * w;
             allBelow = allBelow && clip[i][axis] < -clip[i].w - margin;
             allAbove = allAbove && clip[i][axis] > clip[i].w + margin;
         }

@@ -3,26 +3,25 @@
 // Evaluates the Catmull-Rom span at u and offsets across the strand's width
 // (a world-space diameter) perpendicular to both the tangent and the view:
 // a camera-facing ribbon.
+//
+// Sub-pixel coverage (Svoboda 2012, section 1.2.3): a strand whose projected
+// width is below frame.minPixelWidth is drawn that wide instead, with its
+// alpha scaled by true width / drawn width, so thin hair fades with distance
+// instead of breaking up into dashes or vanishing.
 #include "include/frameUniforms.glsl"
 #include "include/catmullRom.glsl"
+#include "include/strandGeometry.glsl"
 
 layout(quads, equal_spacing, ccw) in;
 
 layout(location = 0) in vec4 tcsPositionWidth[];
 layout(location = 1) in vec4 tcsColorOpacity[];
+layout(location = 2) flat in int tcsSegment[];
 
 layout(location = 0) out vec3 worldPosition;
 layout(location = 1) out vec3 worldTangent;
-layout(location = 2) out vec4 colorOpacity;
-layout(location = 3) flat out int elementId;
-
-// Per segment: the index of its curve in the prim (Hydra's elementId).
-layout(std430, binding = 2) readonly buffer SegmentCurves {
-    uint segmentCurve[];
-};
-// x: the prim's id, y: the first segment of this draw (draws are batched, and
-// gl_PrimitiveID counts patches from the start of each draw).
-layout(location = 0) uniform ivec2 drawIds;
+layout(location = 2) out vec4 colorAlpha;  // displayColor, opacity x coverage
+layout(location = 3) flat out ivec2 ids;   // primId, elementId
 
 void main() {
     float u = gl_TessCoord.x, v = gl_TessCoord.y;
@@ -50,11 +49,22 @@ void main() {
 
     // Cubic interpolation can overshoot: widths, colours and opacities are clamped.
     float width = max(positionWidth.w, 0.0);
-    vec3 position = positionWidth.xyz + side * ((v - 0.5) * width);
+    float opacity = clamp(shade.a, 0.0, 1.0);
+    float drawnWidth = width;
+    if (frame.minPixelWidth > 0.0) {
+        float clipW = max(abs((frame.viewProjection * vec4(positionWidth.xyz, 1.0)).w), 1e-12);
+        float widthPixels = width * frame.pixelsPerUnit / clipW;
+        if (widthPixels < frame.minPixelWidth) {
+            drawnWidth = frame.minPixelWidth * clipW / frame.pixelsPerUnit;
+            opacity *= widthPixels / frame.minPixelWidth;
+        }
+    }
+    vec3 position = positionWidth.xyz + side * ((v - 0.5) * drawnWidth);
 
     worldPosition = position;
     worldTangent = tangent;
-    colorOpacity = vec4(max(shade.rgb, vec3(0.0)), clamp(shade.a, 0.0, 1.0));
-    elementId = int(segmentCurve[drawIds.y + gl_PrimitiveID]);
+    colorAlpha = vec4(max(shade.rgb, vec3(0.0)), opacity);
+    int segment = tcsSegment[0];
+    ids = ivec2(segmentPrim[segment], segmentCurve[segment]);
     gl_Position = frame.viewProjection * vec4(position, 1.0);
 }

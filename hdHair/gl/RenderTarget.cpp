@@ -5,56 +5,79 @@
 
 namespace hdhair::gl {
 
-RenderTarget::RenderTarget(int width, int height, bool withIds)
-    : width_(width), height_(height), withIds_(withIds) {
+RenderTarget::RenderTarget(int width, int height, bool withIds, int samples)
+    : width_(width), height_(height), withIds_(withIds), samples_(samples) {
     GLint maxSize = 0;
     glGetIntegerv(GL_MAX_RENDERBUFFER_SIZE, &maxSize);
     if (width <= 0 || height <= 0 || width > maxSize || height > maxSize)
         throw std::runtime_error("image size " + std::to_string(width) + "x" + std::to_string(height) +
-                                 " is outside what the GL driver supports (1 to " +
-                                 std::to_string(maxSize) + " pixels a side)");
+                                 " is outside what the GL driver supports (1 to " + std::to_string(maxSize) +
+                                 " pixels a side)");
+    create(draw_, samples_);
+    if (samples_ > 0) create(resolved_, 0);
+    checkGlError("creating the render target");
+}
+
+void RenderTarget::create(Attachments& a, int samples) {
+    auto texture = [&](GLenum format) {
+        GLuint name = 0;
+        glCreateTextures(samples > 0 ? GL_TEXTURE_2D_MULTISAMPLE : GL_TEXTURE_2D, 1, &name);
+        if (samples > 0) glTextureStorage2DMultisample(name, samples, format, width_, height_, GL_TRUE);
+        else glTextureStorage2D(name, 1, format, width_, height_);
+        return Texture(name);
+    };
+    a.color = texture(GL_RGBA32F);
+    a.depth = texture(GL_DEPTH_COMPONENT32F);
     GLuint name = 0;
-    glCreateTextures(GL_TEXTURE_2D, 1, &name);
-    color_ = Texture(name);
-    glTextureStorage2D(color_.get(), 1, GL_RGBA32F, width, height);
-    glCreateTextures(GL_TEXTURE_2D, 1, &name);
-    depth_ = Texture(name);
-    glTextureStorage2D(depth_.get(), 1, GL_DEPTH_COMPONENT32F, width, height);
     glCreateFramebuffers(1, &name);
-    framebuffer_ = Framebuffer(name);
-    glNamedFramebufferTexture(framebuffer_.get(), GL_COLOR_ATTACHMENT0, color_.get(), 0);
-    glNamedFramebufferTexture(framebuffer_.get(), GL_DEPTH_ATTACHMENT, depth_.get(), 0);
+    a.framebuffer = Framebuffer(name);
+    glNamedFramebufferTexture(a.framebuffer.get(), GL_COLOR_ATTACHMENT0, a.color.get(), 0);
+    glNamedFramebufferTexture(a.framebuffer.get(), GL_DEPTH_ATTACHMENT, a.depth.get(), 0);
     // The strand shaders write ids to outputs 1-3; without id images those
     // draw buffers are NONE and the writes are discarded.
     GLenum drawBuffers[4] = {GL_COLOR_ATTACHMENT0, GL_NONE, GL_NONE, GL_NONE};
     if (withIds_) {
         for (int i = 0; i < 3; ++i) {
-            glCreateTextures(GL_TEXTURE_2D, 1, &name);
-            ids_[i] = Texture(name);
-            glTextureStorage2D(ids_[i].get(), 1, GL_R32I, width, height);
+            a.ids[i] = texture(GL_R32I);
             GLenum attachment = GLenum(GL_COLOR_ATTACHMENT1 + i);
-            glNamedFramebufferTexture(framebuffer_.get(), attachment, ids_[i].get(), 0);
+            glNamedFramebufferTexture(a.framebuffer.get(), attachment, a.ids[i].get(), 0);
             drawBuffers[i + 1] = attachment;
         }
     }
-    glNamedFramebufferDrawBuffers(framebuffer_.get(), 4, drawBuffers);
-    GLenum status = glCheckNamedFramebufferStatus(framebuffer_.get(), GL_FRAMEBUFFER);
+    glNamedFramebufferDrawBuffers(a.framebuffer.get(), 4, drawBuffers);
+    GLenum status = glCheckNamedFramebufferStatus(a.framebuffer.get(), GL_FRAMEBUFFER);
     if (status != GL_FRAMEBUFFER_COMPLETE)
-        throw std::runtime_error("the GL driver cannot render to an RGBA32F framebuffer (status " +
-                                 std::to_string(status) + ")");
-    checkGlError("creating the render target");
+        throw std::runtime_error("the GL driver cannot render to this framebuffer (" + std::to_string(samples) +
+                                 " samples; status " + std::to_string(status) + ")");
 }
 
 void RenderTarget::bindAndClear(const glm::vec4& clearColor) {
-    glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_.get());
+    GLuint framebuffer = draw_.framebuffer.get();
+    glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
     glViewport(0, 0, width_, height_);
-    glClearNamedFramebufferfv(framebuffer_.get(), GL_COLOR, 0, &clearColor[0]);
+    glClearNamedFramebufferfv(framebuffer, GL_COLOR, 0, &clearColor[0]);
     const float clearDepth = 1.0f;
-    glClearNamedFramebufferfv(framebuffer_.get(), GL_DEPTH, 0, &clearDepth);
+    glClearNamedFramebufferfv(framebuffer, GL_DEPTH, 0, &clearDepth);
     if (withIds_) {
         const GLint none[4] = {-1, -1, -1, -1};
-        for (GLint i = 1; i <= 3; ++i) glClearNamedFramebufferiv(framebuffer_.get(), GL_COLOR, i, none);
+        for (GLint i = 1; i <= 3; ++i) glClearNamedFramebufferiv(framebuffer, GL_COLOR, i, none);
     }
+}
+
+void RenderTarget::resolve() {
+    if (samples_ == 0) return;
+    const GLuint from = draw_.framebuffer.get(), to = resolved_.framebuffer.get();
+    for (int i = 0; i < (withIds_ ? 4 : 1); ++i) {
+        GLenum attachment = GLenum(GL_COLOR_ATTACHMENT0 + i);
+        glNamedFramebufferReadBuffer(from, attachment);
+        glNamedFramebufferDrawBuffer(to, attachment);
+        glBlitNamedFramebuffer(from, to, 0, 0, width_, height_, 0, 0, width_, height_,
+                               i == 0 ? GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT : GL_COLOR_BUFFER_BIT, GL_NEAREST);
+    }
+    GLenum drawBuffers[4] = {GL_COLOR_ATTACHMENT0, GL_NONE, GL_NONE, GL_NONE};
+    for (int i = 1; withIds_ && i < 4; ++i) drawBuffers[i] = GLenum(GL_COLOR_ATTACHMENT0 + i);
+    glNamedFramebufferDrawBuffers(to, 4, drawBuffers);
+    checkGlError("resolving the multisampled frame");
 }
 
 namespace {
@@ -80,19 +103,21 @@ std::vector<Pixel> readRowsTopDown(GLuint framebuffer, GLenum attachment, GLenum
 }  // namespace
 
 std::vector<float> RenderTarget::readColor() const {
-    return readRowsTopDown<float>(framebuffer_.get(), GL_COLOR_ATTACHMENT0, GL_RGBA, GL_FLOAT, 4, width_, height_);
+    GLuint framebuffer = samples_ > 0 ? resolved_.framebuffer.get() : draw_.framebuffer.get();
+    return readRowsTopDown<float>(framebuffer, GL_COLOR_ATTACHMENT0, GL_RGBA, GL_FLOAT, 4, width_, height_);
 }
 
 std::vector<float> RenderTarget::readDepth() const {
-    return readRowsTopDown<float>(framebuffer_.get(), GL_DEPTH_ATTACHMENT, GL_DEPTH_COMPONENT, GL_FLOAT, 1, width_,
-                                  height_);
+    GLuint framebuffer = samples_ > 0 ? resolved_.framebuffer.get() : draw_.framebuffer.get();
+    return readRowsTopDown<float>(framebuffer, GL_DEPTH_ATTACHMENT, GL_DEPTH_COMPONENT, GL_FLOAT, 1, width_, height_);
 }
 
 std::vector<int32_t> RenderTarget::readIds(int index) const {
-    if (!withIds_ || index < 0 || index > 2) throw std::runtime_error("the render target has no id image " +
-                                                                      std::to_string(index));
-    return readRowsTopDown<int32_t>(framebuffer_.get(), GLenum(GL_COLOR_ATTACHMENT1 + index), GL_RED_INTEGER, GL_INT,
-                                    1, width_, height_);
+    if (!withIds_ || index < 0 || index > 2)
+        throw std::runtime_error("the render target has no id image " + std::to_string(index));
+    GLuint framebuffer = samples_ > 0 ? resolved_.framebuffer.get() : draw_.framebuffer.get();
+    return readRowsTopDown<int32_t>(framebuffer, GLenum(GL_COLOR_ATTACHMENT1 + index), GL_RED_INTEGER, GL_INT, 1,
+                                    width_, height_);
 }
 
 }  // namespace hdhair::gl

@@ -2,48 +2,25 @@
 
 #include <algorithm>
 
-#include "hdHair/curves/PreparedCurves.h"
-
 namespace hdhair::gl {
-
-StrandBuffer::StrandBuffer(const PreparedCurves& curves)
-    : buffer_(createBuffer(curves.controlPoints.data(),
-                           curves.controlPoints.size() * sizeof(StrandControlPoint))),
-      segmentCurves_(createBuffer(curves.segmentCurve.data(), curves.segmentCurve.size() * sizeof(uint32_t))),
-      controlPointCount_(static_cast<GLsizei>(curves.controlPoints.size())) {}
 
 StrandPass::StrandPass()
     : program_(createProgram({"strand.vert", "strand.tesc", "strand.tese", "strand.frag"})),
-      vertexArray_(createVertexArray()),
+      emptyVertexArray_(createVertexArray()),
       frameBlock_(createBuffer(nullptr, sizeof(FrameUniforms), GL_DYNAMIC_STORAGE_BIT)),
       lightBlock_(createBuffer(nullptr, sizeof(LightUniforms), GL_DYNAMIC_STORAGE_BIT)) {
-    // Attribute layout of StrandControlPoint: position, width, color, opacity.
-    GLuint vao = vertexArray_.get();
-    const GLuint offsets[4] = {offsetof(StrandControlPoint, position), offsetof(StrandControlPoint, width),
-                               offsetof(StrandControlPoint, color), offsetof(StrandControlPoint, opacity)};
-    const GLint sizes[4] = {3, 1, 3, 1};
-    for (GLuint attribute = 0; attribute < 4; ++attribute) {
-        glEnableVertexArrayAttrib(vao, attribute);
-        glVertexArrayAttribFormat(vao, attribute, sizes[attribute], GL_FLOAT, GL_FALSE, offsets[attribute]);
-        glVertexArrayAttribBinding(vao, attribute, 0);
-    }
     checkGlError("setting up the strand pass");
 }
 
-void StrandPass::draw(const FrameUniforms& frame, const LightUniforms& lights, const std::vector<StrandDraw>& draws) {
+void StrandPass::setUniforms(const FrameUniforms& frame, const LightUniforms& lights) {
     glNamedBufferSubData(frameBlock_.get(), 0, sizeof(frame), &frame);
     glNamedBufferSubData(lightBlock_.get(), 0, sizeof(lights), &lights);
     glBindBufferBase(GL_UNIFORM_BUFFER, 0, frameBlock_.get());
     glBindBufferBase(GL_UNIFORM_BUFFER, 1, lightBlock_.get());
+    maxSegmentsPerSpan_ = frame.maxSegmentsPerSpan;
+}
 
-    glUseProgram(program_.get());
-    glBindVertexArray(vertexArray_.get());
-    glEnable(GL_DEPTH_TEST);
-    glDepthFunc(GL_LESS);
-    glDepthMask(GL_TRUE);
-    glDisable(GL_BLEND);
-    glDisable(GL_CULL_FACE);  // ribbons are seen from both sides
-    glPatchParameteri(GL_PATCH_VERTICES, 4);
+void StrandPass::drawPatches(size_t segmentCount, float maxSegmentsPerSpan) {
     // Mesa 22.3's llvmpipe draws triangles between unrelated vertices (long
     // spikes across the image, and 50x slower frames) once one draw's
     // tessellator emits too many vertices: examples/dense_clump.usda broke at
@@ -51,19 +28,61 @@ void StrandPass::draw(const FrameUniforms& frame, const LightUniforms& lights, c
     // most 2,048 emitted vertices (2 * (level + 1) per patch) render correctly
     // at every level with no measurable cost from the extra draw calls.
     // testRenderBaselines' DenseStrandsAtHighTessellationStayIntact guards it.
-    const GLsizei verticesPerPatch = 2 * (GLsizei(frame.maxSegmentsPerSpan) + 1);
+    const GLsizei verticesPerPatch = 2 * (GLsizei(maxSegmentsPerSpan) + 1);
     const GLsizei patchesPerDraw = std::max<GLsizei>(1, 2048 / verticesPerPatch);
-    for (const StrandDraw& draw : draws) {
-        const StrandBuffer* strand = draw.strands;
-        if (strand->controlPointCount() == 0) continue;
-        glVertexArrayVertexBuffer(vertexArray_.get(), 0, strand->buffer(), 0, sizeof(StrandControlPoint));
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, strand->segmentCurves());
-        GLsizei patches = strand->controlPointCount() / 4;
-        for (GLsizei first = 0; first < patches; first += patchesPerDraw) {
-            glUniform2i(0, draw.primId, first);  // drawIds in strand.tese and strand.frag
-            glDrawArrays(GL_PATCHES, first * 4, std::min(patchesPerDraw, patches - first) * 4);
+    glPatchParameteri(GL_PATCH_VERTICES, 4);
+    const GLsizei patches = GLsizei(segmentCount);
+    // strand.vert pulls control points by gl_VertexID, which counts from
+    // `first`: batches need no offsets of their own.
+    for (GLsizei first = 0; first < patches; first += patchesPerDraw)
+        glDrawArrays(GL_PATCHES, first * 4, std::min(patchesPerDraw, patches - first) * 4);
+}
+
+void StrandPass::draw(const StrandGeometry& geometry, const std::vector<uint32_t>& order, StrandBlending blending) {
+    if (geometry.segmentCount() == 0) return;
+    geometry.bind();
+    if (!order.empty()) {
+        if (order.size() > orderCapacity_) {
+            orderCapacity_ = order.size();
+            orderBuffer_ = createBuffer(nullptr, orderCapacity_ * sizeof(uint32_t), GL_DYNAMIC_STORAGE_BIT);
         }
+        glNamedBufferSubData(orderBuffer_.get(), 0, GLsizeiptr(order.size() * sizeof(uint32_t)), order.data());
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, orderBuffer_.get());
+    } else {
+        // The shaders declare the order buffer even when they do not read it.
+        if (!orderBuffer_) {
+            orderCapacity_ = 1;
+            orderBuffer_ = createBuffer(nullptr, sizeof(uint32_t), GL_DYNAMIC_STORAGE_BIT);
+        }
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, orderBuffer_.get());
     }
+
+    glUseProgram(program_.get());
+    glBindVertexArray(emptyVertexArray_.get());
+    glEnable(GL_DEPTH_TEST);
+    glDisable(GL_CULL_FACE);  // ribbons are seen from both sides
+    switch (blending) {
+    case StrandBlending::Opaque:
+    case StrandBlending::DepthAndIdsOnly:
+        glDepthFunc(GL_LESS);
+        glDepthMask(GL_TRUE);
+        glDisable(GL_BLEND);
+        break;
+    case StrandBlending::PremultipliedOver:
+        // Sorted far to near, so depth writes would only reject strands that
+        // the bins ordered wrongly (Svoboda 2012, section 1.3.3): test only.
+        glDepthFunc(GL_LEQUAL);
+        glDepthMask(GL_FALSE);
+        glEnable(GL_BLEND);
+        glBlendEquation(GL_FUNC_ADD);
+        glBlendFunc(GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+        break;
+    }
+    if (blending == StrandBlending::DepthAndIdsOnly) glColorMaski(0, GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+    drawPatches(geometry.segmentCount(), maxSegmentsPerSpan_);
+    glColorMaski(0, GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    glDisable(GL_BLEND);
+    glDepthMask(GL_TRUE);
     glBindVertexArray(0);
     glUseProgram(0);
     checkGlError("drawing strands");

@@ -1,49 +1,46 @@
 #pragma once
-// Draws prepared curves (hdHair/curves/PreparedCurves.h) as camera-facing,
-// Kajiya-Kay shaded ribbons: one patch of four Catmull-Rom control points per
-// span, tessellated on the GPU (shaders/strand.*). Opaque and depth-tested.
+// Draws the frame's strands (StrandGeometry) as camera-facing ribbons: one
+// patch of four Catmull-Rom control points per segment, tessellated on the
+// GPU (shaders/strand.*), either opaque (depth written) or pre-multiplied and
+// blended in a given far-to-near order (depth tested, not written).
 
+#include <cstdint>
 #include <vector>
 
 #include "hdHair/gl/GlObjects.h"
+#include "hdHair/gl/StrandGeometry.h"
 #include "hdHair/gl/UniformBlocks.h"
-
-namespace hdhair {
-struct PreparedCurves;
-}
 
 namespace hdhair::gl {
 
-// The GPU copy of one prim's prepared curves: control points (vertex
-// attributes) and each segment's curve index (a storage buffer, for elementId).
-class StrandBuffer {
-public:
-    explicit StrandBuffer(const PreparedCurves& curves);
-    GLuint buffer() const { return buffer_.get(); }
-    GLuint segmentCurves() const { return segmentCurves_.get(); }
-    GLsizei controlPointCount() const { return controlPointCount_; }
-
-private:
-    Buffer buffer_;
-    Buffer segmentCurves_;
-    GLsizei controlPointCount_ = 0;
-};
-
-// One prim to draw, with the id it writes into the primId output.
-struct StrandDraw {
-    const StrandBuffer* strands = nullptr;
-    int primId = -1;
+enum class StrandBlending {
+    Opaque,          // no blending, depth test and write: the opaque path
+    PremultipliedOver,  // ONE, ONE_MINUS_SRC_ALPHA, depth test only
+    DepthAndIdsOnly  // no colour: nearest strand's depth and ids (for Hydra under transparency)
 };
 
 class StrandPass {
 public:
     StrandPass();  // compiles the strand program; throws on driver errors
-    void draw(const FrameUniforms& frame, const LightUniforms& lights, const std::vector<StrandDraw>& draws);
+
+    // Uploads and binds the frame's uniform blocks (also used by other passes).
+    void setUniforms(const FrameUniforms& frame, const LightUniforms& lights);
+
+    // `order`: segments in drawing order (far to near), or empty for the
+    // geometry's own order. setUniforms() must have been called with
+    // frame.orderedDraw matching.
+    void draw(const StrandGeometry& geometry, const std::vector<uint32_t>& order, StrandBlending blending);
+
+    // Issues the draws only (the program and state are the caller's): used by
+    // passes that share the strand stages with another fragment shader.
+    static void drawPatches(size_t segmentCount, float maxSegmentsPerSpan);
 
 private:
     Program program_;
-    VertexArray vertexArray_;
-    Buffer frameBlock_, lightBlock_;
+    VertexArray emptyVertexArray_;  // core profile draws need one bound
+    Buffer frameBlock_, lightBlock_, orderBuffer_;
+    size_t orderCapacity_ = 0;
+    float maxSegmentsPerSpan_ = 8.0f;
 };
 
 }  // namespace hdhair::gl

@@ -19,8 +19,14 @@ struct FrameUniforms {  // binding 0, shaders/include/frameUniforms.glsl
     glm::vec2 viewportSize{1.0f};
     float pixelsPerSegment = 8.0f;
     float maxSegmentsPerSpan = 8.0f;
+    float pixelsPerUnit = 1.0f;  // pixels a world unit spans at clip w = 1
+    float minPixelWidth = 0.0f;  // sub-pixel coverage threshold; 0 keeps true widths
+    int32_t shadingModel = 1;    // 0 flat, 1 Kajiya-Kay
+    int32_t drawMode = 0;        // 0 opaque, 1 pre-multiplied, 2 depth and ids only
+    int32_t orderedDraw = 0;     // 1: patches come through the draw-order buffer
+    int32_t padding[3] = {0, 0, 0};
 };
-static_assert(sizeof(FrameUniforms) == 112, "std140 layout of FrameUniforms");
+static_assert(sizeof(FrameUniforms) == 144, "std140 layout of FrameUniforms");
 
 struct LightUniforms {  // binding 1, shaders/include/lights.glsl
     glm::vec4 lightVector[kMaxLightsPerPass]{};

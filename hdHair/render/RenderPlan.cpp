@@ -10,6 +10,16 @@
 
 namespace hdhair {
 
+const char* toString(TransparencyPath path) {
+    switch (path) {
+    case TransparencyPath::Opaque: return "opaque";
+    case TransparencyPath::BinSorted: return "binSorted";
+    case TransparencyPath::Exact: return "exact";
+    case TransparencyPath::Unsorted: return "unsorted";
+    }
+    return "opaque";
+}
+
 bool RenderPlan::isEnabled(const std::string& name) const {
     for (const PlannedPass& pass : passes)
         if (pass.name == name) return pass.enabled;
@@ -19,7 +29,7 @@ bool RenderPlan::isEnabled(const std::string& name) const {
 std::string RenderPlan::describe() const {
     std::string text;
     for (const PlannedPass& pass : passes)
-        text += fmt::format("  {:<10} {:<4} {}\n", pass.name, pass.enabled ? "on" : "off", pass.reason);
+        text += fmt::format("  {:<12} {:<4} {}\n", pass.name, pass.enabled ? "on" : "off", pass.reason);
     return text;
 }
 
@@ -31,7 +41,7 @@ nlohmann::json RenderPlan::toJson() const {
 }
 
 RenderPlan makeRenderPlan(const Scene& scene, const RenderSettings& settings, const CameraView& camera,
-                          size_t segmentCount) {
+                          const StrandSummary& strands, bool idsRequested) {
     RenderPlan plan;
     std::vector<const LightPrim*> stageLights;
     const LightPrim* hostCameraLight = nullptr;
@@ -43,10 +53,11 @@ RenderPlan makeRenderPlan(const Scene& scene, const RenderSettings& settings, co
         }
     }
     plan.lights = toShadingLights(stageLights);
+    plan.flatShading = settings.getToken("shadingModel") == "flat";
 
     std::string cameraLight = settings.getToken("cameraLight");
     bool stageHasLight = !plan.lights.lights.empty() || glm::length(plan.lights.ambient) > 0.0f;
-    plan.cameraLight = cameraLight == "on" || (cameraLight == "auto" && !stageHasLight);
+    plan.cameraLight = !plan.flatShading && (cameraLight == "on" || (cameraLight == "auto" && !stageHasLight));
     if (plan.cameraLight) {
         if (hostCameraLight) {
             // The host's light follows its camera: use it as it is.
@@ -61,12 +72,57 @@ RenderPlan makeRenderPlan(const Scene& scene, const RenderSettings& settings, co
         }
     }
 
-    PlannedPass strands{"strands", segmentCount > 0, ""};
-    strands.reason = segmentCount > 0
-                         ? fmt::format("{} segments, opaque, depth-tested, Kajiya-Kay, {} light(s){}", segmentCount,
-                                       plan.lights.lights.size(), plan.cameraLight ? " incl. the camera light" : "")
-                         : "no visible curves: background only";
-    plan.passes.push_back(strands);
+    // Transparency: what was asked for, unless the stage does not need it.
+    std::string requested = settings.getToken("transparency");
+    double threshold = settings.getFloat("minPixelWidth");
+    bool needsBlending = !strands.allOpaque || strands.minProjectedWidthPixels < threshold;
+    std::string why;
+    if (requested == "opaque") {
+        plan.transparency = TransparencyPath::Opaque;
+        why = "transparency=opaque: opacity and sub-pixel coverage ignored";
+    } else if (!needsBlending) {
+        plan.transparency = TransparencyPath::Opaque;
+        why = fmt::format("every strand is opaque and at least {:.2f} px wide (>= minPixelWidth {}): no blending "
+                          "or sorting needed",
+                          strands.minProjectedWidthPixels, threshold);
+    } else if (requested == "exact") {
+        plan.transparency = TransparencyPath::Exact;
+        why = "per-pixel fragment lists sorted by depth (exact)";
+    } else if (requested == "unsorted") {
+        plan.transparency = TransparencyPath::Unsorted;
+        why = "pre-multiplied blending in authored order, unsorted";
+    } else {
+        plan.transparency = TransparencyPath::BinSorted;
+        plan.sortBins = uint32_t(settings.getInt("sortBins"));
+        why = fmt::format("{} bins, drawn far to near with pre-multiplied blending", plan.sortBins);
+    }
+    if (plan.transparency != TransparencyPath::Opaque)
+        why += fmt::format(" ({}; thinnest strand {:.2f} px)", strands.allOpaque ? "opaque strands" : "translucent strands",
+                           strands.minProjectedWidthPixels);
+    if (plan.transparency == TransparencyPath::Opaque) plan.msaaSamples = settings.getInt("msaaSamples");
+
+    PlannedPass sort{"sort", plan.transparency == TransparencyPath::BinSorted && strands.segments > 0, ""};
+    sort.reason = sort.enabled ? fmt::format("{} segments into {} depth bins on the CPU, O(n)", strands.segments,
+                                             plan.sortBins)
+                               : "no bin sorting on this path";
+    plan.passes.push_back(sort);
+
+    PlannedPass strandPass{"strands", strands.segments > 0, ""};
+    std::string shading = plan.flatShading ? "flat displayColor"
+                                           : fmt::format("Kajiya-Kay, {} light(s){}", plan.lights.lights.size(),
+                                                         plan.cameraLight ? " incl. the camera light" : "");
+    std::string multisampling =
+        plan.msaaSamples > 0 ? fmt::format(", {}x MSAA", plan.msaaSamples) : std::string();
+    strandPass.reason = strands.segments > 0 ? fmt::format("{} segments, {}: {}{}, {}", strands.segments,
+                                                           toString(plan.transparency), why, multisampling, shading)
+                                             : "no visible curves: background only";
+    plan.passes.push_back(strandPass);
+
+    PlannedPass ids{"depthAndIds", idsRequested && strands.segments > 0 && plan.transparency != TransparencyPath::Opaque,
+                    ""};
+    ids.reason = ids.enabled ? "the host asked for depth and ids: nearest strand at least 10% opaque"
+                             : "ids come from the strand pass, or were not asked for";
+    plan.passes.push_back(ids);
 
     PlannedPass meshes{"meshes", false, ""};
     meshes.reason = scene.meshes().empty() ? "no meshes"

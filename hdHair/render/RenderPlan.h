@@ -3,6 +3,7 @@
 // effects a scene calls for are simulated, and what is off costs nothing.
 // Each decision carries its reason, printed by --explain and kept in --stats.
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -16,6 +17,21 @@ class RenderSettings;
 class Scene;
 struct CameraView;
 
+// How the frame's strands are composited.
+enum class TransparencyPath { Opaque, BinSorted, Exact, Unsorted };
+const char* toString(TransparencyPath path);
+
+// What the frame's strands need, measured on the prepared curves.
+struct StrandSummary {
+    uint64_t segments = 0;
+    // Every control point fully opaque (1 exactly: then every interpolated
+    // opacity is 1 too, Catmull-Rom weights summing to one).
+    bool allOpaque = true;
+    // The thinnest any strand can project, in pixels, at the far side of the
+    // strands' bounds (conservative); infinity when there are none.
+    double minProjectedWidthPixels = 0.0;
+};
+
 struct PlannedPass {
     std::string name;    // "strands"
     bool enabled = false;
@@ -26,14 +42,18 @@ struct RenderPlan {
     std::vector<PlannedPass> passes;
     ShadingLights lights;       // the stage's lights, plus the camera light when used
     bool cameraLight = false;
+    TransparencyPath transparency = TransparencyPath::Opaque;
+    uint32_t sortBins = 0;      // for BinSorted
+    int msaaSamples = 0;        // for Opaque
+    bool flatShading = false;
 
     bool isEnabled(const std::string& name) const;
     std::string describe() const;  // one line per pass, for --explain
     nlohmann::json toJson() const;
 };
 
-// segmentCount: segments of all visible prepared curves.
+// idsRequested: a host asked for primId/instanceId/elementId (and depth).
 RenderPlan makeRenderPlan(const Scene& scene, const RenderSettings& settings, const CameraView& camera,
-                          size_t segmentCount);
+                          const StrandSummary& strands, bool idsRequested = false);
 
 }  // namespace hdhair

@@ -39,6 +39,24 @@ const std::vector<SettingDescriptor>& RenderSettings::descriptors() {
          "Most segments one curve span is cut into, however close it is (complexity: low 8, "
          "medium 16, high 32, veryhigh 64)",
          1, 64, {}},
+        {"transparency", SettingType::Token, "binSorted",
+         "How strands are composited: binSorted (depth bins, far to near), exact (per-pixel sorted "
+         "fragment lists: the slow ground truth), unsorted, or opaque; stages whose strands are all "
+         "opaque and wide take the opaque path by themselves",
+         0, 0, {"binSorted", "exact", "unsorted", "opaque"}},
+        {"sortBins", SettingType::Int, "256", "Depth bins for binSorted transparency", 1, 65536, {}},
+        {"minPixelWidth", SettingType::Float, "1",
+         "Strands projecting thinner than this many pixels are drawn this wide with alpha scaled by "
+         "true / drawn width (sub-pixel coverage)",
+         0.05, 16.0, {}},
+        {"msaaSamples", SettingType::Int, "0", "Multisampling of the opaque path: 0, 2, 4 or 8 samples", 0, 8,
+         {"0", "2", "4", "8"}},
+        {"exactMemoryMB", SettingType::Int, "512",
+         "Memory for exact transparency's fragment lists; a frame needing more falls back to binSorted", 16,
+         65536, {}},
+        {"shadingModel", SettingType::Token, "kajiyaKay",
+         "Hair shading: kajiyaKay, or flat (displayColor x opacity, no lighting)", 0, 0,
+         {"kajiyaKay", "flat"}},
         {"kajiyaKay:diffuse", SettingType::Float, "1", "Kajiya-Kay diffuse weight Kd", 0.0, 100.0, {}},
         {"kajiyaKay:specular", SettingType::Float, "0.35", "Kajiya-Kay specular weight Ks", 0.0, 100.0, {}},
         {"kajiyaKay:shininess", SettingType::Float, "60", "Kajiya-Kay specular exponent p", 1.0, 10000.0, {}},
@@ -95,6 +113,12 @@ void RenderSettings::set(const std::string& name, const std::string& value) {
         if (number < descriptor->minimum || number > descriptor->maximum)
             throw std::invalid_argument(fmt::format("setting '{}' must be in [{}, {}], got {}", name,
                                                     descriptor->minimum, descriptor->maximum, value));
+        // Some numeric settings take only listed values (msaaSamples).
+        if (!descriptor->tokens.empty() &&
+            std::find(descriptor->tokens.begin(), descriptor->tokens.end(), fmt::format("{}", number)) ==
+                descriptor->tokens.end())
+            throw std::invalid_argument(fmt::format("setting '{}' expects one of {}, got '{}'", name,
+                                                    fmt::join(descriptor->tokens, ", "), value));
         break;
     }
     case SettingType::Bool: {

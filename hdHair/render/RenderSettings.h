@@ -20,7 +20,7 @@ struct SettingDescriptor {
     std::string defaultValue;         // as text, e.g. "8", "kajiyaKay"
     std::string description;          // one line, for --help and usdview
     double minimum = 0.0, maximum = 0.0;  // Float and Int: inclusive range
-    std::vector<std::string> tokens;  // Token: allowed values
+    std::vector<std::string> tokens;  // Token (or Int): the only values allowed
 };
 
 // usdrecord's --complexity levels; they set the tessellation density.

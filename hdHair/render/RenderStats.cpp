@@ -23,6 +23,9 @@ nlohmann::json RenderStats::toJson() const {
     json["settings"] = settings;
     json["plan"] = plan;
     json["warnings"] = warnings;
+    json["transparency"] = transparency;
+    if (fragments > 0) json["fragments"] = fragments;
+    if (!fallback.empty()) json["fallback"] = fallback;
     return json;
 }
 

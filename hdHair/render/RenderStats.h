@@ -27,6 +27,9 @@ struct RenderStats {
     nlohmann::json settings;
     nlohmann::json plan;
     size_t warnings = 0;
+    std::string transparency;     // the path taken: opaque, binSorted, exact or unsorted
+    uint64_t fragments = 0;       // strand fragments, when known (exact transparency counts them)
+    std::string fallback;         // what replaced the requested path, and why ("" when nothing did)
 
     nlohmann::json toJson() const;
 };

@@ -1,19 +1,23 @@
 #include "hdHair/render/Renderer.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <vector>
 
+#include <fmt/format.h>
 #include <glad/gl.h>
 #include <glm/geometric.hpp>
-#include <glm/gtc/type_ptr.hpp>
 #include <tbb/parallel_for.h>
 
 #include "hdHair/base/Diagnostics.h"
-#include "hdHair/curves/PreparedCurves.h"
+#include "hdHair/gl/FragmentListPass.h"
 #include "hdHair/gl/GlRenderThread.h"
 #include "hdHair/gl/RenderTarget.h"
+#include "hdHair/gl/StrandGeometry.h"
 #include "hdHair/gl/StrandPass.h"
+#include "hdHair/render/BinSort.h"
 #include "hdHair/scene/Scene.h"
 #include "hdHair/shading/KajiyaKay.h"
 
@@ -26,16 +30,31 @@ double millisecondsSince(Clock::time_point start) {
     return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
 }
 
-gl::FrameUniforms frameUniforms(const CameraView& camera, const RenderSettings& settings) {
+glm::dvec3 cameraPositionOf(const CameraView& camera) { return glm::dvec3(glm::inverse(camera.view)[3]); }
+
+glm::dvec3 viewDirectionOf(const CameraView& camera) {
+    return glm::normalize(glm::dvec3(glm::inverse(camera.view) * glm::dvec4(0.0, 0.0, -1.0, 0.0)));
+}
+
+// Pixels a world unit spans horizontally at clip w = 1: half the image width
+// times the projection's x scale (GL matrices: [0][0]).
+double pixelsPerUnit(const CameraView& camera) { return camera.projection[0][0] * camera.imageWidth * 0.5; }
+
+gl::FrameUniforms frameUniforms(const CameraView& camera, const RenderSettings& settings, const RenderPlan& plan) {
     gl::FrameUniforms frame;
     frame.viewProjection = glm::mat4(camera.projection * camera.view);
-    glm::dmat4 cameraToWorld = glm::inverse(camera.view);
-    glm::dvec3 forward = glm::normalize(glm::dvec3(cameraToWorld * glm::dvec4(0.0, 0.0, -1.0, 0.0)));
-    frame.cameraPosition = glm::vec4(glm::vec3(cameraToWorld[3]), camera.orthographic ? 0.0f : 1.0f);
-    frame.cameraForward = glm::vec4(glm::vec3(forward), 0.0f);
+    frame.cameraPosition = glm::vec4(glm::vec3(cameraPositionOf(camera)), camera.orthographic ? 0.0f : 1.0f);
+    frame.cameraForward = glm::vec4(glm::vec3(viewDirectionOf(camera)), 0.0f);
     frame.viewportSize = glm::vec2(float(camera.imageWidth), float(camera.imageHeight));
     frame.pixelsPerSegment = float(settings.getFloat("pixelsPerSegment"));
     frame.maxSegmentsPerSpan = float(settings.getInt("maxSegmentsPerSpan"));
+    frame.pixelsPerUnit = float(pixelsPerUnit(camera));
+    bool opaque = plan.transparency == TransparencyPath::Opaque;
+    // The opaque path draws true widths; every blended path applies coverage.
+    frame.minPixelWidth = opaque ? 0.0f : float(settings.getFloat("minPixelWidth"));
+    frame.shadingModel = plan.flatShading ? 0 : 1;
+    frame.drawMode = opaque ? 0 : 1;
+    frame.orderedDraw = plan.transparency == TransparencyPath::BinSorted ? 1 : 0;
     return frame;
 }
 
@@ -64,17 +83,40 @@ gl::LightUniforms lightUniforms(const RenderPlan& plan, const RenderSettings& se
     return uniforms;
 }
 
+// The thinnest projected width of any strand: its thinnest span end at the
+// farthest depth of its bounds (a lower bound for perspective cameras).
+double minProjectedWidthPixels(const CameraView& camera, const PreparedCurves& curves, float minSpanWidth) {
+    double farthest = 0.0;
+    if (!camera.orthographic) {
+        for (int corner = 0; corner < 8; ++corner) {
+            glm::dvec3 p((corner & 1) ? curves.boundsMax.x : curves.boundsMin.x,
+                         (corner & 2) ? curves.boundsMax.y : curves.boundsMin.y,
+                         (corner & 4) ? curves.boundsMax.z : curves.boundsMin.z);
+            farthest = std::max(farthest, (camera.projection * camera.view * glm::dvec4(p, 1.0)).w);
+        }
+        if (farthest <= 0.0) return std::numeric_limits<double>::infinity();  // behind the camera
+    } else {
+        farthest = 1.0;
+    }
+    return double(minSpanWidth) * pixelsPerUnit(camera) / farthest;
+}
+
 }  // namespace
 
 Renderer::Renderer(gl::GlBackend backend) : glThread_(std::make_unique<gl::GlRenderThread>(backend)) {
-    glThread_->run([this] { strandPass_ = std::make_unique<gl::StrandPass>(); });
+    glThread_->run([this] {
+        strandPass_ = std::make_unique<gl::StrandPass>();
+        fragmentListPass_ = std::make_unique<gl::FragmentListPass>();
+        glGetIntegerv(GL_MAX_SAMPLES, &maxSamples_);
+    });
 }
 
 Renderer::~Renderer() {
     // GL objects die on the thread that owns the context.
     glThread_->run([this] {
-        for (auto& [path, cached] : curves_) cached.buffer.reset();
+        geometry_.reset();
         strandPass_.reset();
+        fragmentListPass_.reset();
         target_.reset();
     });
 }
@@ -83,15 +125,8 @@ const std::string& Renderer::glDescription() const { return glThread_->contextDe
 
 SceneBounds Renderer::prepare(const Scene& scene, Diagnostics& diagnostics) {
     Clock::time_point start = Clock::now();
-    // Drop prims that left the scene (their GPU buffers go with them below).
-    std::vector<std::string> removed;
-    for (const auto& [path, cached] : curves_)
-        if (!scene.curves().count(path)) removed.push_back(path);
-    if (!removed.empty()) {
-        glThread_->run([&] {
-            for (const std::string& path : removed) curves_.erase(path);
-        });
-    }
+    for (auto it = curves_.begin(); it != curves_.end();)
+        it = scene.curves().count(it->first) ? std::next(it) : curves_.erase(it);
     // Prepare changed prims in parallel: curve preparation is CPU work
     // without GL, thread-safe across prims.
     std::vector<std::pair<const CurvesPrim*, CachedCurves*>> changed;
@@ -103,82 +138,169 @@ SceneBounds Renderer::prepare(const Scene& scene, Diagnostics& diagnostics) {
     }
     tbb::parallel_for(size_t(0), changed.size(), [&](size_t i) {
         auto prepared = std::make_shared<PreparedCurves>(prepareCurves(*changed[i].first, diagnostics));
-        changed[i].second->prepared = std::move(prepared);
+        CachedCurves& cached = *changed[i].second;
+        cached.minSpanWidth = std::numeric_limits<float>::max();
+        cached.fullyOpaque = true;
+        for (size_t c = 0; c < prepared->controlPoints.size(); ++c) {
+            const StrandControlPoint& point = prepared->controlPoints[c];
+            cached.fullyOpaque = cached.fullyOpaque && point.opacity == 1.0f;
+            if (c % 4 == 1 || c % 4 == 2) cached.minSpanWidth = std::min(cached.minSpanWidth, point.width);
+        }
+        cached.prepared = std::move(prepared);
     });
-    if (!changed.empty()) {
-        glThread_->run([&] {
-            for (auto& [prim, cached] : changed) cached->buffer.reset();
-        });
-    }
     pendingPrepareMilliseconds_ += millisecondsSince(start);
 
     SceneBounds bounds;
+    auto include = [&](const glm::dvec3& low, const glm::dvec3& high) {
+        bool first = bounds.empty();
+        bounds.min = first ? low : glm::min(bounds.min, low);
+        bounds.max = first ? high : glm::max(bounds.max, high);
+    };
     for (const auto& [path, entry] : scene.curves()) {
         const CachedCurves& cached = curves_.at(path);
         if (!entry.prim->visible || cached.prepared->empty()) continue;
-        bounds.min = glm::min(bounds.min.x > bounds.max.x ? glm::dvec3(cached.prepared->boundsMin) : bounds.min,
-                              glm::dvec3(cached.prepared->boundsMin));
-        bounds.max = glm::max(bounds.min.x > bounds.max.x ? glm::dvec3(cached.prepared->boundsMax) : bounds.max,
-                              glm::dvec3(cached.prepared->boundsMax));
+        include(glm::dvec3(cached.prepared->boundsMin), glm::dvec3(cached.prepared->boundsMax));
     }
     for (const auto& [path, entry] : scene.meshes()) {
         if (!entry.prim->visible) continue;
         for (const glm::vec3& point : entry.prim->points) {
             glm::dvec3 world = glm::dvec3(entry.prim->worldTransform * glm::dvec4(glm::dvec3(point), 1.0));
-            if (!std::isfinite(world.x) || !std::isfinite(world.y) || !std::isfinite(world.z)) continue;
-            bool first = bounds.empty();
-            bounds.min = first ? world : glm::min(bounds.min, world);
-            bounds.max = first ? world : glm::max(bounds.max, world);
+            if (std::isfinite(world.x) && std::isfinite(world.y) && std::isfinite(world.z)) include(world, world);
         }
     }
     return bounds;
+}
+
+void Renderer::updateGeometry(const std::vector<std::pair<int, const CachedCurves*>>& visible,
+                              const std::vector<uint64_t>& versions, RenderStats& stats) {
+    if (geometry_ && versions == geometryVersions_) return;
+    Clock::time_point start = Clock::now();
+    size_t segments = 0;
+    for (const auto& [primId, cached] : visible) segments += cached->prepared->segmentCount();
+    controlPoints_.clear();
+    controlPoints_.reserve(4 * segments);
+    std::vector<int32_t> segmentCurves, segmentPrims;
+    segmentCurves.reserve(segments);
+    segmentPrims.reserve(segments);
+    for (const auto& [primId, cached] : visible) {
+        const PreparedCurves& prepared = *cached->prepared;
+        controlPoints_.insert(controlPoints_.end(), prepared.controlPoints.begin(), prepared.controlPoints.end());
+        for (uint32_t curve : prepared.segmentCurve) {
+            segmentCurves.push_back(int32_t(curve));
+            segmentPrims.push_back(primId);
+        }
+    }
+    glThread_->run([&] {
+        geometry_ = std::make_unique<gl::StrandGeometry>(controlPoints_, segmentCurves, segmentPrims);
+        glFinish();
+    });
+    geometryVersions_ = versions;
+    stats.passes.push_back({"upload", millisecondsSince(start)});
 }
 
 RenderResult Renderer::render(const Scene& scene, const CameraView& camera, const RenderSettings& settings,
                               Diagnostics& diagnostics, const RenderOutputs& outputs) {
     Clock::time_point frameStart = Clock::now();
     RenderResult result;
+    RenderStats& stats = result.stats;
     size_t warningsBefore = diagnostics.warningCount();
     prepare(scene, diagnostics);
-    result.stats.passes.push_back({"prepareCurves", pendingPrepareMilliseconds_});
+    stats.passes.push_back({"prepareCurves", pendingPrepareMilliseconds_});
     pendingPrepareMilliseconds_ = 0.0;
 
-    std::vector<std::pair<int, CachedCurves*>> visible;  // prim id, cached data
-    uint64_t segments = 0, curveCount = 0;
+    std::vector<std::pair<int, const CachedCurves*>> visible;  // prim id, cached data
+    std::vector<uint64_t> versions;
+    StrandSummary summary;
+    summary.minProjectedWidthPixels = std::numeric_limits<double>::infinity();
+    uint64_t curveCount = 0;
     for (const auto& [path, entry] : scene.curves()) {
-        CachedCurves& cached = curves_.at(path);
+        const CachedCurves& cached = curves_.at(path);
         if (!entry.prim->visible || cached.prepared->empty()) continue;
         visible.emplace_back(entry.prim->primId, &cached);
-        segments += cached.prepared->segmentCount();
+        versions.push_back(cached.version);
+        summary.segments += cached.prepared->segmentCount();
+        summary.allOpaque = summary.allOpaque && cached.fullyOpaque;
+        summary.minProjectedWidthPixels =
+            std::min(summary.minProjectedWidthPixels,
+                     minProjectedWidthPixels(camera, *cached.prepared, cached.minSpanWidth));
         curveCount += cached.prepared->curveCount;
     }
-    result.plan = makeRenderPlan(scene, settings, camera, segments);
-    gl::FrameUniforms frame = frameUniforms(camera, settings);
-    gl::LightUniforms lights = lightUniforms(result.plan, settings, diagnostics);
+    updateGeometry(visible, versions, stats);
+    result.plan = makeRenderPlan(scene, settings, camera, summary, outputs.ids);
+    RenderPlan& plan = result.plan;
+
+    std::vector<uint32_t> order;
+    if (plan.isEnabled("sort")) {
+        Clock::time_point sortStart = Clock::now();
+        binSortSegments(controlPoints_, cameraPositionOf(camera), viewDirectionOf(camera), plan.sortBins, order);
+        stats.passes.push_back({"sort", millisecondsSince(sortStart)});
+    }
+    gl::FrameUniforms frame = frameUniforms(camera, settings, plan);
+    gl::LightUniforms lights = lightUniforms(plan, settings, diagnostics);
+    int samples = std::min(plan.msaaSamples, maxSamples_);
+    if (samples < plan.msaaSamples)
+        diagnostics.warn("render", fmt::format("msaaSamples={} is more than this GL driver offers; using {}",
+                                               plan.msaaSamples, samples));
+    const size_t listCapacity = size_t(settings.getInt("exactMemoryMB")) * 1024 * 1024 / gl::kFragmentNodeBytes;
 
     glThread_->run([&] {
-        Clock::time_point uploadStart = Clock::now();
-        for (auto& [primId, cached] : visible)
-            if (!cached->buffer) cached->buffer = std::make_unique<gl::StrandBuffer>(*cached->prepared);
-        glFinish();
-        result.stats.passes.push_back({"upload", millisecondsSince(uploadStart)});
-
         if (!target_ || target_->width() != camera.imageWidth || target_->height() != camera.imageHeight ||
-            target_->hasIds() != outputs.ids)
-            target_ = std::make_unique<gl::RenderTarget>(camera.imageWidth, camera.imageHeight, outputs.ids);
+            target_->hasIds() != outputs.ids || target_->samples() != samples)
+            target_ = std::make_unique<gl::RenderTarget>(camera.imageWidth, camera.imageHeight, outputs.ids, samples);
         // Empty pixels are transparent black: pre-multiplied "nothing".
         target_->bindAndClear(glm::vec4(0.0f));
+        strandPass_->setUniforms(frame, lights);
 
-        if (result.plan.isEnabled("strands")) {
+        if (plan.isEnabled("strands")) {
             Clock::time_point passStart = Clock::now();
-            std::vector<gl::StrandDraw> draws;
-            for (auto& [primId, cached] : visible) draws.push_back({cached->buffer.get(), primId});
-            strandPass_->draw(frame, lights, draws);
+            if (plan.transparency == TransparencyPath::Exact) {
+                uint64_t fragments = fragmentListPass_->render(*geometry_, camera.imageWidth, camera.imageHeight,
+                                                               listCapacity, frame.maxSegmentsPerSpan);
+                glFinish();
+                stats.passes.push_back({"strands (exact)", millisecondsSince(passStart)});
+                stats.fragments = fragments;
+                if (fragments > listCapacity) {
+                    // Over budget: the lists lost fragments, so the image is not
+                    // exact. Say so and fall back to the finest bin sort.
+                    diagnostics.warn("render",
+                                     fmt::format("exact transparency needs {} MB for {} fragments, more than "
+                                                 "exactMemoryMB={}; rendered with binSorted (1024 bins) instead",
+                                                 (fragments * gl::kFragmentNodeBytes + (1 << 20) - 1) >> 20,
+                                                 fragments, settings.getInt("exactMemoryMB")));
+                    plan.transparency = TransparencyPath::BinSorted;
+                    plan.sortBins = 1024;
+                    stats.fallback = "exact -> binSorted (1024 bins): fragment lists over exactMemoryMB";
+                    binSortSegments(controlPoints_, cameraPositionOf(camera), viewDirectionOf(camera), 1024, order);
+                    frame.orderedDraw = 1;
+                    strandPass_->setUniforms(frame, lights);
+                    target_->bindAndClear(glm::vec4(0.0f));
+                    passStart = Clock::now();
+                    strandPass_->draw(*geometry_, order, gl::StrandBlending::PremultipliedOver);
+                    glFinish();
+                    stats.passes.push_back({"strands (binSorted fallback)", millisecondsSince(passStart)});
+                }
+            } else {
+                strandPass_->draw(*geometry_, order,
+                                  plan.transparency == TransparencyPath::Opaque ? gl::StrandBlending::Opaque
+                                                                                : gl::StrandBlending::PremultipliedOver);
+                glFinish();
+                stats.passes.push_back({std::string("strands (") + toString(plan.transparency) + ")",
+                                        millisecondsSince(passStart)});
+            }
+        }
+        if (plan.isEnabled("depthAndIds")) {
+            Clock::time_point passStart = Clock::now();
+            gl::FrameUniforms idsFrame = frame;
+            idsFrame.drawMode = 2;
+            idsFrame.orderedDraw = 0;
+            strandPass_->setUniforms(idsFrame, lights);
+            strandPass_->draw(*geometry_, {}, gl::StrandBlending::DepthAndIdsOnly);
             glFinish();
-            result.stats.passes.push_back({"strands", millisecondsSince(passStart)});
+            stats.passes.push_back({"depthAndIds", millisecondsSince(passStart)});
         }
 
         Clock::time_point readStart = Clock::now();
+        target_->resolve();
         result.color = Image(camera.imageWidth, camera.imageHeight, 4);
         result.color.pixels = target_->readColor();
         result.depth = Image(camera.imageWidth, camera.imageHeight, 1);
@@ -188,20 +310,20 @@ RenderResult Renderer::render(const Scene& scene, const CameraView& camera, cons
             result.instanceIds = target_->readIds(1);
             result.elementIds = target_->readIds(2);
         }
-        result.stats.passes.push_back({"readback", millisecondsSince(readStart)});
+        stats.passes.push_back({"readback", millisecondsSince(readStart)});
     });
 
-    RenderStats& stats = result.stats;
     stats.imageWidth = camera.imageWidth;
     stats.imageHeight = camera.imageHeight;
     stats.curvesPrims = scene.curves().size();
     stats.meshPrims = scene.meshes().size();
     stats.lights = scene.lights().size();
     stats.curves = curveCount;
-    stats.segments = segments;
+    stats.segments = summary.segments;
+    stats.transparency = toString(plan.transparency);
     stats.glRenderer = glDescription();
     stats.settings = settings.toJson();
-    stats.plan = result.plan.toJson();
+    stats.plan = plan.toJson();
     stats.warnings = diagnostics.warningCount() - warningsBefore;
     stats.totalMilliseconds = millisecondsSince(frameStart);
     return result;

@@ -14,6 +14,7 @@
 
 #include <glm/vec3.hpp>
 
+#include "hdHair/curves/PreparedCurves.h"
 #include "hdHair/gl/GlContext.h"
 #include "hdHair/image/Image.h"
 #include "hdHair/render/CameraView.h"
@@ -25,12 +26,12 @@ namespace hdhair {
 
 class Diagnostics;
 class Scene;
-struct PreparedCurves;
 
 namespace gl {
+class FragmentListPass;
 class GlRenderThread;
 class RenderTarget;
-class StrandBuffer;
+class StrandGeometry;
 class StrandPass;
 }  // namespace gl
 
@@ -76,12 +77,23 @@ private:
     struct CachedCurves {
         uint64_t version = 0;
         std::shared_ptr<const PreparedCurves> prepared;
-        std::unique_ptr<gl::StrandBuffer> buffer;  // created and destroyed on the GL thread
+        float minSpanWidth = 0.0f;  // thinnest width at any span end
+        bool fullyOpaque = true;    // every control point's opacity is exactly 1
     };
+
+    // Combines the visible prims into one geometry (when the set or a
+    // version changed) and summarises it for the plan.
+    void updateGeometry(const std::vector<std::pair<int, const CachedCurves*>>& visible,
+                        const std::vector<uint64_t>& versions, RenderStats& stats);
 
     std::unique_ptr<gl::GlRenderThread> glThread_;
     std::unique_ptr<gl::StrandPass> strandPass_;
+    std::unique_ptr<gl::FragmentListPass> fragmentListPass_;
     std::unique_ptr<gl::RenderTarget> target_;
+    std::unique_ptr<gl::StrandGeometry> geometry_;  // created and destroyed on the GL thread
+    std::vector<uint64_t> geometryVersions_;        // which prim versions geometry_ holds
+    std::vector<StrandControlPoint> controlPoints_; // CPU copy, for sorting
+    int maxSamples_ = 0;
     std::map<std::string, CachedCurves> curves_;
     // Preparation time since the last render (framing may prepare first).
     double pendingPrepareMilliseconds_ = 0.0;

@@ -1,4 +1,5 @@
-// Per-frame camera and tessellation parameters (hdHair/gl/StrandPass.cpp fills them).
+// Per-frame camera, tessellation, coverage and shading parameters
+// (hdHair/gl/UniformBlocks.h FrameUniforms mirrors this block).
 layout(std140, binding = 0) uniform FrameUniforms {
     mat4 viewProjection;
     vec4 cameraPosition;      // world space; w = 1 perspective, 0 orthographic
@@ -6,6 +7,16 @@ layout(std140, binding = 0) uniform FrameUniforms {
     vec2 viewportSize;        // pixels
     float pixelsPerSegment;   // target on-screen length of one tessellated segment
     float maxSegmentsPerSpan; // upper bound per Catmull-Rom span
+    // Pixels one world unit spans at clip w = 1 (horizontal): a width w at
+    // clip depth c.w covers w * pixelsPerUnit / c.w pixels.
+    float pixelsPerUnit;
+    // Strands projecting thinner than this many pixels are drawn this wide
+    // with their alpha scaled by true / drawn width (0: true widths, opaque).
+    float minPixelWidth;
+    int shadingModel;         // 0: flat, 1: Kajiya-Kay
+    int drawMode;             // 0: opaque, 1: pre-multiplied alpha, 2: depth and ids only
+    int orderedDraw;          // 1: patches are read through the draw-order buffer
+    int padding0, padding1, padding2;
 } frame;
 
 // Direction from a world-space point towards the eye.

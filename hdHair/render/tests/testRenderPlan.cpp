@@ -20,6 +20,14 @@ LightPrim hostLight() {
     return light;
 }
 
+StrandSummary wideOpaqueStrands(uint64_t segments) {
+    StrandSummary summary;
+    summary.segments = segments;
+    summary.allOpaque = true;
+    summary.minProjectedWidthPixels = 3.0;
+    return summary;
+}
+
 CameraView cameraAtPlusZ() {
     CameraView camera;
     camera.view = glm::lookAt(glm::dvec3(0, 0, 5), glm::dvec3(0), glm::dvec3(0, 1, 0));
@@ -32,7 +40,7 @@ TEST(RenderPlan, HostCameraLightIsUsedOnlyLikeTheEnginesOwn) {
     Scene scene;
     scene.setLight(hostLight());
     RenderSettings settings;
-    RenderPlan alone = makeRenderPlan(scene, settings, cameraAtPlusZ(), 10);
+    RenderPlan alone = makeRenderPlan(scene, settings, cameraAtPlusZ(), wideOpaqueStrands(10));
     ASSERT_TRUE(alone.cameraLight);
     ASSERT_EQ(alone.lights.lights.size(), 1u);
     EXPECT_NEAR(alone.lights.lights[0].directionOrPosition.x, -1.0f, 1e-6f) << "the host's light, not a new one";
@@ -40,20 +48,53 @@ TEST(RenderPlan, HostCameraLightIsUsedOnlyLikeTheEnginesOwn) {
     LightPrim key;
     key.path = "/World/key";
     scene.setLight(key);
-    RenderPlan withStageLight = makeRenderPlan(scene, settings, cameraAtPlusZ(), 10);
+    RenderPlan withStageLight = makeRenderPlan(scene, settings, cameraAtPlusZ(), wideOpaqueStrands(10));
     EXPECT_FALSE(withStageLight.cameraLight);
     EXPECT_EQ(withStageLight.lights.lights.size(), 1u);
 
     settings.set("cameraLight", "on");
-    EXPECT_EQ(makeRenderPlan(scene, settings, cameraAtPlusZ(), 10).lights.lights.size(), 2u);
+    EXPECT_EQ(makeRenderPlan(scene, settings, cameraAtPlusZ(), wideOpaqueStrands(10)).lights.lights.size(), 2u);
     settings.set("cameraLight", "off");
-    EXPECT_EQ(makeRenderPlan(Scene{}, settings, cameraAtPlusZ(), 10).lights.lights.size(), 0u);
+    EXPECT_EQ(makeRenderPlan(Scene{}, settings, cameraAtPlusZ(), wideOpaqueStrands(10)).lights.lights.size(), 0u);
 }
 
 TEST(RenderPlan, EnginesCameraLightShinesFromTheCamera) {
-    RenderPlan plan = makeRenderPlan(Scene{}, RenderSettings{}, cameraAtPlusZ(), 10);
+    RenderPlan plan = makeRenderPlan(Scene{}, RenderSettings{}, cameraAtPlusZ(), wideOpaqueStrands(10));
     ASSERT_EQ(plan.lights.lights.size(), 1u);
     EXPECT_NEAR(plan.lights.lights[0].directionOrPosition.z, 1.0f, 1e-6f);
     EXPECT_TRUE(plan.isEnabled("strands"));
-    EXPECT_FALSE(makeRenderPlan(Scene{}, RenderSettings{}, cameraAtPlusZ(), 0).isEnabled("strands"));
+    EXPECT_FALSE(makeRenderPlan(Scene{}, RenderSettings{}, cameraAtPlusZ(), wideOpaqueStrands(0)).isEnabled("strands"));
+}
+
+TEST(RenderPlan, OnlyStagesThatNeedBlendingAreSorted) {
+    RenderSettings settings;
+    RenderPlan wide = makeRenderPlan(Scene{}, settings, cameraAtPlusZ(), wideOpaqueStrands(10));
+    EXPECT_EQ(wide.transparency, TransparencyPath::Opaque);
+    EXPECT_FALSE(wide.isEnabled("sort"));
+
+    StrandSummary thin = wideOpaqueStrands(10);
+    thin.minProjectedWidthPixels = 0.5;  // sub-pixel: coverage needs blending
+    RenderPlan sorted = makeRenderPlan(Scene{}, settings, cameraAtPlusZ(), thin);
+    EXPECT_EQ(sorted.transparency, TransparencyPath::BinSorted);
+    EXPECT_TRUE(sorted.isEnabled("sort"));
+    EXPECT_EQ(sorted.sortBins, 256u);
+
+    StrandSummary translucent = wideOpaqueStrands(10);
+    translucent.allOpaque = false;
+    settings.set("transparency", "exact");
+    EXPECT_EQ(makeRenderPlan(Scene{}, settings, cameraAtPlusZ(), translucent).transparency, TransparencyPath::Exact);
+    settings.set("transparency", "unsorted");
+    EXPECT_EQ(makeRenderPlan(Scene{}, settings, cameraAtPlusZ(), translucent).transparency,
+              TransparencyPath::Unsorted);
+    settings.set("transparency", "opaque");
+    EXPECT_EQ(makeRenderPlan(Scene{}, settings, cameraAtPlusZ(), translucent).transparency, TransparencyPath::Opaque);
+}
+
+TEST(RenderPlan, MsaaAppliesToTheOpaquePathOnly) {
+    RenderSettings settings;
+    settings.set("msaaSamples", "4");
+    EXPECT_EQ(makeRenderPlan(Scene{}, settings, cameraAtPlusZ(), wideOpaqueStrands(10)).msaaSamples, 4);
+    StrandSummary thin = wideOpaqueStrands(10);
+    thin.minProjectedWidthPixels = 0.5;
+    EXPECT_EQ(makeRenderPlan(Scene{}, settings, cameraAtPlusZ(), thin).msaaSamples, 0);
 }

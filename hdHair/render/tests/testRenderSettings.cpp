@@ -46,6 +46,11 @@ TEST(RenderSettings, BadAssignmentsGiveOneLineReasons) {
     EXPECT_EQ(errorOf(settings, "kajiyaKay:specular=shiny"), "setting 'kajiyaKay:specular' expects a number, got 'shiny'");
     EXPECT_EQ(errorOf(settings, "cameraLight=maybe"), "setting 'cameraLight' expects one of auto, on, off, got 'maybe'");
     EXPECT_EQ(errorOf(settings, "noEquals"), "setting 'noEquals' is not of the form NAME=VALUE");
-    EXPECT_EQ(errorOf(settings, "bogus=1").rfind("unknown setting 'bogus' (known settings: pixelsPerSegment,", 0), 0u);
+    EXPECT_EQ(errorOf(settings, "bogus=1").rfind("unknown setting 'bogus' (known settings: pixelsPerSegment,", 0), 0u)
+        << errorOf(settings, "bogus=1");
     EXPECT_EQ(errorOf(settings, "pixelsPerSegment=nan"), "setting 'pixelsPerSegment' expects a number, got 'nan'");
+    EXPECT_EQ(errorOf(settings, "msaaSamples=3"), "setting 'msaaSamples' expects one of 0, 2, 4, 8, got '3'");
+    EXPECT_EQ(errorOf(settings, "msaaSamples=4"), "");
+    EXPECT_EQ(errorOf(settings, "transparency=sorted"),
+              "setting 'transparency' expects one of binSorted, exact, unsorted, opaque, got 'sorted'");
 }

@@ -1,0 +1,71 @@
+#include "hdHair/gl/FragmentListPass.h"
+
+#include "hdHair/gl/StrandPass.h"
+
+namespace hdhair::gl {
+
+FragmentListPass::FragmentListPass()
+    : listProgram_(createProgram({"strand.vert", "strand.tesc", "strand.tese", "strandFragmentList.frag"})),
+      resolveProgram_(createProgram({"fullscreen.vert", "fragmentListResolve.frag"})),
+      emptyVertexArray_(createVertexArray()),
+      counter_(createBuffer(nullptr, 2 * sizeof(uint32_t), GL_DYNAMIC_STORAGE_BIT | GL_MAP_READ_BIT)),
+      order_(createBuffer(nullptr, sizeof(uint32_t))) {
+    checkGlError("setting up exact transparency");
+}
+
+uint64_t FragmentListPass::render(const StrandGeometry& geometry, int width, int height, size_t capacity,
+                                  float maxSegmentsPerSpan) {
+    if (width != headsWidth_ || height != headsHeight_) {
+        GLuint name = 0;
+        glCreateTextures(GL_TEXTURE_2D, 1, &name);
+        heads_ = Texture(name);
+        glTextureStorage2D(heads_.get(), 1, GL_R32UI, width, height);
+        headsWidth_ = width;
+        headsHeight_ = height;
+    }
+    if (capacity != nodeCapacity_) {
+        nodes_ = createBuffer(nullptr, std::max<size_t>(capacity, 1) * kFragmentNodeBytes);
+        nodeCapacity_ = capacity;
+    }
+    const GLuint listEnd = 0xffffffffu;
+    glClearTexImage(heads_.get(), 0, GL_RED_INTEGER, GL_UNSIGNED_INT, &listEnd);
+    const uint32_t counter[2] = {0, uint32_t(std::min<size_t>(capacity, 0xffffffffu))};
+    glNamedBufferSubData(counter_.get(), 0, sizeof counter, counter);
+
+    geometry.bind();
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, order_.get());  // declared, unread (no ordering needed)
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 5, nodes_.get());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 6, counter_.get());
+    glBindImageTexture(0, heads_.get(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
+    glBindVertexArray(emptyVertexArray_.get());
+
+    // Pass 1: lists. Opaque geometry's depth rejects hidden fragments; the
+    // strands themselves write nothing to the framebuffer.
+    glUseProgram(listProgram_.get());
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LEQUAL);
+    glDepthMask(GL_FALSE);
+    glDisable(GL_BLEND);
+    glDisable(GL_CULL_FACE);
+    for (GLuint i = 0; i < 4; ++i) glColorMaski(i, GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+    StrandPass::drawPatches(geometry.segmentCount(), maxSegmentsPerSpan);
+    for (GLuint i = 0; i < 4; ++i) glColorMaski(i, GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+
+    // Pass 2: resolve every pixel (empty lists give transparent black).
+    glUseProgram(resolveProgram_.get());
+    glDisable(GL_DEPTH_TEST);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    glEnable(GL_DEPTH_TEST);
+    glDepthMask(GL_TRUE);
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+
+    uint32_t offered = 0;
+    glGetNamedBufferSubData(counter_.get(), 0, sizeof offered, &offered);
+    glBindVertexArray(0);
+    glUseProgram(0);
+    checkGlError("rendering exact transparency");
+    return offered;
+}
+
+}  // namespace hdhair::gl

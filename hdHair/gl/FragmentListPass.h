@@ -1,0 +1,38 @@
+#pragma once
+// Exact transparency: every strand fragment goes into a per-pixel linked list
+// in a storage buffer (pass 1), then each pixel sorts its list by depth and
+// composites it exactly (pass 2). Slow on purpose: it is the ground truth
+// that bin sorting is measured against. The lists' memory is bounded; a frame
+// that needs more reports how much, and the renderer falls back.
+
+#include <cstdint>
+
+#include "hdHair/gl/GlObjects.h"
+#include "hdHair/gl/StrandGeometry.h"
+
+namespace hdhair::gl {
+
+constexpr size_t kFragmentNodeBytes = 32;  // FragmentNode in shaders/include/fragmentLists.glsl
+
+class FragmentListPass {
+public:
+    FragmentListPass();  // compiles both programs
+
+    // Renders into the currently bound framebuffer (its colour and id
+    // attachments are overwritten; depth is tested, not written). The frame
+    // and light uniform blocks must be bound (StrandPass::setUniforms).
+    // Returns how many fragments the strands produced; more than
+    // `capacity` means the image is incomplete and must not be used.
+    uint64_t render(const StrandGeometry& geometry, int width, int height, size_t capacity,
+                    float maxSegmentsPerSpan);
+
+private:
+    Program listProgram_, resolveProgram_;
+    VertexArray emptyVertexArray_;
+    Texture heads_;
+    int headsWidth_ = 0, headsHeight_ = 0;
+    Buffer nodes_, counter_, order_;
+    size_t nodeCapacity_ = 0;
+};
+
+}  // namespace hdhair::gl

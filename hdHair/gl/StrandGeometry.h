@@ -1,0 +1,32 @@
+#pragma once
+// The GPU copy of every strand a frame draws, all prims together so that
+// their segments can be sorted against each other: control points (4 a
+// segment, read by strand.vert) and, per segment, its curve index and prim
+// id (shaders/include/strandGeometry.glsl).
+
+#include <cstdint>
+#include <vector>
+
+#include "hdHair/gl/GlObjects.h"
+
+namespace hdhair {
+struct StrandControlPoint;
+}
+
+namespace hdhair::gl {
+
+class StrandGeometry {
+public:
+    StrandGeometry(const std::vector<StrandControlPoint>& controlPoints, const std::vector<int32_t>& segmentCurves,
+                   const std::vector<int32_t>& segmentPrims);
+
+    size_t segmentCount() const { return segmentCount_; }
+    // Binds the storage buffers at the bindings the shaders use (1 to 3).
+    void bind() const;
+
+private:
+    Buffer controlPoints_, segmentCurves_, segmentPrims_;
+    size_t segmentCount_ = 0;
+};
+
+}  // namespace hdhair::gl

@@ -1,0 +1,107 @@
+#include "hdHair/render/BinSort.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <limits>
+
+#include <glm/geometric.hpp>
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_reduce.h>
+
+namespace hdhair {
+namespace {
+
+constexpr uint32_t kHashBuckets = 1u << 16;
+
+uint32_t floatBits(float value) {
+    uint32_t bits;
+    std::memcpy(&bits, &value, sizeof bits);
+    return bits;
+}
+
+// 16 bits from the segment's end points (a murmur3-style finaliser mixes
+// them); equal segments collide, which leaves them in input order.
+uint32_t geometryHash(const StrandControlPoint& a, const StrandControlPoint& b) {
+    uint32_t h = 0x9e3779b9u;
+    const float values[6] = {a.position.x, a.position.y, a.position.z, b.position.x, b.position.y, b.position.z};
+    for (float value : values) {
+        h ^= floatBits(value);
+        h *= 0x85ebca6bu;
+        h ^= h >> 13;
+        h *= 0xc2b2ae35u;
+        h ^= h >> 16;
+    }
+    return h & (kHashBuckets - 1u);
+}
+
+// Stable counting sort of `in` by key[in[i]] into `out`, ascending.
+void countingSort(const std::vector<uint32_t>& in, const std::vector<uint32_t>& key, uint32_t keyCount,
+                  std::vector<uint32_t>& out) {
+    std::vector<uint32_t> start(size_t(keyCount) + 1, 0);
+    for (uint32_t segment : in) ++start[key[segment] + 1];
+    for (size_t k = 1; k < start.size(); ++k) start[k] += start[k - 1];
+    out.resize(in.size());
+    for (uint32_t segment : in) out[start[key[segment]]++] = segment;
+}
+
+}  // namespace
+
+void binSortSegments(const std::vector<StrandControlPoint>& controlPoints, const glm::dvec3& cameraPosition,
+                     const glm::dvec3& viewDirection, uint32_t binCount, std::vector<uint32_t>& order,
+                     BinSortStatistics* statistics) {
+    const size_t segments = controlPoints.size() / 4;
+    binCount = std::max<uint32_t>(binCount, 1);
+    std::vector<float> depth(segments);
+    std::vector<uint32_t> hash(segments);
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, segments), [&](const tbb::blocked_range<size_t>& range) {
+        for (size_t s = range.begin(); s != range.end(); ++s) {
+            const StrandControlPoint& start = controlPoints[4 * s + 1];
+            const StrandControlPoint& end = controlPoints[4 * s + 2];
+            double d0 = glm::dot(glm::dvec3(start.position) - cameraPosition, viewDirection);
+            double d1 = glm::dot(glm::dvec3(end.position) - cameraPosition, viewDirection);
+            depth[s] = float(std::max(d0, d1));  // binned by the farther end point
+            hash[s] = geometryHash(start, end);
+        }
+    });
+    using Range = std::pair<float, float>;
+    Range range = tbb::parallel_reduce(
+        tbb::blocked_range<size_t>(0, segments),
+        Range(std::numeric_limits<float>::max(), std::numeric_limits<float>::lowest()),
+        [&](const tbb::blocked_range<size_t>& r, Range value) {
+            for (size_t s = r.begin(); s != r.end(); ++s) {
+                value.first = std::min(value.first, depth[s]);
+                value.second = std::max(value.second, depth[s]);
+            }
+            return value;
+        },
+        [](Range a, Range b) { return Range(std::min(a.first, b.first), std::max(a.second, b.second)); });
+
+    // Bin i = floor(N (D - Dmin) / (Dmax - Dmin)), clamped to N - 1, numbered
+    // so that ascending key means far to near.
+    std::vector<uint32_t> key(segments);
+    const double span = double(range.second) - double(range.first);
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, segments), [&](const tbb::blocked_range<size_t>& r) {
+        for (size_t s = r.begin(); s != r.end(); ++s) {
+            double t = span > 0.0 ? (double(depth[s]) - double(range.first)) / span : 0.0;
+            uint32_t bin = std::min(uint32_t(std::max(t, 0.0) * binCount), binCount - 1);
+            key[s] = binCount - 1 - bin;
+        }
+    });
+
+    // Least significant key first: the hash, then (stably) the bin.
+    std::vector<uint32_t> identity(segments), byHash;
+    for (size_t s = 0; s < segments; ++s) identity[s] = uint32_t(s);
+    countingSort(identity, hash, kHashBuckets, byHash);
+    countingSort(byHash, key, binCount, order);
+
+    if (statistics) {
+        statistics->nearDepth = segments ? range.first : 0.0;
+        statistics->farDepth = segments ? range.second : 0.0;
+        std::vector<bool> used(binCount, false);
+        for (uint32_t k : key) used[k] = true;
+        statistics->occupiedBins = uint32_t(std::count(used.begin(), used.end(), true));
+    }
+}
+
+}  // namespace hdhair

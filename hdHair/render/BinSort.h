@@ -1,0 +1,36 @@
+#pragma once
+// Bin sorting of strand segments by view depth (Kim & Neumann 2002, as used
+// by Svoboda 2012, section 2.5.1): the depth range of the hair is cut into N
+// slabs perpendicular to the view direction, each segment goes into the slab
+// holding its FARTHER end point, and slabs are drawn far to near. O(n) in the
+// number of segments, independent of N (two counting sorts).
+//
+// Within a slab the order is a hash of the segment's geometry, not the order
+// the curves were authored in: shuffling a stage's curves (or Hydra syncing
+// prims in another order) gives the same image.
+//
+// CPU (TBB) rather than a GPU compute pass, by measurement: see
+// hdHair/render/README.md ("Bin sorting: CPU or GPU").
+
+#include <cstdint>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "hdHair/curves/PreparedCurves.h"
+
+namespace hdhair {
+
+struct BinSortStatistics {
+    double nearDepth = 0.0, farDepth = 0.0;  // the range cut into bins
+    uint32_t occupiedBins = 0;
+};
+
+// Segment s spans controlPoints[4s + 1] to controlPoints[4s + 2]. Depth is
+// measured along `viewDirection` (unit) from `cameraPosition`. Writes the
+// segment indices far to near into `order`.
+void binSortSegments(const std::vector<StrandControlPoint>& controlPoints, const glm::dvec3& cameraPosition,
+                     const glm::dvec3& viewDirection, uint32_t binCount, std::vector<uint32_t>& order,
+                     BinSortStatistics* statistics = nullptr);
+
+}  // namespace hdhair

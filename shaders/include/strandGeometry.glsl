@@ -1,0 +1,18 @@
+// The combined strand geometry of every prim drawn in a frame
+// (hdHair/gl/StrandGeometry.h). Segment s owns control points 4s..4s+3; each
+// control point is two vec4s: (position, width) and (colour, opacity).
+layout(std430, binding = 1) readonly buffer ControlPoints {
+    vec4 controlPoints[];
+};
+// Per segment: the curve's index in its prim (Hydra's elementId) and the
+// prim's id (Hydra's primId).
+layout(std430, binding = 2) readonly buffer SegmentCurves {
+    int segmentCurve[];
+};
+layout(std430, binding = 3) readonly buffer SegmentPrims {
+    int segmentPrim[];
+};
+// Segments in drawing order, far to near (used when frame.orderedDraw is 1).
+layout(std430, binding = 4) readonly buffer DrawOrder {
+    uint drawOrder[];
+};

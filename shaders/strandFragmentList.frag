@@ -1,0 +1,29 @@
+#version 450 core
+#extension GL_GOOGLE_include_directive : require
+// Exact transparency, pass 1: shades each strand fragment like strand.frag
+// and appends it to its pixel's list instead of blending it. Fragments hidden
+// by opaque geometry are rejected before shading (early depth test).
+#include "include/frameUniforms.glsl"
+#include "include/lights.glsl"
+#include "include/kajiyaKay.glsl"
+#include "include/strandShading.glsl"
+#include "include/fragmentLists.glsl"
+
+layout(early_fragment_tests) in;
+
+layout(location = 0) in vec3 worldPosition;
+layout(location = 1) in vec3 worldTangent;
+layout(location = 2) in vec4 colorAlpha;
+layout(location = 3) flat in ivec2 ids;
+
+layout(r32ui, binding = 0) uniform coherent uimage2D listHeads;
+
+void main() {
+    float alpha = colorAlpha.a;
+    if (alpha <= 0.0) return;
+    vec3 radiance = strandRadiance(worldPosition, worldTangent, colorAlpha.rgb);
+    uint index = atomicAdd(fragmentCount, 1u);
+    if (index >= capacity) return;  // over budget: the CPU sees the count and falls back
+    uint previous = imageAtomicExchange(listHeads, ivec2(gl_FragCoord.xy), index);
+    nodes[index] = FragmentNode(vec4(radiance * alpha, alpha), gl_FragCoord.z, previous, ids.x, ids.y);
+}
