@@ -8,6 +8,7 @@
 #include <glm/gtc/type_ptr.hpp>
 #include <gtest/gtest.h>
 
+#include "hdHair/hydra/CompositeOver.h"
 #include "hdHair/hydra/HydraCamera.h"
 #include "hdHair/hydra/HydraLights.h"
 #include "hdHair/hydra/RenderBufferWriting.h"
@@ -142,4 +143,15 @@ TEST(HydraLights, HostCameraLightHasUnitIntensity) {
     LightPrim light = lightFromHydra("/host/light0", LightType::Distant, true, lookup, glm::dmat4(1.0));
     EXPECT_TRUE(light.hostCameraLight);
     EXPECT_EQ(light.intensity, 1.0f);
+}
+
+TEST(CompositeOver, EmptyPixelsShowTheBackgroundAndCoveredOnesKeepTheirColour) {
+    Image image(3, 1, 4);
+    image.pixels = {0, 0, 0, 0, 0.5f, 0, 0, 0.5f, 1, 1, 1, 1};
+    compositeOver(image, {0.2f, 0.4f, 0.6f, 1.0f});
+    EXPECT_FLOAT_EQ(image.at(0, 0, 1), 0.4f);
+    EXPECT_FLOAT_EQ(image.at(0, 0, 3), 1.0f);
+    EXPECT_FLOAT_EQ(image.at(1, 0, 0), 0.6f);  // 0.5 + 0.5 * 0.2
+    EXPECT_FLOAT_EQ(image.at(1, 0, 3), 1.0f);
+    EXPECT_FLOAT_EQ(image.at(2, 0, 0), 1.0f);
 }

@@ -1,0 +1,39 @@
+# OpenUSD is optional: the Hydra plugin (hdHair/hydra) and hdhair-record's
+# --reader usd are built only when it is found (HDHAIR_HYDRA = AUTO, ON or
+# OFF). It is never a Debian package: point CMake at a build of OpenUSD 24.08
+# with -Dpxr_DIR=<prefix> or CMAKE_PREFIX_PATH (README, "Hydra plugin").
+set(HDHAIR_HYDRA AUTO CACHE STRING "Build the Hydra plugin: AUTO (when OpenUSD is found), ON (required), OFF")
+set_property(CACHE HDHAIR_HYDRA PROPERTY STRINGS AUTO ON OFF)
+set(HDHAIR_WITH_USD OFF)
+if(HDHAIR_HYDRA STREQUAL "OFF")
+  message(STATUS "hdHair: Hydra plugin off (HDHAIR_HYDRA=OFF)")
+  return()
+endif()
+find_package(pxr CONFIG QUIET)
+if(NOT pxr_FOUND)
+  if(HDHAIR_HYDRA STREQUAL "ON")
+    message(FATAL_ERROR "hdHair: HDHAIR_HYDRA=ON but OpenUSD was not found. Point CMake at an OpenUSD "
+                        "24.08 install with -Dpxr_DIR=<prefix> or -DCMAKE_PREFIX_PATH=<prefix> (the folder "
+                        "holding pxrConfig.cmake), or use HDHAIR_HYDRA=AUTO to build without the plugin.")
+  endif()
+  message(STATUS "hdHair: OpenUSD not found, the Hydra plugin is not built (set pxr_DIR to build it)")
+  return()
+endif()
+message(STATUS "hdHair: building the Hydra plugin against OpenUSD ${PXR_VERSION} (${pxr_DIR})")
+set(HDHAIR_WITH_USD ON)
+
+# A monolithic OpenUSD build exports one library, usd_ms; a per-library
+# build exports each (imported targets without a namespace).
+if(TARGET usd_ms)
+  set(HDHAIR_PXR_IMAGING usd_ms)
+  set(HDHAIR_PXR_USDIMAGING usd_ms)
+  set(HDHAIR_PXR_USDLUX usd_ms)
+else()
+  set(HDHAIR_PXR_IMAGING hd hf cameraUtil gf vt tf sdf plug work trace)
+  set(HDHAIR_PXR_USDIMAGING usdImagingGL usdImaging usdGeom usd hdx ${HDHAIR_PXR_IMAGING})
+  set(HDHAIR_PXR_USDLUX usdLux)
+endif()
+get_filename_component(HDHAIR_PXR_LIBRARY_DIR "${PXR_INCLUDE_DIRS}/../lib" ABSOLUTE)
+get_filename_component(HDHAIR_PXR_BIN "${PXR_INCLUDE_DIRS}/../bin" ABSOLUTE)
+# Where the plugin's plugInfo.json lands in the build tree.
+set(HDHAIR_PLUGIN_RESOURCES ${CMAKE_BINARY_DIR}/plugin/usd/hdHair/resources)

@@ -1,0 +1,166 @@
+#include "hdHair/hydra/BasisCurves.h"
+
+#include "pxr/base/tf/diagnostic.h"
+#include "pxr/imaging/hd/basisCurvesTopology.h"
+#include "pxr/imaging/hd/changeTracker.h"
+#include "pxr/imaging/hd/sceneDelegate.h"
+#include "pxr/imaging/hd/tokens.h"
+
+#include "hdHair/hydra/HydraCamera.h"
+#include "hdHair/hydra/RenderParam.h"
+#include "hdHair/hydra/VtValueConversion.h"
+
+PXR_NAMESPACE_OPEN_SCOPE
+
+namespace {
+
+hdhair::Interpolation toEngine(HdInterpolation interpolation) {
+    switch (interpolation) {
+    case HdInterpolationConstant: return hdhair::Interpolation::Constant;
+    case HdInterpolationUniform: return hdhair::Interpolation::Uniform;
+    case HdInterpolationVarying: return hdhair::Interpolation::Varying;
+    case HdInterpolationVertex: return hdhair::Interpolation::Vertex;
+    case HdInterpolationFaceVarying: return hdhair::Interpolation::FaceVarying;
+    default: return hdhair::Interpolation::Constant;
+    }
+}
+
+// Topology indices make vertex-rate data indirect (HdBasisCurvesTopology's
+// curveIndices); the engine wants one element per curve vertex.
+template <typename T>
+std::vector<T> expandThroughIndices(std::vector<T> const& data, std::vector<int> const& indices, size_t tuple) {
+    std::vector<T> out;
+    out.reserve(indices.size() * tuple);
+    for (int index : indices) {
+        size_t start = size_t(index) * tuple;
+        for (size_t c = 0; c < tuple; ++c) out.push_back(start + c < data.size() ? data[start + c] : T{});
+    }
+    return out;
+}
+
+}  // namespace
+
+HdHairBasisCurves::HdHairBasisCurves(SdfPath const& id) : HdBasisCurves(id) { _curves.path = id.GetString(); }
+
+HdDirtyBits HdHairBasisCurves::GetInitialDirtyBitsMask() const {
+    return HdChangeTracker::Clean | HdChangeTracker::InitRepr | HdChangeTracker::DirtyPoints |
+           HdChangeTracker::DirtyTopology | HdChangeTracker::DirtyTransform | HdChangeTracker::DirtyVisibility |
+           HdChangeTracker::DirtyWidths | HdChangeTracker::DirtyNormals | HdChangeTracker::DirtyPrimvar |
+           HdChangeTracker::DirtyInstancer | HdChangeTracker::DirtyMaterialId | HdChangeTracker::DirtyDisplayStyle |
+           HdChangeTracker::DirtyExtent | HdChangeTracker::DirtyPrimID;
+}
+
+HdDirtyBits HdHairBasisCurves::_PropagateDirtyBits(HdDirtyBits bits) const {
+    // The base class adds points, normals and primvars on a topology change,
+    // but not widths, whose count depends on the topology too.
+    if (bits & HdChangeTracker::DirtyTopology) bits |= HdChangeTracker::DirtyWidths;
+    return bits;
+}
+
+void HdHairBasisCurves::_InitRepr(TfToken const& reprToken, HdDirtyBits*) {
+    // hdHair draws every repr the same way; Hydra only needs it recorded.
+    auto found = std::find_if(_reprs.begin(), _reprs.end(), _ReprComparator(reprToken));
+    if (found == _reprs.end()) _reprs.emplace_back(reprToken, HdReprSharedPtr());
+}
+
+void HdHairBasisCurves::Sync(HdSceneDelegate* sceneDelegate, HdRenderParam* renderParam, HdDirtyBits* dirtyBits,
+                             TfToken const&) {
+    auto* param = static_cast<HdHairRenderParam*>(renderParam);
+    SdfPath const& id = GetId();
+    HdDirtyBits bits = *dirtyBits;
+
+    if (HdChangeTracker::IsVisibilityDirty(bits, id)) _UpdateVisibility(sceneDelegate, dirtyBits);
+    _curves.visible = IsVisible();
+    if (HdChangeTracker::IsPrimIdDirty(bits, id) || _curves.primId < 0) _curves.primId = GetPrimId();
+    if (HdChangeTracker::IsTransformDirty(bits, id)) {
+        GfMatrix4d toWorld = sceneDelegate->GetTransform(id);
+        _curves.worldTransform = hdhair::hydra::matrixFromGf(toWorld.data());
+    }
+    if (HdChangeTracker::IsDisplayStyleDirty(bits, id)) _refineLevel = GetDisplayStyle(sceneDelegate).refineLevel;
+    if (HdChangeTracker::IsTopologyDirty(bits, id)) _SyncTopology(sceneDelegate);
+    if (HdChangeTracker::IsAnyPrimvarDirty(bits, id)) _SyncPrimvars(sceneDelegate, bits);
+    if (bits & HdChangeTracker::DirtyMaterialId) SetMaterialId(sceneDelegate->GetMaterialId(id));
+
+    param->SetCurves(this, _curves, _refineLevel);
+    *dirtyBits &= ~HdChangeTracker::AllSceneDirtyBits;
+}
+
+void HdHairBasisCurves::_SyncTopology(HdSceneDelegate* sceneDelegate) {
+    HdBasisCurvesTopology topology = GetBasisCurvesTopology(sceneDelegate);
+    // Hd's tokens are spelled as USD's; Hd-only ones (segmented wrap,
+    // centripetalCatmullRom, hermite, power) fall back with a warning.
+    if (!hdhair::parseCurveType(topology.GetCurveType().GetString(), &_curves.type)) _curves.type =
+        hdhair::CurveType::Cubic;
+    if (_curves.type == hdhair::CurveType::Cubic &&
+        !hdhair::parseCurveBasis(topology.GetCurveBasis().GetString(), &_curves.basis)) {
+        TF_WARN("hdHair: %s: curve basis '%s' is not supported; drawn as catmullRom", GetId().GetText(),
+                topology.GetCurveBasis().GetText());
+        _curves.basis = hdhair::CurveBasis::CatmullRom;
+    }
+    if (!hdhair::parseCurveWrap(topology.GetCurveWrap().GetString(), &_curves.wrap)) {
+        TF_WARN("hdHair: %s: curve wrap '%s' is not supported; drawn as nonperiodic", GetId().GetText(),
+                topology.GetCurveWrap().GetText());
+        _curves.wrap = hdhair::CurveWrap::Nonperiodic;
+    }
+    VtIntArray const& counts = topology.GetCurveVertexCounts();
+    _curves.curveVertexCounts.assign(counts.begin(), counts.end());
+    VtIntArray const& indices = topology.GetCurveIndices();
+    _curveIndices.assign(indices.begin(), indices.end());
+}
+
+void HdHairBasisCurves::_SyncPrimvars(HdSceneDelegate* sceneDelegate, HdDirtyBits bits) {
+    SdfPath const& id = GetId();
+    std::set<std::string> present;
+    for (int i = HdInterpolationConstant; i < HdInterpolationCount; ++i) {
+        HdInterpolation interpolation = HdInterpolation(i);
+        if (interpolation == HdInterpolationInstance) continue;
+        for (HdPrimvarDescriptor const& descriptor : GetPrimvarDescriptors(sceneDelegate, interpolation)) {
+            std::string name = descriptor.name.GetString();
+            present.insert(name);
+            if (!HdChangeTracker::IsPrimvarDirty(bits, id, descriptor.name)) continue;
+            VtIntArray indices;
+            VtValue value = descriptor.indexed ? GetIndexedPrimvar(sceneDelegate, descriptor.name, &indices)
+                                               : GetPrimvar(sceneDelegate, descriptor.name);
+            HdHairFloats floats;
+            if (!HdHairToFloats(value, &floats)) {
+                // Token and string primvars serve materials, which hdHair does not read yet.
+                _curves.primvars.erase(name);
+                continue;
+            }
+            if (descriptor.name == HdTokens->points) {
+                if (floats.tupleSize != 3) {
+                    TF_WARN("hdHair: %s.points: expected 3 components a point, got %s; prim not drawn", id.GetText(),
+                            floats.typeName.c_str());
+                    floats.values.clear();
+                }
+                if (!_curveIndices.empty()) floats.values = expandThroughIndices(floats.values, _curveIndices, 3);
+                _curves.points.resize(floats.values.size() / 3);
+                for (size_t p = 0; p < _curves.points.size(); ++p)
+                    _curves.points[p] = glm::vec3(floats.values[3 * p], floats.values[3 * p + 1], floats.values[3 * p + 2]);
+                continue;
+            }
+            hdhair::Primvar primvar;
+            primvar.name = name;
+            primvar.typeName = floats.typeName;
+            primvar.tupleSize = floats.tupleSize;
+            primvar.interpolation = toEngine(interpolation);
+            // Hydra always states the interpolation (UsdImaging fills in USD's defaults).
+            primvar.interpolationAuthored = true;
+            primvar.values = std::move(floats.values);
+            primvar.indices.assign(indices.begin(), indices.end());
+            if (!_curveIndices.empty() && primvar.interpolation == hdhair::Interpolation::Vertex &&
+                primvar.indices.empty())
+                primvar.values = expandThroughIndices(primvar.values, _curveIndices, size_t(primvar.tupleSize));
+            _curves.primvars[name] = std::move(primvar);
+        }
+    }
+    // Primvars that are gone (removed, or no longer in any descriptor).
+    for (auto it = _curves.primvars.begin(); it != _curves.primvars.end();)
+        it = present.count(it->first) ? std::next(it) : _curves.primvars.erase(it);
+}
+
+void HdHairBasisCurves::Finalize(HdRenderParam* renderParam) {
+    static_cast<HdHairRenderParam*>(renderParam)->Remove(GetId().GetString());
+}
+
+PXR_NAMESPACE_CLOSE_SCOPE

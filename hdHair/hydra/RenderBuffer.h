@@ -1,0 +1,55 @@
+#pragma once
+// HdHairRenderBuffer: an AOV's pixels in CPU memory, tightly packed with row
+// 0 at the bottom (what hosts read through Map(); see RenderBufferWriting.h).
+// hdHair renders synchronously: a buffer is unconverged only while its render
+// pass writes it, and converged once the frame is in.
+
+#include <atomic>
+#include <cstdint>
+#include <mutex>
+#include <vector>
+
+#include "pxr/imaging/hd/renderBuffer.h"
+
+#include "hdHair/hydra/RenderBufferWriting.h"
+
+PXR_NAMESPACE_OPEN_SCOPE
+
+class HdHairRenderBuffer final : public HdRenderBuffer {
+public:
+    explicit HdHairRenderBuffer(SdfPath const& id);
+    ~HdHairRenderBuffer() override = default;
+
+    bool Allocate(GfVec3i const& dimensions, HdFormat format, bool multiSampled) override;
+    unsigned int GetWidth() const override { return _width; }
+    unsigned int GetHeight() const override { return _height; }
+    unsigned int GetDepth() const override { return 1; }
+    HdFormat GetFormat() const override { return _format; }
+    bool IsMultiSampled() const override { return _multiSampled; }
+    void* Map() override;
+    void Unmap() override;
+    bool IsMapped() const override { return _mappers.load() > 0; }
+    void Resolve() override {}  // the render pass writes final pixels
+    bool IsConverged() const override { return _converged.load(); }
+
+    // For the render pass.
+    void SetConverged(bool converged) { _converged.store(converged); }
+    // Fills every pixel with `clearValue` (a VtValue of the buffer's type).
+    void Clear(VtValue const& clearValue);
+    // The engine's format for this buffer, or false when hdHair cannot write it.
+    bool GetWritableFormat(hdhair::hydra::BufferFormat* format) const;
+    uint8_t* GetData() { return _data.data(); }
+
+protected:
+    void _Deallocate() override;
+
+private:
+    unsigned int _width = 0, _height = 0;
+    HdFormat _format = HdFormatInvalid;
+    bool _multiSampled = false;
+    std::vector<uint8_t> _data;
+    std::atomic<int> _mappers{0};
+    std::atomic<bool> _converged{false};
+};
+
+PXR_NAMESPACE_CLOSE_SCOPE

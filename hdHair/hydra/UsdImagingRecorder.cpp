@@ -1,0 +1,163 @@
+#include "hdHair/hydra/UsdImagingRecorder.h"
+
+#include <chrono>
+#include <cmath>
+#include <stdexcept>
+#include <thread>
+
+#include "pxr/base/gf/half.h"
+#include "pxr/base/gf/matrix4d.h"
+#include "pxr/base/gf/rect2i.h"
+#include "pxr/base/plug/registry.h"
+#include "pxr/base/tf/diagnostic.h"
+#include "pxr/imaging/cameraUtil/framing.h"
+#include "pxr/imaging/hd/renderBuffer.h"
+#include "pxr/imaging/hd/tokens.h"
+#include "pxr/usd/usd/stage.h"
+#include "pxr/usd/usdGeom/bboxCache.h"
+#include "pxr/usd/usdGeom/camera.h"
+#include "pxr/usd/usdGeom/metrics.h"
+#include "pxr/usd/usdGeom/tokens.h"
+#include "pxr/usdImaging/usdImagingGL/engine.h"
+
+#include "hdHair/render/CameraView.h"
+
+PXR_NAMESPACE_USING_DIRECTIVE
+
+namespace hdhair::hydra {
+namespace {
+
+UsdTimeCode timeCodeOf(double time) {
+    if (std::isnan(time)) return UsdTimeCode::Default();
+    if (std::isinf(time)) return UsdTimeCode::EarliestTime();
+    return UsdTimeCode(time);
+}
+
+GfMatrix4d toGf(const glm::dmat4& m) {
+    // glm's column-major memory is GfMatrix4d's row-major memory of the same
+    // transform (see HydraCamera.h).
+    GfMatrix4d result;
+    const double* data = &m[0][0];
+    std::copy(data, data + 16, result.data());
+    return result;
+}
+
+// usdrecord's complexity values for its named levels.
+float complexityValue(Complexity complexity) {
+    switch (complexity) {
+    case Complexity::Low: return 1.0f;
+    case Complexity::Medium: return 1.1f;
+    case Complexity::High: return 1.2f;
+    case Complexity::VeryHigh: return 1.3f;
+    }
+    return 1.0f;
+}
+
+// The color AOV as float RGBA, top row first.
+Image readColor(HdRenderBuffer* buffer) {
+    if (!buffer) throw std::runtime_error("the renderer produced no color output");
+    buffer->Resolve();
+    int width = int(buffer->GetWidth()), height = int(buffer->GetHeight());
+    HdFormat format = buffer->GetFormat();
+    const void* data = buffer->Map();
+    Image image(width, height, 4);
+    for (int y = 0; y < height; ++y) {
+        int row = height - 1 - y;  // Hydra's rows run bottom-up
+        for (int x = 0; x < width; ++x) {
+            size_t pixel = size_t(row) * size_t(width) + size_t(x);
+            for (int c = 0; c < 4; ++c) {
+                float value = 0.0f;
+                if (format == HdFormatFloat16Vec4) value = float(static_cast<const GfHalf*>(data)[pixel * 4 + size_t(c)]);
+                else if (format == HdFormatFloat32Vec4) value = static_cast<const float*>(data)[pixel * 4 + size_t(c)];
+                else if (format == HdFormatUNorm8Vec4) value = float(static_cast<const uint8_t*>(data)[pixel * 4 + size_t(c)]) / 255.0f;
+                image.at(x, y, c) = value;
+            }
+        }
+    }
+    buffer->Unmap();
+    return image;
+}
+
+}  // namespace
+
+UsdImagingRecordResult recordWithUsdImaging(const UsdImagingRecordRequest& request) {
+    if (!request.pluginPath.empty()) PlugRegistry::GetInstance().RegisterPlugins(request.pluginPath);
+    UsdStageRefPtr stage = UsdStage::Open(request.stagePath);
+    if (!stage) throw std::runtime_error("OpenUSD cannot open '" + request.stagePath + "'");
+    UsdTimeCode time = timeCodeOf(request.time);
+
+    UsdImagingGLEngine::Parameters parameters;
+    parameters.gpuEnabled = false;  // as usdrecord --disableGpu: hdHair renders in its own context
+    UsdImagingGLEngine engine(parameters);
+    if (!engine.SetRendererPlugin(TfToken("HdHairRendererPlugin")))
+        throw std::runtime_error("the HdHair renderer plugin is not available (is PXR_PLUGINPATH_NAME set?)");
+    for (const std::string& assignment : request.settings) {
+        RenderSettings check;
+        check.setFromAssignment(assignment);  // throws the same one-line reasons as the embedded path
+        std::string::size_type equals = assignment.find('=');
+        std::string name = assignment.substr(0, equals), text = assignment.substr(equals + 1);
+        const SettingDescriptor* descriptor = RenderSettings::find(name);
+        VtValue value;
+        switch (descriptor->type) {
+        case SettingType::Float: value = VtValue(float(check.getFloat(name))); break;
+        case SettingType::Int: value = VtValue(check.getInt(name)); break;
+        case SettingType::Bool: value = VtValue(check.getBool(name)); break;
+        case SettingType::Token: value = VtValue(text); break;
+        }
+        engine.SetRendererSetting(TfToken(name), value);
+    }
+
+    UsdImagingRecordResult result;
+    int width = request.imageWidth, height = 0;
+    if (!request.camera.empty()) {
+        UsdGeomCamera camera(stage->GetPrimAtPath(SdfPath(request.camera)));
+        if (!camera) throw std::runtime_error(request.stagePath + ": no camera at '" + request.camera + "'");
+        GfCamera gfCamera = camera.GetCamera(time);
+        height = imageHeightFor(width, gfCamera.GetHorizontalAperture(), gfCamera.GetVerticalAperture());
+        engine.SetCameraPath(SdfPath(request.camera));
+        result.camera = request.camera;
+    } else {
+        // hdHair's framing camera, from the stage's bounds as OpenUSD
+        // computes them for the purposes drawn.
+        TfTokenVector purposes = {UsdGeomTokens->default_};
+        if (request.renderPurpose) purposes.push_back(UsdGeomTokens->render);
+        if (request.proxyPurpose) purposes.push_back(UsdGeomTokens->proxy);
+        if (request.guidePurpose) purposes.push_back(UsdGeomTokens->guide);
+        UsdGeomBBoxCache bboxCache(time, purposes, true);
+        GfRange3d range = bboxCache.ComputeWorldBound(stage->GetPseudoRoot()).ComputeAlignedRange();
+        UpAxis up = UsdGeomGetStageUpAxis(stage) == UsdGeomTokens->z ? UpAxis::Z : UpAxis::Y;
+        glm::dvec3 low(1.0), high(-1.0);
+        if (!range.IsEmpty()) {
+            low = glm::dvec3(range.GetMin()[0], range.GetMin()[1], range.GetMin()[2]);
+            high = glm::dvec3(range.GetMax()[0], range.GetMax()[1], range.GetMax()[2]);
+        }
+        CameraView view = frameBounds(low, high, up, width,
+                                      request.framing == "usdrecord" ? FramingStyle::UsdRecord : FramingStyle::FitAll);
+        height = view.imageHeight;
+        engine.SetCameraState(toGf(view.view), toGf(view.projection));
+        result.camera = "framing camera (" + request.framing + ")";
+    }
+    engine.SetRenderBufferSize(GfVec2i(width, height));
+    engine.SetFraming(CameraUtilFraming(GfRect2i(GfVec2i(0, 0), width, height)));
+
+    UsdImagingGLRenderParams renderParams;
+    renderParams.frame = time;
+    renderParams.complexity = complexityValue(request.complexity);
+    renderParams.showRender = request.renderPurpose;
+    renderParams.showProxy = request.proxyPurpose;
+    renderParams.showGuides = request.guidePurpose;
+    renderParams.clearColor = GfVec4f(0.0f);
+    renderParams.enableLighting = true;
+    // Until convergence, as usdrecord does; hdHair converges in one frame,
+    // the bound guards against a host-side stall.
+    for (int attempt = 0; attempt < 1000; ++attempt) {
+        engine.Render(stage->GetPseudoRoot(), renderParams);
+        if (engine.IsConverged()) break;
+        std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+    if (!engine.IsConverged()) throw std::runtime_error("the HdHair render did not converge");
+    result.color = readColor(engine.GetAovRenderBuffer(HdAovTokens->color));
+    return result;
+}
+
+}  // namespace hdhair::hydra

@@ -1,0 +1,36 @@
+#pragma once
+// hdhair-record's OpenUSD front end: opens the stage with OpenUSD and renders
+// it through UsdImagingGL and the hdHair plugin, the path usdrecord takes with
+// --renderer HdHair --disableGpu. This header has no pxr in it, so
+// hdhair-record builds the same with or without OpenUSD; the implementation
+// exists only when the plugin is built (HDHAIR_WITH_USD).
+
+#include <string>
+#include <vector>
+
+#include "hdHair/image/Image.h"
+#include "hdHair/render/RenderSettings.h"
+
+namespace hdhair::hydra {
+
+struct UsdImagingRecordRequest {
+    std::string stagePath;
+    std::string camera;          // prim path; empty: hdHair's framing camera
+    int imageWidth = 960;
+    double time = 0.0;           // NaN: UsdTimeCode::Default(); -infinity: EarliestTime()
+    Complexity complexity = Complexity::Low;
+    std::vector<std::string> settings;  // NAME=VALUE, as for --setting
+    bool renderPurpose = false, proxyPurpose = true, guidePurpose = false;
+    std::string framing = "fitAll";
+    std::string pluginPath;      // folder holding the plugin's plugInfo.json
+};
+
+struct UsdImagingRecordResult {
+    Image color;                 // RGBA, linear, pre-multiplied (the color AOV)
+    std::string camera;          // what was used
+};
+
+// Throws std::runtime_error with a one-line reason.
+UsdImagingRecordResult recordWithUsdImaging(const UsdImagingRecordRequest& request);
+
+}  // namespace hdhair::hydra
