@@ -188,7 +188,7 @@ PreparedCurves prepareCurves(const CurvesPrim& prim, Diagnostics& diagnostics) {
     clampNegativeWidths(widths, prim.path, diagnostics);
     const ResolvedPrimvar colors = resolvePrimvar(prim, topology, "displayColor", kFallbackDisplayColor, diagnostics);
     const ResolvedPrimvar opacities =
-        resolvePrimvar(prim, topology, "displayOpacity", kFallbackDisplayOpacity, diagnostics);
+        resolvePrimvar(prim, topology, opacityPrimvarName(prim), kFallbackDisplayOpacity, diagnostics);
 
     // Where each kept curve's segments go: an exclusive prefix sum.
     std::vector<size_t> firstSegment(curveCount + 1, 0);
@@ -251,6 +251,11 @@ PreparedCurves prepareCurves(const CurvesPrim& prim, Diagnostics& diagnostics) {
         result.boundsMax = glm::max(result.boundsMax, curveMax[i]);
     }
     return result;
+}
+
+std::string opacityPrimvarName(const CurvesPrim& prim) {
+    if (!prim.findPrimvar("displayOpacity") && prim.findPrimvar("opacity")) return "opacity";
+    return "displayOpacity";
 }
 
 }  // namespace hdhair

@@ -25,7 +25,7 @@ struct StrandControlPoint {
     glm::vec3 position;  // world space
     float width;         // world-space diameter
     glm::vec3 color;     // linear displayColor
-    float opacity;       // displayOpacity
+    float opacity;       // displayOpacity (or primvars:opacity, see opacityPrimvarName)
 };
 static_assert(sizeof(StrandControlPoint) == 32, "tightly packed for the GPU");
 
@@ -39,6 +39,10 @@ struct PreparedCurves {
     size_t segmentCount() const { return segmentCurve.size(); }
     bool empty() const { return segmentCurve.empty(); }
 };
+
+// The primvar a strand's opacity comes from: displayOpacity, or, when a
+// stage authors only primvars:opacity (as some hair exporters do), that one.
+std::string opacityPrimvarName(const CurvesPrim& prim);
 
 // Validates, resolves every primvar (hdHair/curves/PrimvarResolution.h),
 // changes basis to Catmull-Rom and transforms to world space. Never throws for

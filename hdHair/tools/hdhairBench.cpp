@@ -1,18 +1,24 @@
 // hdhair-bench: what accuracy costs in time, measured with Google Benchmark.
 //
-// Benchmarks (on examples/dense_clump.usda unless --stage is given):
-//   PrepareCurves          CPU curve preparation (resolution + change of basis)
-//   RenderFrame/<level>    a whole frame at each --complexity level
-// After the runs it prints a table for the frame benchmarks: time relative to
-// the "low" level measured in the same run (these machines are shared and
-// noisy, so ratios mean more than milliseconds), and the image error of each
-// level against the finest one (RMSE and largest difference, pre-multiplied
-// RGBA), so tessellation density can be chosen by what it buys.
+//   hdhair-bench [--stage FILE]... [--imageWidth N] [--table complexity|transparency|all]
+//                [Google Benchmark flags]
 //
-//   hdhair-bench [--stage FILE] [--imageWidth N] [Google Benchmark flags]
+// For each stage (examples/dense_clump.usda when none is given), rendered
+// through its first camera (or a framing camera):
+//   PrepareCurves/<stage>               CPU curve preparation
+//   BinSort/<stage>                     the CPU bin sort of the frame's segments
+//   RenderFrame/<stage>/<complexity>    a frame per --complexity level
+//   RenderFrame/<stage>/<transparency>  a frame per transparency mode and bin count
+// Then it prints markdown tables: each configuration's time relative to a
+// reference measured in the same run (these machines are shared and noisy,
+// so ratios mean more than milliseconds), and its image error against the
+// most accurate configuration (RMSE and largest difference, pre-multiplied
+// linear RGBA).
 
+#include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <map>
 #include <memory>
 #include <string>
@@ -20,10 +26,12 @@
 
 #include <benchmark/benchmark.h>
 #include <fmt/format.h>
+#include <glm/geometric.hpp>
 
 #include "hdHair/base/Diagnostics.h"
 #include "hdHair/curves/PreparedCurves.h"
 #include "hdHair/image/ImageComparison.h"
+#include "hdHair/render/BinSort.h"
 #include "hdHair/render/CameraView.h"
 #include "hdHair/render/Renderer.h"
 #include "hdHair/scene/Scene.h"
@@ -33,121 +41,189 @@ namespace {
 
 using namespace hdhair;
 
-struct BenchContext {
-    std::string stagePath = HDHAIR_SOURCE_DIR "/examples/dense_clump.usda";
-    int imageWidth = 512;
-    Scene scene;
-    std::unique_ptr<Renderer> renderer;
-    CameraView camera;
+struct Configuration {
+    std::string label;                  // "binSorted 256", "high"
+    std::vector<std::string> settings;  // NAME=VALUE
+    Complexity complexity = Complexity::Low;
 };
 
-BenchContext& context() {
-    static BenchContext instance;
+struct BenchStage {
+    std::string path, name;
+    Scene scene;
+    CameraView camera;
+    std::vector<StrandControlPoint> controlPoints;  // every segment, for the sort benchmark
+};
+
+std::unique_ptr<Renderer>& renderer() {
+    static std::unique_ptr<Renderer> instance;
     return instance;
 }
 
-const Complexity kLevels[] = {Complexity::Low, Complexity::Medium, Complexity::High, Complexity::VeryHigh};
-
-RenderSettings settingsFor(Complexity level) {
+RenderSettings settingsFor(const Configuration& configuration) {
     RenderSettings settings;
-    settings.setComplexity(level);
+    settings.setComplexity(configuration.complexity);
+    for (const std::string& assignment : configuration.settings) settings.setFromAssignment(assignment);
     return settings;
 }
 
-void PrepareCurves(benchmark::State& state) {
-    BenchContext& c = context();
-    Diagnostics diagnostics;
-    size_t segments = 0;
-    for (auto _ : state) {
-        for (const auto& [path, entry] : c.scene.curves()) {
-            PreparedCurves prepared = prepareCurves(*entry.prim, diagnostics);
-            segments = prepared.segmentCount();
-            benchmark::DoNotOptimize(prepared.controlPoints.data());
-        }
-    }
-    state.counters["segments/s"] =
-        benchmark::Counter(double(segments), benchmark::Counter::kIsIterationInvariantRate);
+std::vector<Configuration> complexityConfigurations() {
+    std::vector<Configuration> result;
+    for (Complexity level : {Complexity::Low, Complexity::Medium, Complexity::High, Complexity::VeryHigh})
+        result.push_back({toString(level), {}, level});
+    return result;
 }
 
-void RenderFrame(benchmark::State& state) {
-    BenchContext& c = context();
-    Complexity level = kLevels[state.range(0)];
-    RenderSettings settings = settingsFor(level);
-    Diagnostics diagnostics;
-    for (auto _ : state) {
-        RenderResult result = c.renderer->render(c.scene, c.camera, settings, diagnostics);
-        benchmark::DoNotOptimize(result.color.pixels.data());
-    }
-    state.SetLabel(toString(level));
+std::vector<Configuration> transparencyConfigurations() {
+    std::vector<Configuration> result = {{"opaque", {"transparency=opaque"}, Complexity::Low},
+                                         {"unsorted", {"transparency=unsorted"}, Complexity::Low}};
+    for (int bins : {1, 16, 64, 256, 1024})
+        result.push_back({fmt::format("binSorted {}", bins),
+                          {"transparency=binSorted", fmt::format("sortBins={}", bins)},
+                          Complexity::Low});
+    result.push_back({"exact", {"transparency=exact", "exactMemoryMB=2048"}, Complexity::Low});
+    return result;
 }
 
-// Keeps each run's time so the summary can relate them.
+// Keeps each run's time so the tables can relate them.
 class RecordingReporter : public benchmark::ConsoleReporter {
 public:
     void ReportRuns(const std::vector<Run>& runs) override {
         for (const Run& run : runs)
-            if (run.run_type == Run::RT_Iteration && !run.report_label.empty())
-                seconds[run.report_label] = run.GetAdjustedRealTime();
+            if (run.run_type == Run::RT_Iteration) seconds[run.run_name.function_name] = run.GetAdjustedRealTime();
         ConsoleReporter::ReportRuns(runs);
     }
-    std::map<std::string, double> seconds;  // by label: the complexity level
+    std::map<std::string, double> seconds;  // by benchmark name
 };
+
+std::string frameName(const BenchStage& stage, const Configuration& configuration) {
+    return "RenderFrame/" + stage.name + "/" + configuration.label;
+}
+
+void printTable(const BenchStage& stage, const std::vector<Configuration>& configurations, size_t reference,
+                size_t timeReference, const RecordingReporter& reporter, const char* title) {
+    Diagnostics diagnostics;
+    RenderResult best = renderer()->render(stage.scene, stage.camera, settingsFor(configurations[reference]),
+                                           diagnostics);
+    std::printf("\n%s, %s (%dx%d, %llu segments): time relative to %s, error against %s%s\n\n", title,
+                stage.path.c_str(), stage.camera.imageWidth, stage.camera.imageHeight,
+                static_cast<unsigned long long>(best.stats.segments), configurations[timeReference].label.c_str(),
+                configurations[reference].label.c_str(),
+                best.stats.fallback.empty() ? "" : (" (" + best.stats.fallback + ")").c_str());
+    std::printf("| configuration | path taken | time | RMSE | max difference |\n|---|---|---|---|---|\n");
+    auto base = reporter.seconds.find(frameName(stage, configurations[timeReference]));
+    for (const Configuration& configuration : configurations) {
+        RenderResult result = renderer()->render(stage.scene, stage.camera, settingsFor(configuration), diagnostics);
+        ImageDifference difference = compareImages(result.color, best.color, 1.0 / 255.0);
+        auto time = reporter.seconds.find(frameName(stage, configuration));
+        std::string ratio = (time != reporter.seconds.end() && base != reporter.seconds.end())
+                                ? fmt::format("{:.2f}x", time->second / base->second)
+                                : "not run";
+        std::printf("| %s | %s | %s | %.5f | %.4f |\n", configuration.label.c_str(), result.stats.transparency.c_str(),
+                    ratio.c_str(), difference.rootMeanSquare, difference.maxDifference);
+    }
+}
 
 }  // namespace
 
 int main(int argc, char** argv) {
-    BenchContext& c = context();
+    std::vector<std::string> stagePaths;
+    int imageWidth = 512;
+    std::string table = "all";
     std::vector<char*> benchmarkArguments;
     for (int i = 0; i < argc; ++i) {
-        if (i + 1 < argc && std::strcmp(argv[i], "--stage") == 0) c.stagePath = argv[++i];
-        else if (i + 1 < argc && std::strcmp(argv[i], "--imageWidth") == 0) c.imageWidth = std::atoi(argv[++i]);
+        if (i + 1 < argc && std::strcmp(argv[i], "--stage") == 0) stagePaths.push_back(argv[++i]);
+        else if (i + 1 < argc && std::strcmp(argv[i], "--imageWidth") == 0) imageWidth = std::atoi(argv[++i]);
+        else if (i + 1 < argc && std::strcmp(argv[i], "--table") == 0) table = argv[++i];
         else benchmarkArguments.push_back(argv[i]);
     }
+    if (stagePaths.empty()) stagePaths.push_back(HDHAIR_SOURCE_DIR "/examples/dense_clump.usda");
     int benchmarkArgc = int(benchmarkArguments.size());
     benchmark::Initialize(&benchmarkArgc, benchmarkArguments.data());
 
+    std::vector<std::unique_ptr<BenchStage>> stages;
     try {
-        Diagnostics diagnostics;
-        usda::readSceneFile(c.stagePath, -INFINITY, c.scene, diagnostics);
-        c.renderer = std::make_unique<Renderer>(gl::defaultGlBackend());
-        SceneBounds bounds = c.renderer->prepare(c.scene, diagnostics);
-        auto camera = c.scene.cameras().begin();
-        c.camera = camera != c.scene.cameras().end()
-                       ? cameraViewFromPrim(*camera->second.prim, c.imageWidth)
-                       : frameBounds(bounds.min, bounds.max, c.scene.info().upAxis, c.imageWidth, FramingStyle::FitAll);
-        std::printf("hdhair-bench: %s at %dx%d on %s\n", c.stagePath.c_str(), c.camera.imageWidth,
-                    c.camera.imageHeight, c.renderer->glDescription().c_str());
+        renderer() = std::make_unique<Renderer>(gl::defaultGlBackend());
+        for (const std::string& path : stagePaths) {
+            auto stage = std::make_unique<BenchStage>();
+            stage->path = path;
+            stage->name = std::filesystem::path(path).stem().string();
+            Diagnostics diagnostics;
+            usda::readSceneFile(path, -INFINITY, stage->scene, diagnostics);
+            SceneBounds bounds = renderer()->prepare(stage->scene, diagnostics);
+            auto camera = stage->scene.cameras().begin();
+            stage->camera = camera != stage->scene.cameras().end()
+                                ? cameraViewFromPrim(*camera->second.prim, imageWidth)
+                                : frameBounds(bounds.min, bounds.max, stage->scene.info().upAxis, imageWidth,
+                                              FramingStyle::FitAll);
+            for (const auto& [curvesPath, entry] : stage->scene.curves()) {
+                PreparedCurves prepared = prepareCurves(*entry.prim, diagnostics);
+                stage->controlPoints.insert(stage->controlPoints.end(), prepared.controlPoints.begin(),
+                                            prepared.controlPoints.end());
+            }
+            stages.push_back(std::move(stage));
+        }
+        std::printf("hdhair-bench: %s\n", renderer()->glDescription().c_str());
     } catch (const std::exception& error) {
         std::fprintf(stderr, "hdhair-bench: error: %s\n", error.what());
         return 1;
     }
 
-    benchmark::RegisterBenchmark("PrepareCurves", PrepareCurves)->Unit(benchmark::kMillisecond);
-    benchmark::RegisterBenchmark("RenderFrame", RenderFrame)
-        ->DenseRange(0, 3)
-        ->Unit(benchmark::kMillisecond)
-        ->UseRealTime();
+    std::vector<Configuration> complexities = complexityConfigurations();
+    std::vector<Configuration> transparencies = transparencyConfigurations();
+    bool complexityTable = table == "all" || table == "complexity";
+    bool transparencyTable = table == "all" || table == "transparency";
+    for (const auto& stagePointer : stages) {
+        BenchStage* stage = stagePointer.get();
+        benchmark::RegisterBenchmark(("PrepareCurves/" + stage->name).c_str(), [stage](benchmark::State& state) {
+            Diagnostics diagnostics;
+            for (auto _ : state)
+                for (const auto& [path, entry] : stage->scene.curves())
+                    benchmark::DoNotOptimize(prepareCurves(*entry.prim, diagnostics).controlPoints.data());
+        })->Unit(benchmark::kMillisecond);
+        benchmark::RegisterBenchmark(("BinSort/" + stage->name).c_str(), [stage](benchmark::State& state) {
+            glm::dvec3 position(glm::inverse(stage->camera.view)[3]);
+            glm::dvec3 direction = glm::normalize(glm::dvec3(glm::inverse(stage->camera.view) * glm::dvec4(0, 0, -1, 0)));
+            std::vector<uint32_t> order;
+            for (auto _ : state) {
+                binSortSegments(stage->controlPoints, position, direction, 256, order);
+                benchmark::DoNotOptimize(order.data());
+            }
+            state.counters["segments/s"] = benchmark::Counter(double(stage->controlPoints.size() / 4),
+                                                              benchmark::Counter::kIsIterationInvariantRate);
+        })->Unit(benchmark::kMillisecond);
+        std::vector<Configuration> frames;
+        if (complexityTable) frames.insert(frames.end(), complexities.begin(), complexities.end());
+        if (transparencyTable) frames.insert(frames.end(), transparencies.begin(), transparencies.end());
+        for (const Configuration& configuration : frames) {
+            benchmark::RegisterBenchmark(frameName(*stage, configuration).c_str(),
+                                         [stage, configuration](benchmark::State& state) {
+                                             RenderSettings settings = settingsFor(configuration);
+                                             Diagnostics diagnostics;
+                                             for (auto _ : state)
+                                                 benchmark::DoNotOptimize(renderer()
+                                                                              ->render(stage->scene, stage->camera,
+                                                                                       settings, diagnostics)
+                                                                              .color.pixels.data());
+                                         })
+                ->Unit(benchmark::kMillisecond)
+                ->UseRealTime();
+        }
+    }
     RecordingReporter reporter;
     benchmark::RunSpecifiedBenchmarks(&reporter);
 
-    // Image error of each level against the finest, rendered once each.
-    Diagnostics diagnostics;
-    RenderResult finest = c.renderer->render(c.scene, c.camera, settingsFor(Complexity::VeryHigh), diagnostics);
-    auto lowTime = reporter.seconds.find(toString(Complexity::Low));
-    std::printf("\n| complexity | segments/span | time vs low | RMSE vs veryhigh | max difference |\n");
-    std::printf("|---|---|---|---|---|\n");
-    for (int i = 0; i < 4; ++i) {
-        RenderSettings settings = settingsFor(kLevels[i]);
-        RenderResult result = c.renderer->render(c.scene, c.camera, settings, diagnostics);
-        ImageDifference difference = compareImages(result.color, finest.color, 1.0 / 255.0);
-        auto time = reporter.seconds.find(toString(kLevels[i]));
-        std::string ratio = (time != reporter.seconds.end() && lowTime != reporter.seconds.end())
-                                ? fmt::format("{:.2f}x", time->second / lowTime->second)
-                                : "not run";
-        std::printf("| %s | at most %d | %s | %.5f | %.4f |\n", toString(kLevels[i]),
-                    settings.getInt("maxSegmentsPerSpan"), ratio.c_str(), difference.rootMeanSquare,
-                    difference.maxDifference);
+    for (const auto& stage : stages) {
+        if (complexityTable) printTable(*stage, complexities, 3, 0, reporter, "Complexity");
+        if (transparencyTable) {
+            printTable(*stage, transparencies, transparencies.size() - 1, 0, reporter, "Transparency");
+            auto sort = reporter.seconds.find("BinSort/" + stage->name);
+            auto sorted = reporter.seconds.find(frameName(*stage, transparencies[5]));  // binSorted 256
+            if (sort != reporter.seconds.end() && sorted != reporter.seconds.end())
+                std::printf("\nThe CPU bin sort (256 bins) is %.1f%% of a binSorted frame.\n",
+                            100.0 * sort->second / sorted->second);
+        }
     }
     benchmark::Shutdown();
+    renderer().reset();
     return 0;
 }

@@ -404,3 +404,23 @@ TEST(PrepareCurves, ParallelPreparationIsDeterministic) {
                                  serial.controlPoints.size() * sizeof(StrandControlPoint)));
     }
 }
+
+TEST(CurvePreparation, OpacityComesFromPrimvarsOpacityWhenDisplayOpacityIsAbsent) {
+    CurvesPrim prim;
+    prim.path = "/hair";
+    prim.type = CurveType::Linear;
+    prim.curveVertexCounts = {2};
+    prim.points = {{0, 0, 0}, {1, 0, 0}};
+    Primvar opacity;
+    opacity.name = "opacity";
+    opacity.values = {0.25f};
+    prim.primvars["opacity"] = opacity;
+    Diagnostics diagnostics;
+    EXPECT_FLOAT_EQ(prepareCurves(prim, diagnostics).controlPoints[1].opacity, 0.25f);
+    // displayOpacity, when authored, wins.
+    opacity.name = "displayOpacity";
+    opacity.values = {0.75f};
+    prim.primvars["displayOpacity"] = opacity;
+    EXPECT_FLOAT_EQ(prepareCurves(prim, diagnostics).controlPoints[1].opacity, 0.75f);
+    EXPECT_TRUE(diagnostics.warnings().empty());
+}
