@@ -54,6 +54,10 @@ void RenderTarget::create(Attachments& a, int samples) {
 void RenderTarget::bindAndClear(const glm::vec4& clearColor) {
     GLuint framebuffer = draw_.framebuffer.get();
     glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
+    // Light batches may have left the framebuffer drawing colour only.
+    GLenum drawBuffers[4] = {GL_COLOR_ATTACHMENT0, GL_NONE, GL_NONE, GL_NONE};
+    for (int i = 1; withIds_ && i < 4; ++i) drawBuffers[i] = GLenum(GL_COLOR_ATTACHMENT0 + i);
+    glNamedFramebufferDrawBuffers(framebuffer, 4, drawBuffers);
     glViewport(0, 0, width_, height_);
     glClearNamedFramebufferfv(framebuffer, GL_COLOR, 0, &clearColor[0]);
     const float clearDepth = 1.0f;
@@ -78,6 +82,18 @@ void RenderTarget::resolve() {
     for (int i = 1; withIds_ && i < 4; ++i) drawBuffers[i] = GLenum(GL_COLOR_ATTACHMENT0 + i);
     glNamedFramebufferDrawBuffers(to, 4, drawBuffers);
     checkGlError("resolving the multisampled frame");
+}
+
+GLuint RenderTarget::resolvedColorTexture() const {
+    return samples_ > 0 ? resolved_.color.get() : draw_.color.get();
+}
+
+void RenderTarget::bindResolvedColorForDrawing() {
+    GLuint framebuffer = samples_ > 0 ? resolved_.framebuffer.get() : draw_.framebuffer.get();
+    glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
+    const GLenum colorOnly[4] = {GL_COLOR_ATTACHMENT0, GL_NONE, GL_NONE, GL_NONE};
+    glNamedFramebufferDrawBuffers(framebuffer, 4, colorOnly);
+    glViewport(0, 0, width_, height_);
 }
 
 namespace {

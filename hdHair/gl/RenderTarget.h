@@ -29,6 +29,10 @@ public:
     void bindAndClear(const glm::vec4& clearColor);
     // After drawing: resolves multisampled images (nothing to do otherwise).
     void resolve();
+    // The single-sampled colour (resolved when multisampled), and a binding
+    // of it for drawing only colour onto it (light batches add up there).
+    GLuint resolvedColorTexture() const;
+    void bindResolvedColorForDrawing();
     // RGBA floats, rows from the top of the image down.
     std::vector<float> readColor() const;
     // Window-space depth in [0, 1], rows from the top down.

@@ -118,6 +118,19 @@ RenderPlan makeRenderPlan(const Scene& scene, const RenderSettings& settings, co
                                              : "no visible curves: background only";
     plan.passes.push_back(strandPass);
 
+    size_t perPass = size_t(settings.getInt("lightsPerPass"));
+    size_t lightCount = plan.flatShading ? 0 : plan.lights.lights.size();
+    for (size_t begin = 0; begin < lightCount; begin += perPass)
+        plan.lightBatches.emplace_back(begin, std::min(begin + perPass, lightCount));
+    if (plan.lightBatches.empty()) plan.lightBatches.emplace_back(0, 0);
+    PlannedPass batches{"lightBatches", plan.lightBatches.size() > 1 && strands.segments > 0, ""};
+    batches.reason = batches.enabled
+                         ? fmt::format("{} lights in {} passes of at most {} (lightsPerPass), each over the same "
+                                       "strands: colours summed, alpha counted once",
+                                       lightCount, plan.lightBatches.size(), perPass)
+                         : fmt::format("{} light(s): one pass", lightCount);
+    plan.passes.push_back(batches);
+
     PlannedPass ids{"depthAndIds", idsRequested && strands.segments > 0 && plan.transparency != TransparencyPath::Opaque,
                     ""};
     ids.reason = ids.enabled ? "the host asked for depth and ids: nearest strand at least 10% opaque"

@@ -46,6 +46,10 @@ struct RenderPlan {
     uint32_t sortBins = 0;      // for BinSorted
     int msaaSamples = 0;        // for Opaque
     bool flatShading = false;
+    // Light passes: [begin, end) ranges of `lights.lights`, at most
+    // lightsPerPass each; always at least one (ambient and unlit shading
+    // need a pass too).
+    std::vector<std::pair<size_t, size_t>> lightBatches;
 
     bool isEnabled(const std::string& name) const;
     std::string describe() const;  // one line per pass, for --explain

@@ -54,6 +54,10 @@ const std::vector<SettingDescriptor>& RenderSettings::descriptors() {
         {"exactMemoryMB", SettingType::Int, "512",
          "Memory for exact transparency's fragment lists; a frame needing more falls back to binSorted", 16,
          65536, {}},
+        {"lightsPerPass", SettingType::Int, "4",
+         "Most lights shaded in one pass; more lights take more passes over the same sorted strands, "
+         "their colours summed and alpha counted once",
+         1, 16, {}},
         {"shadingModel", SettingType::Token, "kajiyaKay",
          "Hair shading: kajiyaKay, or flat (displayColor x opacity, no lighting)", 0, 0,
          {"kajiyaKay", "flat"}},

@@ -24,6 +24,7 @@ nlohmann::json RenderStats::toJson() const {
     json["plan"] = plan;
     json["warnings"] = warnings;
     json["transparency"] = transparency;
+    json["lightPasses"] = lightPasses;
     if (fragments > 0) json["fragments"] = fragments;
     if (!fallback.empty()) json["fallback"] = fallback;
     return json;

@@ -30,6 +30,7 @@ struct RenderStats {
     std::string transparency;     // the path taken: opaque, binSorted, exact or unsorted
     uint64_t fragments = 0;       // strand fragments, when known (exact transparency counts them)
     std::string fallback;         // what replaced the requested path, and why ("" when nothing did)
+    size_t lightPasses = 1;       // passes over the strands, one per batch of at most lightsPerPass lights
 
     nlohmann::json toJson() const;
 };

@@ -14,6 +14,7 @@
 #include "hdHair/base/Diagnostics.h"
 #include "hdHair/gl/FragmentListPass.h"
 #include "hdHair/gl/GlRenderThread.h"
+#include "hdHair/gl/LightBatchAccumulation.h"
 #include "hdHair/gl/RenderTarget.h"
 #include "hdHair/gl/StrandGeometry.h"
 #include "hdHair/gl/StrandPass.h"
@@ -58,24 +59,20 @@ gl::FrameUniforms frameUniforms(const CameraView& camera, const RenderSettings& 
     return frame;
 }
 
-gl::LightUniforms lightUniforms(const RenderPlan& plan, const RenderSettings& settings,
-                                Diagnostics& diagnostics) {
+// The lights of one batch; the dome's ambient term belongs to the first
+// batch only, so that summing batches counts it once.
+gl::LightUniforms lightUniforms(const RenderPlan& plan, const RenderSettings& settings, size_t batch) {
     gl::LightUniforms uniforms;
-    size_t count = plan.lights.lights.size();
-    if (count > size_t(gl::kMaxLightsPerPass)) {
-        diagnostics.warn("render", "the stage has " + std::to_string(count) + " lights; only the first " +
-                                       std::to_string(gl::kMaxLightsPerPass) +
-                                       " are used until lights are batched over several passes");
-        count = size_t(gl::kMaxLightsPerPass);
-    }
+    auto [begin, end] = plan.lightBatches[batch];
+    size_t count = end - begin;
     for (size_t i = 0; i < count; ++i) {
-        const ShadingLight& light = plan.lights.lights[i];
+        const ShadingLight& light = plan.lights.lights[begin + i];
         uniforms.lightVector[i] = glm::vec4(light.directionOrPosition, light.isLocal ? 1.0f : 0.0f);
         uniforms.lightScale[i] = glm::vec4(light.scale, 0.0f);
         uniforms.lightAxis[i] = glm::vec4(light.emissionAxis, light.oneSided ? 1.0f : 0.0f);
     }
     uniforms.lightCount = glm::ivec4(int(count), 0, 0, 0);
-    uniforms.ambient = glm::vec4(plan.lights.ambient, 0.0f);
+    uniforms.ambient = glm::vec4(batch == 0 ? plan.lights.ambient : glm::vec3(0.0f), 0.0f);
     KajiyaKayParameters kk{float(settings.getFloat("kajiyaKay:diffuse")),
                            float(settings.getFloat("kajiyaKay:specular")),
                            float(settings.getFloat("kajiyaKay:shininess"))};
@@ -107,6 +104,7 @@ Renderer::Renderer(gl::GlBackend backend) : glThread_(std::make_unique<gl::GlRen
     glThread_->run([this] {
         strandPass_ = std::make_unique<gl::StrandPass>();
         fragmentListPass_ = std::make_unique<gl::FragmentListPass>();
+        lightBatchAccumulation_ = std::make_unique<gl::LightBatchAccumulation>();
         glGetIntegerv(GL_MAX_SAMPLES, &maxSamples_);
     });
 }
@@ -117,7 +115,9 @@ Renderer::~Renderer() {
         geometry_.reset();
         strandPass_.reset();
         fragmentListPass_.reset();
+        lightBatchAccumulation_.reset();
         target_.reset();
+        batchTarget_.reset();
     });
 }
 
@@ -236,7 +236,6 @@ RenderResult Renderer::render(const Scene& scene, const CameraView& camera, cons
         stats.passes.push_back({"sort", millisecondsSince(sortStart)});
     }
     gl::FrameUniforms frame = frameUniforms(camera, settings, plan);
-    gl::LightUniforms lights = lightUniforms(plan, settings, diagnostics);
     int samples = std::min(plan.msaaSamples, maxSamples_);
     if (samples < plan.msaaSamples)
         diagnostics.warn("render", fmt::format("msaaSamples={} is more than this GL driver offers; using {}",
@@ -247,60 +246,80 @@ RenderResult Renderer::render(const Scene& scene, const CameraView& camera, cons
         if (!target_ || target_->width() != camera.imageWidth || target_->height() != camera.imageHeight ||
             target_->hasIds() != outputs.ids || target_->samples() != samples)
             target_ = std::make_unique<gl::RenderTarget>(camera.imageWidth, camera.imageHeight, outputs.ids, samples);
-        // Empty pixels are transparent black: pre-multiplied "nothing".
-        target_->bindAndClear(glm::vec4(0.0f));
-        strandPass_->setUniforms(frame, lights);
 
-        if (plan.isEnabled("strands")) {
+        // Draws the strands once, with the current plan, into `target`.
+        auto drawStrands = [&](gl::RenderTarget& target, const gl::LightUniforms& lights, const std::string& label) {
             Clock::time_point passStart = Clock::now();
+            // Empty pixels are transparent black: pre-multiplied "nothing".
+            target.bindAndClear(glm::vec4(0.0f));
+            strandPass_->setUniforms(frame, lights);
             if (plan.transparency == TransparencyPath::Exact) {
                 uint64_t fragments = fragmentListPass_->render(*geometry_, camera.imageWidth, camera.imageHeight,
                                                                listCapacity, frame.maxSegmentsPerSpan);
                 glFinish();
-                stats.passes.push_back({"strands (exact)", millisecondsSince(passStart)});
+                stats.passes.push_back({"strands (exact)" + label, millisecondsSince(passStart)});
                 stats.fragments = fragments;
-                if (fragments > listCapacity) {
-                    // Over budget: the lists lost fragments, so the image is not
-                    // exact. Say so and fall back to the finest bin sort.
-                    diagnostics.warn("render",
-                                     fmt::format("exact transparency needs {} MB for {} fragments, more than "
-                                                 "exactMemoryMB={}; rendered with binSorted (1024 bins) instead",
-                                                 (fragments * gl::kFragmentNodeBytes + (1 << 20) - 1) >> 20,
-                                                 fragments, settings.getInt("exactMemoryMB")));
-                    plan.transparency = TransparencyPath::BinSorted;
-                    plan.sortBins = 1024;
-                    stats.fallback = "exact -> binSorted (1024 bins): fragment lists over exactMemoryMB";
-                    binSortSegments(controlPoints_, cameraPositionOf(camera), viewDirectionOf(camera), 1024, order);
-                    frame.orderedDraw = 1;
-                    strandPass_->setUniforms(frame, lights);
-                    target_->bindAndClear(glm::vec4(0.0f));
-                    passStart = Clock::now();
-                    strandPass_->draw(*geometry_, order, gl::StrandBlending::PremultipliedOver);
-                    glFinish();
-                    stats.passes.push_back({"strands (binSorted fallback)", millisecondsSince(passStart)});
-                }
-            } else {
-                strandPass_->draw(*geometry_, order,
-                                  plan.transparency == TransparencyPath::Opaque ? gl::StrandBlending::Opaque
-                                                                                : gl::StrandBlending::PremultipliedOver);
-                glFinish();
-                stats.passes.push_back({std::string("strands (") + toString(plan.transparency) + ")",
-                                        millisecondsSince(passStart)});
+                if (fragments <= listCapacity) return;
+                // Over budget: the lists lost fragments, so the image is not
+                // exact. Say so and fall back to the finest bin sort (for this
+                // batch and the ones after it).
+                diagnostics.warn("render", fmt::format("exact transparency needs {} MB for {} fragments, more than "
+                                                       "exactMemoryMB={}; rendered with binSorted (1024 bins) instead",
+                                                       (fragments * gl::kFragmentNodeBytes + (1 << 20) - 1) >> 20,
+                                                       fragments, settings.getInt("exactMemoryMB")));
+                plan.transparency = TransparencyPath::BinSorted;
+                plan.sortBins = 1024;
+                stats.fallback = "exact -> binSorted (1024 bins): fragment lists over exactMemoryMB";
+                binSortSegments(controlPoints_, cameraPositionOf(camera), viewDirectionOf(camera), 1024, order);
+                frame.orderedDraw = 1;
+                target.bindAndClear(glm::vec4(0.0f));
+                strandPass_->setUniforms(frame, lights);
+                passStart = Clock::now();
             }
+            strandPass_->draw(*geometry_, order,
+                              plan.transparency == TransparencyPath::Opaque ? gl::StrandBlending::Opaque
+                                                                            : gl::StrandBlending::PremultipliedOver);
+            glFinish();
+            stats.passes.push_back({std::string("strands (") + toString(plan.transparency) + ")" +
+                                        (stats.fallback.empty() ? "" : " fallback") + label,
+                                    millisecondsSince(passStart)});
+        };
+        auto batchLabel = [&](size_t batch) {
+            if (plan.lightBatches.size() == 1) return std::string();
+            return fmt::format(" lights {}-{}", plan.lightBatches[batch].first + 1, plan.lightBatches[batch].second);
+        };
+
+        if (!plan.isEnabled("strands")) {
+            target_->bindAndClear(glm::vec4(0.0f));
+        } else {
+            drawStrands(*target_, lightUniforms(plan, settings, 0), batchLabel(0));
         }
         if (plan.isEnabled("depthAndIds")) {
             Clock::time_point passStart = Clock::now();
             gl::FrameUniforms idsFrame = frame;
             idsFrame.drawMode = 2;
             idsFrame.orderedDraw = 0;
-            strandPass_->setUniforms(idsFrame, lights);
+            strandPass_->setUniforms(idsFrame, lightUniforms(plan, settings, 0));
             strandPass_->draw(*geometry_, {}, gl::StrandBlending::DepthAndIdsOnly);
             glFinish();
             stats.passes.push_back({"depthAndIds", millisecondsSince(passStart)});
         }
+        target_->resolve();
+        if (plan.isEnabled("lightBatches")) {
+            if (!batchTarget_ || batchTarget_->width() != camera.imageWidth ||
+                batchTarget_->height() != camera.imageHeight || batchTarget_->samples() != samples)
+                batchTarget_ = std::make_unique<gl::RenderTarget>(camera.imageWidth, camera.imageHeight, false, samples);
+            for (size_t batch = 1; batch < plan.lightBatches.size(); ++batch) {
+                drawStrands(*batchTarget_, lightUniforms(plan, settings, batch), batchLabel(batch));
+                Clock::time_point addStart = Clock::now();
+                batchTarget_->resolve();
+                lightBatchAccumulation_->add(*target_, *batchTarget_);
+                glFinish();
+                stats.passes.push_back({"accumulate" + batchLabel(batch), millisecondsSince(addStart)});
+            }
+        }
 
         Clock::time_point readStart = Clock::now();
-        target_->resolve();
         result.color = Image(camera.imageWidth, camera.imageHeight, 4);
         result.color.pixels = target_->readColor();
         result.depth = Image(camera.imageWidth, camera.imageHeight, 1);
@@ -312,6 +331,7 @@ RenderResult Renderer::render(const Scene& scene, const CameraView& camera, cons
         }
         stats.passes.push_back({"readback", millisecondsSince(readStart)});
     });
+    stats.lightPasses = plan.lightBatches.size();
 
     stats.imageWidth = camera.imageWidth;
     stats.imageHeight = camera.imageHeight;

@@ -30,6 +30,7 @@ class Scene;
 namespace gl {
 class FragmentListPass;
 class GlRenderThread;
+class LightBatchAccumulation;
 class RenderTarget;
 class StrandGeometry;
 class StrandPass;
@@ -89,7 +90,9 @@ private:
     std::unique_ptr<gl::GlRenderThread> glThread_;
     std::unique_ptr<gl::StrandPass> strandPass_;
     std::unique_ptr<gl::FragmentListPass> fragmentListPass_;
+    std::unique_ptr<gl::LightBatchAccumulation> lightBatchAccumulation_;
     std::unique_ptr<gl::RenderTarget> target_;
+    std::unique_ptr<gl::RenderTarget> batchTarget_;  // light batches after the first render here
     std::unique_ptr<gl::StrandGeometry> geometry_;  // created and destroyed on the GL thread
     std::vector<uint64_t> geometryVersions_;        // which prim versions geometry_ holds
     std::vector<StrandControlPoint> controlPoints_; // CPU copy, for sorting

@@ -72,9 +72,14 @@ TEST_F(HdhairRecord, RendersAnExampleWithItsCameraAndReportsStats) {
     EXPECT_EQ(frame["segments"], 40 * 4);  // 7 catmullRom points: 4 spans each
     EXPECT_EQ(frame["camera"], "/World/main_cam");
     EXPECT_EQ(frame["settings"]["complexity"], "low");
-    bool strandsTimed = false;
-    for (const auto& pass : frame["passes"]) strandsTimed = strandsTimed || pass["name"] == "strands";
-    EXPECT_TRUE(strandsTimed) << frame.dump(2);
+    // The strands' tips are thinner than a pixel: sorted, blended coverage.
+    EXPECT_EQ(frame["transparency"], "binSorted");
+    bool strandsTimed = false, sortTimed = false;
+    for (const auto& pass : frame["passes"]) {
+        strandsTimed = strandsTimed || pass["name"] == "strands (binSorted)";
+        sortTimed = sortTimed || pass["name"] == "sort";
+    }
+    EXPECT_TRUE(strandsTimed && sortTimed) << frame.dump(2);
 }
 
 TEST_F(HdhairRecord, ExrOutputIsLinearHalfFloatWithAlpha) {
@@ -102,7 +107,7 @@ TEST_F(HdhairRecord, ExplainPrintsThePlanAndVerbosePrintsPassTimes) {
     RecordRun run = record("--explain --verbose --imageWidth 64 " + example("straight_strands.usda") + " " + file("o.png"));
     ASSERT_EQ(run.exitCode, 0) << run.output;
     EXPECT_NE(run.output.find("plan (earliest time)"), std::string::npos) << run.output;
-    EXPECT_NE(run.output.find("strands    on"), std::string::npos) << run.output;
+    EXPECT_NE(run.output.find("  strands      on   160 segments, binSorted"), std::string::npos) << run.output;
     EXPECT_NE(run.output.find("readback"), std::string::npos) << run.output;
 }
 
