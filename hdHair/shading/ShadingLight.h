@@ -15,7 +15,21 @@
 // - DomeLight: a constant ambient radiance L on every fibre.
 // - inputs:normalize divides out the area (sphere, rect, disk) so that the
 //   light's power no longer depends on its size.
-// Colour temperature, spot shaping and textures come with the lights issue.
+// - inputs:enableColorTemperature multiplies inputs:color by the blackbody
+//   colour of inputs:colorTemperature (ColorTemperature.h: linear Rec.709,
+//   luminance 1, temperatures clamped to [1000, 10000] K), as UsdLux does.
+// - UsdLuxShapingAPI's cone (sphere, rect and disk lights): light leaves
+//   only within inputs:shaping:cone:angle (degrees, half-angle) of the
+//   light's −Z axis. inputs:shaping:cone:softness s in [0, 1] fades it in
+//   from the edge inwards: full emission within angle·(1 − s), a smoothstep
+//   in cosθ between cos(angle·(1 − s)) and cos(angle), nothing beyond the
+//   angle; s = 0 is a hard edge (cosθ ≥ cos(angle) is inside). Angles of
+//   90° and more leave a light unshaped: 90° is ShapingAPI's fallback and
+//   must not cut a sphere light in half, and a rect or disk light emits into
+//   that hemisphere anyway. Distant and dome lights are never shaped. (Storm
+//   in 24.08 applies the cone to rect and disk lights only, as a hard
+//   cutoff, and ignores the softness.)
+// Textures, focus and IES profiles are not supported.
 
 #include <vector>
 
@@ -30,7 +44,10 @@ struct ShadingLight {
     glm::vec3 directionOrPosition{0.0f, 0.0f, 1.0f};  // unit direction towards a distant light, or position
     glm::vec3 scale{0.0f};            // E for distant lights; E·d² for local ones
     bool oneSided = false;            // rect and disk lights emit only along their axis
-    glm::vec3 emissionAxis{0.0f, 0.0f, -1.0f};  // world-space −Z of the light
+    glm::vec3 emissionAxis{0.0f, 0.0f, -1.0f};  // world-space −Z of the light; also the cone's axis
+    bool shaped = false;              // a ShapingAPI cone narrower than 90° (local lights only)
+    float coneCosOuter = 0.0f;        // cos(shaping:cone:angle): no light beyond it
+    float coneCosInner = 0.0f;        // cos(angle·(1 − softness)): full light within it
 };
 
 // What the lights of a stage amount to for hair shading.
@@ -39,8 +56,14 @@ struct ShadingLights {
     glm::vec3 ambient{0.0f};           // dome lights' radiance, summed
 };
 
-// Radiance of a light before geometry: intensity · 2^exposure · color.
+// Radiance of a light before geometry: intensity · 2^exposure · color, times
+// blackbodyColor(colorTemperature) when enableColorTemperature is on.
 glm::vec3 lightRadiance(const LightPrim& light);
+
+// The cone's attenuation in [0, 1] for a direction whose cosine to the
+// light's emission axis is `cosAngle`; 1 for an unshaped light. The same
+// formula as lightCone() in shaders/include/lights.glsl.
+float coneFalloff(const ShadingLight& light, float cosAngle);
 
 ShadingLights toShadingLights(const std::vector<const LightPrim*>& lights);
 
@@ -48,8 +71,9 @@ ShadingLights toShadingLights(const std::vector<const LightPrim*>& lights);
 // (as usdview's and usdrecord's default camera light does).
 ShadingLight cameraLight(const glm::vec3& directionTowardsCamera);
 
-// Irradiance at `position` and the unit direction towards the light; the
-// same formula as lightIrradiance() in shaders/include/lights.glsl.
+// Irradiance at `position` and the unit direction towards the light, with
+// the one-sided emitters' cosine and the cone applied; the same formula as
+// lightIrradiance() in shaders/include/lights.glsl.
 glm::vec3 irradianceAt(const ShadingLight& light, const glm::vec3& position, glm::vec3* towardsLight);
 
 }  // namespace hdhair

@@ -12,7 +12,20 @@ layout(std140, binding = 1) uniform LightUniforms {
     ivec4 lightCount;   // x: lights in use
     vec4 ambient;       // rgb: dome light radiance, applied as a constant ambient term
     vec4 kajiyaKayParameters;  // x: Kd, y: Ks, z: shininess p
+    // UsdLuxShapingAPI cone about lightAxis[i].xyz (ShadingLight::coneCosOuter,
+    // coneCosInner, shaped): x = cos(cone angle), y = cos(angle * (1 - softness)),
+    // z = 1 when the light is shaped, w unused.
+    vec4 lightCone[HDHAIR_MAX_LIGHTS];
 } lights;
+
+// The cone's attenuation for a direction at cosine cosAngle to the light's
+// axis; the same formula as coneFalloff() in hdHair/shading/ShadingLight.cpp.
+float lightCone(int i, float cosAngle) {
+    vec4 cone = lights.lightCone[i];
+    if (cone.z < 0.5) return 1.0;
+    if (cone.y <= cone.x) return cosAngle >= cone.x ? 1.0 : 0.0;
+    return smoothstep(cone.x, cone.y, cosAngle);
+}
 
 // Irradiance from light i at a point, and the unit direction towards it.
 vec3 lightIrradiance(int i, vec3 position, out vec3 toLight) {
@@ -24,7 +37,8 @@ vec3 lightIrradiance(int i, vec3 position, out vec3 toLight) {
     vec3 offset = v.xyz - position;
     float distanceSquared = max(dot(offset, offset), 1e-12);
     toLight = offset * inversesqrt(distanceSquared);
+    float cosAngle = dot(-toLight, lights.lightAxis[i].xyz);
     float facing = 1.0;
-    if (lights.lightAxis[i].w > 0.5) facing = max(0.0, dot(-toLight, lights.lightAxis[i].xyz));
-    return lights.lightScale[i].rgb * (facing / distanceSquared);
+    if (lights.lightAxis[i].w > 0.5) facing = max(0.0, cosAngle);
+    return lights.lightScale[i].rgb * (facing * lightCone(i, cosAngle) / distanceSquared);
 }
