@@ -23,7 +23,7 @@
 // so a light of irradiance E from ωi contributes E · S · cos θ_i.
 //
 // Longitudinal M_p. Marschner uses a unit-area Gaussian g(β_p; θ_h − α_p).
-// Measured (README, "Why not the Gaussian"): with the 1/cos²θ_d of eq. (2)
+// Measured (README, "Where we depart"): with the 1/cos²θ_d of eq. (2)
 // that Gaussian integrates to 0.17 .. 3.2 instead of 1 over the sphere of ωi
 // (grazing θ_r, tilted lobes), so a white furnace would exceed 1 threefold.
 // We therefore use d'Eon 2011's energy-conserving longitudinal function,
