@@ -35,7 +35,9 @@ struct LightUniforms {  // binding 1, shaders/include/lights.glsl
     glm::ivec4 lightCount{0};
     glm::vec4 ambient{0.0f};
     glm::vec4 kajiyaKayParameters{0.0f};
+    // Spot shaping: x cos(cone angle), y cos(angle * (1 - softness)), z 1 when shaped.
+    glm::vec4 lightCone[kMaxLightsPerPass]{};
 };
-static_assert(sizeof(LightUniforms) == 16 * 3 * kMaxLightsPerPass + 48, "std140 layout of LightUniforms");
+static_assert(sizeof(LightUniforms) == 16 * 4 * kMaxLightsPerPass + 48, "std140 layout of LightUniforms");
 
 }  // namespace hdhair::gl

@@ -70,6 +70,7 @@ gl::LightUniforms lightUniforms(const RenderPlan& plan, const RenderSettings& se
         uniforms.lightVector[i] = glm::vec4(light.directionOrPosition, light.isLocal ? 1.0f : 0.0f);
         uniforms.lightScale[i] = glm::vec4(light.scale, 0.0f);
         uniforms.lightAxis[i] = glm::vec4(light.emissionAxis, light.oneSided ? 1.0f : 0.0f);
+        uniforms.lightCone[i] = glm::vec4(light.coneCosOuter, light.coneCosInner, light.shaped ? 1.0f : 0.0f, 0.0f);
     }
     uniforms.lightCount = glm::ivec4(int(count), 0, 0, 0);
     uniforms.ambient = glm::vec4(batch == 0 ? plan.lights.ambient : glm::vec3(0.0f), 0.0f);
