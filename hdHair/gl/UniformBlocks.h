@@ -1,5 +1,6 @@
 #pragma once
-// C++ mirrors of the std140 uniform blocks in shaders/include/. Field order
+// C++ mirrors of the std140 uniform blocks (and std430 storage structs) in
+// shaders/include/. Field order
 // and padding must match the GLSL declarations exactly.
 
 #include <cstdint>
@@ -21,12 +22,10 @@ struct FrameUniforms {  // binding 0, shaders/include/frameUniforms.glsl
     float maxSegmentsPerSpan = 8.0f;
     float pixelsPerUnit = 1.0f;  // pixels a world unit spans at clip w = 1
     float minPixelWidth = 0.0f;  // sub-pixel coverage threshold; 0 keeps true widths
-    int32_t shadingModel = 1;    // 0 flat, 1 Kajiya-Kay
     int32_t drawMode = 0;        // 0 opaque, 1 pre-multiplied, 2 depth and ids only
     int32_t orderedDraw = 0;     // 1: patches come through the draw-order buffer
-    int32_t padding[3] = {0, 0, 0};
 };
-static_assert(sizeof(FrameUniforms) == 144, "std140 layout of FrameUniforms");
+static_assert(sizeof(FrameUniforms) == 128, "std140 layout of FrameUniforms");
 
 struct LightUniforms {  // binding 1, shaders/include/lights.glsl
     glm::vec4 lightVector[kMaxLightsPerPass]{};
@@ -34,10 +33,18 @@ struct LightUniforms {  // binding 1, shaders/include/lights.glsl
     glm::vec4 lightAxis[kMaxLightsPerPass]{};
     glm::ivec4 lightCount{0};
     glm::vec4 ambient{0.0f};
-    glm::vec4 kajiyaKayParameters{0.0f};
     // Spot shaping: x cos(cone angle), y cos(angle * (1 - softness)), z 1 when shaped.
     glm::vec4 lightCone[kMaxLightsPerPass]{};
 };
-static_assert(sizeof(LightUniforms) == 16 * 4 * kMaxLightsPerPass + 48, "std140 layout of LightUniforms");
+static_assert(sizeof(LightUniforms) == 16 * 4 * kMaxLightsPerPass + 32, "std140 layout of LightUniforms");
+
+// One element of the HairMaterials storage buffer (shaders/include/hairMaterials.glsl).
+struct GpuHairMaterial {
+    glm::ivec4 modelAndLayer{1, 0, 0, 0};  // model (0 flat, 1 Kajiya-Kay, 2 Marschner), first table layer
+    glm::vec4 kajiyaKay{0.0f};             // Kd, Ks, p
+    glm::vec4 alpha{0.0f};                 // Marschner alpha_R, alpha_TT, alpha_TRT
+    glm::vec4 beta{0.0f};                  // Marschner beta_R, beta_TT, beta_TRT
+};
+static_assert(sizeof(GpuHairMaterial) == 64, "std430 layout of HairMaterial");
 
 }  // namespace hdhair::gl

@@ -121,9 +121,18 @@ void HdHairBasisCurves::_SyncPrimvars(HdSceneDelegate* sceneDelegate, HdDirtyBit
             VtIntArray indices;
             VtValue value = descriptor.indexed ? GetIndexedPrimvar(sceneDelegate, descriptor.name, &indices)
                                                : GetPrimvar(sceneDelegate, descriptor.name);
+            if (name == "hdHair:shadingModel") {
+                // The one token primvar hdHair reads (HdHairAPI, constant only).
+                _curves.shadingModel = value.IsHolding<TfToken>() ? value.UncheckedGet<TfToken>().GetString()
+                                       : value.IsHolding<std::string>() ? value.UncheckedGet<std::string>()
+                                       : value.IsHolding<VtTokenArray>() && value.UncheckedGet<VtTokenArray>().size() == 1
+                                           ? value.UncheckedGet<VtTokenArray>()[0].GetString()
+                                           : std::string();
+                continue;
+            }
             HdHairFloats floats;
             if (!HdHairToFloats(value, &floats)) {
-                // Token and string primvars serve materials, which hdHair does not read yet.
+                // Other token and string primvars serve materials, which hdHair does not read yet.
                 _curves.primvars.erase(name);
                 continue;
             }
@@ -154,6 +163,7 @@ void HdHairBasisCurves::_SyncPrimvars(HdSceneDelegate* sceneDelegate, HdDirtyBit
             _curves.primvars[name] = std::move(primvar);
         }
     }
+    if (!present.count("hdHair:shadingModel")) _curves.shadingModel.clear();
     // Primvars that are gone (removed, or no longer in any descriptor).
     for (auto it = _curves.primvars.begin(); it != _curves.primvars.end();)
         it = present.count(it->first) ? std::next(it) : _curves.primvars.erase(it);

@@ -53,7 +53,7 @@ RenderPlan makeRenderPlan(const Scene& scene, const RenderSettings& settings, co
         }
     }
     plan.lights = toShadingLights(stageLights);
-    plan.flatShading = settings.getToken("shadingModel") == "flat";
+    plan.flatShading = !strands.anyLit;
 
     std::string cameraLight = settings.getToken("cameraLight");
     bool stageHasLight = !plan.lights.lights.empty() || glm::length(plan.lights.ambient) > 0.0f;
@@ -108,8 +108,9 @@ RenderPlan makeRenderPlan(const Scene& scene, const RenderSettings& settings, co
     plan.passes.push_back(sort);
 
     PlannedPass strandPass{"strands", strands.segments > 0, ""};
+    std::string models = strands.shadingModels.empty() ? std::string("kajiyaKay") : strands.shadingModels;
     std::string shading = plan.flatShading ? "flat displayColor"
-                                           : fmt::format("Kajiya-Kay, {} light(s){}", plan.lights.lights.size(),
+                                           : fmt::format("{}, {} light(s){}", models, plan.lights.lights.size(),
                                                          plan.cameraLight ? " incl. the camera light" : "");
     std::string multisampling =
         plan.msaaSamples > 0 ? fmt::format(", {}x MSAA", plan.msaaSamples) : std::string();

@@ -30,6 +30,8 @@ struct StrandSummary {
     // The thinnest any strand can project, in pixels, at the far side of the
     // strands' bounds (conservative); infinity when there are none.
     double minProjectedWidthPixels = 0.0;
+    bool anyLit = true;          // some prim's material is lit (not flat)
+    std::string shadingModels;   // the models in use, e.g. "kajiyaKay+marschner"
 };
 
 struct PlannedPass {
@@ -45,7 +47,7 @@ struct RenderPlan {
     TransparencyPath transparency = TransparencyPath::Opaque;
     uint32_t sortBins = 0;      // for BinSorted
     int msaaSamples = 0;        // for Opaque
-    bool flatShading = false;
+    bool flatShading = false;   // every prim flat: no lights needed
     // Light passes: [begin, end) ranges of `lights.lights`, at most
     // lightsPerPass each; always at least one (ambient and unlit shading
     // need a pass too).

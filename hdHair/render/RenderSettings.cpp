@@ -59,8 +59,9 @@ const std::vector<SettingDescriptor>& RenderSettings::descriptors() {
          "their colours summed and alpha counted once",
          1, 16, {}},
         {"shadingModel", SettingType::Token, "kajiyaKay",
-         "Hair shading: kajiyaKay, or flat (displayColor x opacity, no lighting)", 0, 0,
-         {"kajiyaKay", "flat"}},
+         "Hair shading where a prim does not choose (primvars:hdHair:shadingModel): kajiyaKay, marschner, "
+         "or flat (displayColor x opacity, no lighting)",
+         0, 0, {"kajiyaKay", "marschner", "flat"}},
         {"kajiyaKay:diffuse", SettingType::Float, "1", "Kajiya-Kay diffuse weight Kd", 0.0, 100.0, {}},
         {"kajiyaKay:specular", SettingType::Float, "0.35", "Kajiya-Kay specular weight Ks", 0.0, 100.0, {}},
         {"kajiyaKay:shininess", SettingType::Float, "60", "Kajiya-Kay specular exponent p", 1.0, 10000.0, {}},

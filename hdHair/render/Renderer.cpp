@@ -14,13 +14,14 @@
 #include "hdHair/base/Diagnostics.h"
 #include "hdHair/gl/FragmentListPass.h"
 #include "hdHair/gl/GlRenderThread.h"
+#include "hdHair/gl/HairMaterialTable.h"
 #include "hdHair/gl/LightBatchAccumulation.h"
 #include "hdHair/gl/RenderTarget.h"
 #include "hdHair/gl/StrandGeometry.h"
 #include "hdHair/gl/StrandPass.h"
 #include "hdHair/render/BinSort.h"
 #include "hdHair/scene/Scene.h"
-#include "hdHair/shading/KajiyaKay.h"
+#include "hdHair/shading/MarschnerTables.h"
 
 namespace hdhair {
 namespace {
@@ -53,7 +54,6 @@ gl::FrameUniforms frameUniforms(const CameraView& camera, const RenderSettings& 
     bool opaque = plan.transparency == TransparencyPath::Opaque;
     // The opaque path draws true widths; every blended path applies coverage.
     frame.minPixelWidth = opaque ? 0.0f : float(settings.getFloat("minPixelWidth"));
-    frame.shadingModel = plan.flatShading ? 0 : 1;
     frame.drawMode = opaque ? 0 : 1;
     frame.orderedDraw = plan.transparency == TransparencyPath::BinSorted ? 1 : 0;
     return frame;
@@ -61,7 +61,7 @@ gl::FrameUniforms frameUniforms(const CameraView& camera, const RenderSettings& 
 
 // The lights of one batch; the dome's ambient term belongs to the first
 // batch only, so that summing batches counts it once.
-gl::LightUniforms lightUniforms(const RenderPlan& plan, const RenderSettings& settings, size_t batch) {
+gl::LightUniforms lightUniforms(const RenderPlan& plan, size_t batch) {
     gl::LightUniforms uniforms;
     auto [begin, end] = plan.lightBatches[batch];
     size_t count = end - begin;
@@ -74,10 +74,6 @@ gl::LightUniforms lightUniforms(const RenderPlan& plan, const RenderSettings& se
     }
     uniforms.lightCount = glm::ivec4(int(count), 0, 0, 0);
     uniforms.ambient = glm::vec4(batch == 0 ? plan.lights.ambient : glm::vec3(0.0f), 0.0f);
-    KajiyaKayParameters kk{float(settings.getFloat("kajiyaKay:diffuse")),
-                           float(settings.getFloat("kajiyaKay:specular")),
-                           float(settings.getFloat("kajiyaKay:shininess"))};
-    uniforms.kajiyaKayParameters = glm::vec4(kk.diffuse, kk.specular, kk.shininess, 0.0f);
     return uniforms;
 }
 
@@ -106,6 +102,7 @@ Renderer::Renderer(gl::GlBackend backend) : glThread_(std::make_unique<gl::GlRen
         strandPass_ = std::make_unique<gl::StrandPass>();
         fragmentListPass_ = std::make_unique<gl::FragmentListPass>();
         lightBatchAccumulation_ = std::make_unique<gl::LightBatchAccumulation>();
+        materialTable_ = std::make_unique<gl::HairMaterialTable>();
         glGetIntegerv(GL_MAX_SAMPLES, &maxSamples_);
     });
 }
@@ -117,6 +114,7 @@ Renderer::~Renderer() {
         strandPass_.reset();
         fragmentListPass_.reset();
         lightBatchAccumulation_.reset();
+        materialTable_.reset();
         target_.reset();
         batchTarget_.reset();
     });
@@ -172,31 +170,67 @@ SceneBounds Renderer::prepare(const Scene& scene, Diagnostics& diagnostics) {
     return bounds;
 }
 
-void Renderer::updateGeometry(const std::vector<std::pair<int, const CachedCurves*>>& visible,
-                              const std::vector<uint64_t>& versions, RenderStats& stats) {
-    if (geometry_ && versions == geometryVersions_) return;
+void Renderer::updateGeometry(const std::vector<VisiblePrim>& visible, const std::vector<uint64_t>& key,
+                              RenderStats& stats) {
+    if (geometry_ && key == geometryKey_) return;
     Clock::time_point start = Clock::now();
     size_t segments = 0;
-    for (const auto& [primId, cached] : visible) segments += cached->prepared->segmentCount();
+    for (const VisiblePrim& prim : visible) segments += prim.cached->prepared->segmentCount();
     controlPoints_.clear();
     controlPoints_.reserve(4 * segments);
-    std::vector<int32_t> segmentCurves, segmentPrims;
+    std::vector<int32_t> segmentCurves, segmentPrims, segmentMaterials;
     segmentCurves.reserve(segments);
     segmentPrims.reserve(segments);
-    for (const auto& [primId, cached] : visible) {
-        const PreparedCurves& prepared = *cached->prepared;
+    segmentMaterials.reserve(segments);
+    for (const VisiblePrim& prim : visible) {
+        const PreparedCurves& prepared = *prim.cached->prepared;
         controlPoints_.insert(controlPoints_.end(), prepared.controlPoints.begin(), prepared.controlPoints.end());
         for (uint32_t curve : prepared.segmentCurve) {
             segmentCurves.push_back(int32_t(curve));
-            segmentPrims.push_back(primId);
+            segmentPrims.push_back(prim.primId);
+            segmentMaterials.push_back(prim.material);
         }
     }
     glThread_->run([&] {
-        geometry_ = std::make_unique<gl::StrandGeometry>(controlPoints_, segmentCurves, segmentPrims);
+        geometry_ = std::make_unique<gl::StrandGeometry>(controlPoints_, segmentCurves, segmentPrims, segmentMaterials);
         glFinish();
     });
-    geometryVersions_ = versions;
+    geometryKey_ = key;
     stats.passes.push_back({"upload", millisecondsSince(start)});
+}
+
+void Renderer::updateMaterials(const std::vector<HairMaterial>& materials) {
+    if (materials == uploadedMaterials_) return;
+    std::vector<gl::GpuHairMaterial> gpu;
+    std::vector<const std::vector<uint16_t>*> tables;
+    int width = 1, height = 1;
+    for (const HairMaterial& material : materials) {
+        gl::GpuHairMaterial entry;
+        entry.modelAndLayer = glm::ivec4(int(material.model), 0, 0, 0);
+        entry.kajiyaKay = glm::vec4(material.kajiyaKay.diffuse, material.kajiyaKay.specular,
+                                    material.kajiyaKay.shininess, 0.0f);
+        if (material.model == ShadingModel::Marschner) {
+            entry.alpha = glm::vec4(material.marschner.alpha, 0.0f);
+            entry.beta = glm::vec4(material.marschner.beta, 0.0f);
+            // Tables depend on eta, absorption and glints only: built once per
+            // distinct set and kept for later frames.
+            auto cached = std::find_if(marschnerTables_.begin(), marschnerTables_.end(),
+                                       [&](const CachedTables& c) { return c.material.sharesTablesWith(material); });
+            if (cached == marschnerTables_.end()) {
+                MarschnerTables built = buildMarschnerTables(material.marschner);
+                marschnerTables_.push_back({material, built.halfTexels(), built.width, built.height});
+                cached = std::prev(marschnerTables_.end());
+            }
+            width = cached->width;
+            height = cached->height;
+            auto layer = std::find(tables.begin(), tables.end(), &cached->halfTexels);
+            if (layer == tables.end()) layer = tables.insert(tables.end(), &cached->halfTexels);
+            entry.modelAndLayer.y = int(2 * (layer - tables.begin()));
+        }
+        gpu.push_back(entry);
+    }
+    glThread_->run([&] { materialTable_->update(gpu, tables, width, height); });
+    uploadedMaterials_ = materials;
 }
 
 RenderResult Renderer::render(const Scene& scene, const CameraView& camera, const RenderSettings& settings,
@@ -209,16 +243,26 @@ RenderResult Renderer::render(const Scene& scene, const CameraView& camera, cons
     stats.passes.push_back({"prepareCurves", pendingPrepareMilliseconds_});
     pendingPrepareMilliseconds_ = 0.0;
 
-    std::vector<std::pair<int, const CachedCurves*>> visible;  // prim id, cached data
-    std::vector<uint64_t> versions;
+    std::vector<VisiblePrim> visible;
+    std::vector<uint64_t> geometryKey;  // versions, then material indices
+    std::vector<HairMaterial> materials;
     StrandSummary summary;
     summary.minProjectedWidthPixels = std::numeric_limits<double>::infinity();
+    summary.anyLit = false;
     uint64_t curveCount = 0;
     for (const auto& [path, entry] : scene.curves()) {
         const CachedCurves& cached = curves_.at(path);
         if (!entry.prim->visible || cached.prepared->empty()) continue;
-        visible.emplace_back(entry.prim->primId, &cached);
-        versions.push_back(cached.version);
+        HairMaterial material = hairMaterialFor(*entry.prim, settings, diagnostics);
+        auto found = std::find(materials.begin(), materials.end(), material);
+        if (found == materials.end()) found = materials.insert(materials.end(), material);
+        int materialIndex = int(found - materials.begin());
+        visible.push_back({entry.prim->primId, &cached, materialIndex});
+        geometryKey.push_back(cached.version);
+        geometryKey.push_back(uint64_t(materialIndex));
+        summary.anyLit = summary.anyLit || material.model != ShadingModel::Flat;
+        if (summary.shadingModels.find(toString(material.model)) == std::string::npos)
+            summary.shadingModels += (summary.shadingModels.empty() ? "" : "+") + std::string(toString(material.model));
         summary.segments += cached.prepared->segmentCount();
         summary.allOpaque = summary.allOpaque && cached.fullyOpaque;
         summary.minProjectedWidthPixels =
@@ -226,7 +270,8 @@ RenderResult Renderer::render(const Scene& scene, const CameraView& camera, cons
                      minProjectedWidthPixels(camera, *cached.prepared, cached.minSpanWidth));
         curveCount += cached.prepared->curveCount;
     }
-    updateGeometry(visible, versions, stats);
+    updateGeometry(visible, geometryKey, stats);
+    updateMaterials(materials);
     result.plan = makeRenderPlan(scene, settings, camera, summary, outputs.ids);
     RenderPlan& plan = result.plan;
 
@@ -247,6 +292,7 @@ RenderResult Renderer::render(const Scene& scene, const CameraView& camera, cons
         if (!target_ || target_->width() != camera.imageWidth || target_->height() != camera.imageHeight ||
             target_->hasIds() != outputs.ids || target_->samples() != samples)
             target_ = std::make_unique<gl::RenderTarget>(camera.imageWidth, camera.imageHeight, outputs.ids, samples);
+        materialTable_->bind();
 
         // Draws the strands once, with the current plan, into `target`.
         auto drawStrands = [&](gl::RenderTarget& target, const gl::LightUniforms& lights, const std::string& label) {
@@ -293,14 +339,14 @@ RenderResult Renderer::render(const Scene& scene, const CameraView& camera, cons
         if (!plan.isEnabled("strands")) {
             target_->bindAndClear(glm::vec4(0.0f));
         } else {
-            drawStrands(*target_, lightUniforms(plan, settings, 0), batchLabel(0));
+            drawStrands(*target_, lightUniforms(plan, 0), batchLabel(0));
         }
         if (plan.isEnabled("depthAndIds")) {
             Clock::time_point passStart = Clock::now();
             gl::FrameUniforms idsFrame = frame;
             idsFrame.drawMode = 2;
             idsFrame.orderedDraw = 0;
-            strandPass_->setUniforms(idsFrame, lightUniforms(plan, settings, 0));
+            strandPass_->setUniforms(idsFrame, lightUniforms(plan, 0));
             strandPass_->draw(*geometry_, {}, gl::StrandBlending::DepthAndIdsOnly);
             glFinish();
             stats.passes.push_back({"depthAndIds", millisecondsSince(passStart)});
@@ -311,7 +357,7 @@ RenderResult Renderer::render(const Scene& scene, const CameraView& camera, cons
                 batchTarget_->height() != camera.imageHeight || batchTarget_->samples() != samples)
                 batchTarget_ = std::make_unique<gl::RenderTarget>(camera.imageWidth, camera.imageHeight, false, samples);
             for (size_t batch = 1; batch < plan.lightBatches.size(); ++batch) {
-                drawStrands(*batchTarget_, lightUniforms(plan, settings, batch), batchLabel(batch));
+                drawStrands(*batchTarget_, lightUniforms(plan, batch), batchLabel(batch));
                 Clock::time_point addStart = Clock::now();
                 batchTarget_->resolve();
                 lightBatchAccumulation_->add(*target_, *batchTarget_);

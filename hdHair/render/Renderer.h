@@ -16,6 +16,7 @@
 
 #include "hdHair/curves/PreparedCurves.h"
 #include "hdHair/gl/GlContext.h"
+#include "hdHair/render/HairMaterial.h"
 #include "hdHair/image/Image.h"
 #include "hdHair/render/CameraView.h"
 #include "hdHair/render/RenderPlan.h"
@@ -30,6 +31,7 @@ class Scene;
 namespace gl {
 class FragmentListPass;
 class GlRenderThread;
+class HairMaterialTable;
 class LightBatchAccumulation;
 class RenderTarget;
 class StrandGeometry;
@@ -82,19 +84,34 @@ private:
         bool fullyOpaque = true;    // every control point's opacity is exactly 1
     };
 
-    // Combines the visible prims into one geometry (when the set or a
-    // version changed) and summarises it for the plan.
-    void updateGeometry(const std::vector<std::pair<int, const CachedCurves*>>& visible,
-                        const std::vector<uint64_t>& versions, RenderStats& stats);
+    struct VisiblePrim {
+        int primId;
+        const CachedCurves* cached;
+        int material;  // index into the frame's materials
+    };
+    // Combines the visible prims into one geometry (when the set, a version
+    // or a material assignment changed).
+    void updateGeometry(const std::vector<VisiblePrim>& visible, const std::vector<uint64_t>& key, RenderStats& stats);
+    // Uploads the frame's materials and their Marschner tables (built once
+    // per distinct parameter set and kept).
+    void updateMaterials(const std::vector<HairMaterial>& materials);
 
     std::unique_ptr<gl::GlRenderThread> glThread_;
     std::unique_ptr<gl::StrandPass> strandPass_;
     std::unique_ptr<gl::FragmentListPass> fragmentListPass_;
     std::unique_ptr<gl::LightBatchAccumulation> lightBatchAccumulation_;
+    std::unique_ptr<gl::HairMaterialTable> materialTable_;
+    std::vector<HairMaterial> uploadedMaterials_;
+    struct CachedTables {
+        HairMaterial material;
+        std::vector<uint16_t> halfTexels;
+        int width = 0, height = 0;
+    };
+    std::vector<CachedTables> marschnerTables_;
     std::unique_ptr<gl::RenderTarget> target_;
     std::unique_ptr<gl::RenderTarget> batchTarget_;  // light batches after the first render here
     std::unique_ptr<gl::StrandGeometry> geometry_;  // created and destroyed on the GL thread
-    std::vector<uint64_t> geometryVersions_;        // which prim versions geometry_ holds
+    std::vector<uint64_t> geometryKey_;             // prim versions and material indices geometry_ holds
     std::vector<StrandControlPoint> controlPoints_; // CPU copy, for sorting
     int maxSamples_ = 0;
     std::map<std::string, CachedCurves> curves_;

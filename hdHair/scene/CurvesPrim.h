@@ -42,6 +42,9 @@ struct CurvesPrim {
     bool visible = true;
     // Written to the primId output for picking: Hydra's HdRprim::GetPrimId().
     int primId = -1;
+    // primvars:hdHair:shadingModel (HdHairAPI): "kajiyaKay", "marschner" or
+    // "flat"; empty means the shadingModel render setting.
+    std::string shadingModel;
 
     const Primvar* findPrimvar(const std::string& name) const {
         auto it = primvars.find(name);

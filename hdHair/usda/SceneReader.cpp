@@ -320,6 +320,13 @@ void Reader::readCurves(const Prim& prim, const Inherited& state) {
     curves.curveVertexCounts = readIntArray(prim, "curveVertexCounts");
     curves.points = readVec3Array(prim, "points");
     curves.primvars = readPrimvars(prim, true);
+    // The one token primvar hdHair reads (HdHairAPI, constant only).
+    if (std::optional<Value> model = valueOf(prim, "primvars:hdHair:shadingModel")) {
+        if (model->isStringType() && model->strings.size() == 1)
+            curves.shadingModel = model->strings[0];
+        else
+            warn(prim, "primvars:hdHair:shadingModel", "expected one token (kajiyaKay, marschner or flat); ignored");
+    }
     scene_.setCurves(std::move(curves));
 }
 

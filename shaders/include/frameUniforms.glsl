@@ -1,4 +1,4 @@
-// Per-frame camera, tessellation, coverage and shading parameters
+// Per-frame camera, tessellation and coverage parameters
 // (hdHair/gl/UniformBlocks.h FrameUniforms mirrors this block).
 layout(std140, binding = 0) uniform FrameUniforms {
     mat4 viewProjection;
@@ -13,10 +13,8 @@ layout(std140, binding = 0) uniform FrameUniforms {
     // Strands projecting thinner than this many pixels are drawn this wide
     // with their alpha scaled by true / drawn width (0: true widths, opaque).
     float minPixelWidth;
-    int shadingModel;         // 0: flat, 1: Kajiya-Kay
     int drawMode;             // 0: opaque, 1: pre-multiplied alpha, 2: depth and ids only
     int orderedDraw;          // 1: patches are read through the draw-order buffer
-    int padding0, padding1, padding2;
 } frame;
 
 // Direction from a world-space point towards the eye.

@@ -11,7 +11,6 @@ layout(std140, binding = 1) uniform LightUniforms {
     vec4 lightAxis[HDHAIR_MAX_LIGHTS];
     ivec4 lightCount;   // x: lights in use
     vec4 ambient;       // rgb: dome light radiance, applied as a constant ambient term
-    vec4 kajiyaKayParameters;  // x: Kd, y: Ks, z: shininess p
     // UsdLuxShapingAPI cone about lightAxis[i].xyz (ShadingLight::coneCosOuter,
     // coneCosInner, shaped): x = cos(cone angle), y = cos(angle * (1 - softness)),
     // z = 1 when the light is shaped, w unused.

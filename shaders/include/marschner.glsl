@@ -5,7 +5,8 @@
 // hdHair/shading/MarschnerTables.h (evaluateMarschnerTabled), formula for
 // formula.
 //
-// tables: sampler2DArray built by buildMarschnerTables(), 2 layers,
+// tables: sampler2DArray holding buildMarschnerTables() output, 2 layers a
+//   material starting at baseLayer,
 //   GL_RGBA16F, 64 x 64, GL_LINEAR, no mipmaps, GL_CLAMP_TO_EDGE;
 //   layer 0: rgb = N_TT, a = N_R;  layer 1: rgb = N_TRT (caustic treated);
 //   s = phi / pi (phi = |phi_r - phi_i| in [0, pi]), t = cos(theta_r).
@@ -60,7 +61,8 @@ vec3 marschnerSafeNormalize(vec3 v) {
     return (len > 1e-20 && !isinf(len) && !isnan(len)) ? v / len : vec3(0.0);
 }
 
-MarschnerLobes marschnerTabledLobes(vec3 t, vec3 wi, vec3 wo, sampler2DArray tables, vec3 alpha, vec3 beta) {
+MarschnerLobes marschnerTabledLobes(vec3 t, vec3 wi, vec3 wo, sampler2DArray tables, float baseLayer, vec3 alpha,
+                                    vec3 beta) {
     vec3 tn = marschnerSafeNormalize(t), inDir = marschnerSafeNormalize(wi), outDir = marschnerSafeNormalize(wo);
     // sin(theta) = t . w; theta from the normal plane (marschnerAngles).
     float sinThetaI = clamp(dot(tn, inDir), -1.0, 1.0);
@@ -73,8 +75,8 @@ MarschnerLobes marschnerTabledLobes(vec3 t, vec3 wi, vec3 wo, sampler2DArray tab
     float phi = lengths > 1e-12 ? atan(length(cross(pi, po)), dot(pi, po)) : 0.0;
     // N_p(phi, cos theta_r): two bilinear fetches at (phi / pi, cos theta_r).
     vec2 st = vec2(clamp(abs(phi) / MARSCHNER_PI, 0.0, 1.0), cosThetaR);
-    vec4 layer0 = texture(tables, vec3(st, 0.0));
-    vec4 layer1 = texture(tables, vec3(st, 1.0));
+    vec4 layer0 = texture(tables, vec3(st, baseLayer));
+    vec4 layer1 = texture(tables, vec3(st, baseLayer + 1.0));
     MarschnerLobes lobes;
     lobes.R = max(vec3(layer0.a), vec3(0.0)) *
               marschnerLongitudinal(sinThetaI, cosThetaI, sinThetaR, cosThetaR, alpha.x, beta.x);
@@ -86,7 +88,7 @@ MarschnerLobes marschnerTabledLobes(vec3 t, vec3 wi, vec3 wo, sampler2DArray tab
 }
 
 // R + TT + TRT: the radiance towards wo per unit irradiance from wi.
-vec3 marschnerTabled(vec3 t, vec3 wi, vec3 wo, sampler2DArray tables, vec3 alpha, vec3 beta) {
-    MarschnerLobes lobes = marschnerTabledLobes(t, wi, wo, tables, alpha, beta);
+vec3 marschnerTabled(vec3 t, vec3 wi, vec3 wo, sampler2DArray tables, float baseLayer, vec3 alpha, vec3 beta) {
+    MarschnerLobes lobes = marschnerTabledLobes(t, wi, wo, tables, baseLayer, alpha, beta);
     return lobes.R + lobes.TT + lobes.TRT;
 }

@@ -16,3 +16,7 @@ layout(std430, binding = 3) readonly buffer SegmentPrims {
 layout(std430, binding = 4) readonly buffer DrawOrder {
     uint drawOrder[];
 };
+// Per segment: the index of its prim's hair material (hairMaterials.glsl).
+layout(std430, binding = 7) readonly buffer SegmentMaterials {
+    int segmentMaterial[];
+};
