@@ -3,6 +3,7 @@
 #include <cstring>
 
 #include "pxr/base/gf/half.h"
+#include "pxr/base/gf/vec3i.h"
 #include "pxr/base/gf/vec4f.h"
 #include "pxr/base/tf/diagnostic.h"
 

@@ -15,6 +15,7 @@
 #include "pxr/imaging/cameraUtil/framing.h"
 #include "pxr/imaging/hd/renderBuffer.h"
 #include "pxr/imaging/hd/rendererPlugin.h"
+#include "pxr/imaging/hd/rendererPluginHandle.h"
 #include "pxr/imaging/hd/rendererPluginRegistry.h"
 #include "pxr/imaging/hd/tokens.h"
 #include "pxr/imaging/hf/pluginDesc.h"
@@ -117,8 +118,9 @@ TEST_F(HdHairPlugin, LoadsThroughTheRegistryWithoutBecomingTheDefault) {
     EXPECT_EQ(desc.displayName, "HdHair");
     EXPECT_GE(desc.priority, 100);
     EXPECT_NE(HdRendererPluginRegistry::GetInstance().GetDefaultPluginId(true), kPluginId);
-    HdRendererPlugin* plugin = HdRendererPluginRegistry::GetInstance().GetOrCreateRendererPlugin(kPluginId);
-    ASSERT_NE(plugin, nullptr);
+    // The handle releases the plugin when it goes out of scope.
+    HdRendererPluginHandle plugin = HdRendererPluginRegistry::GetInstance().GetOrCreateRendererPlugin(kPluginId);
+    ASSERT_TRUE(plugin);
     EXPECT_TRUE(plugin->IsSupported(false));
     HdRenderDelegate* delegate = plugin->CreateRenderDelegate();
     ASSERT_NE(delegate, nullptr);
@@ -136,7 +138,6 @@ TEST_F(HdHairPlugin, LoadsThroughTheRegistryWithoutBecomingTheDefault) {
         found = found || d.key == TfToken("maxSegmentsPerSpan");
     EXPECT_TRUE(found);
     plugin->DeleteRenderDelegate(delegate);
-    HdRendererPluginRegistry::GetInstance().ReleasePlugin(plugin);
 }
 
 TEST_F(HdHairPlugin, EditsResyncOnlyTheTouchedPrimAndChangeTheImage) {
