@@ -1,6 +1,6 @@
 // hdhair-bench: what accuracy costs in time, measured with Google Benchmark.
 //
-//   hdhair-bench [--stage FILE]... [--imageWidth N] [--table complexity|transparency|all]
+//   hdhair-bench [--stage FILE]... [--imageWidth N] [--table complexity|transparency|shading|all]
 //                [Google Benchmark flags]
 //
 // For each stage (examples/dense_clump.usda when none is given), rendered
@@ -9,6 +9,7 @@
 //   BinSort/<stage>                     the CPU bin sort of the frame's segments
 //   RenderFrame/<stage>/<complexity>    a frame per --complexity level
 //   RenderFrame/<stage>/<transparency>  a frame per transparency mode and bin count
+//   RenderFrame/<stage>/<model> <n> lights  a frame per shading model and light count
 // Then it prints markdown tables: each configuration's time relative to a
 // reference measured in the same run (these machines are shared and noisy,
 // so ratios mean more than milliseconds), and its image error against the
@@ -31,6 +32,7 @@
 #include "hdHair/base/Diagnostics.h"
 #include "hdHair/curves/PreparedCurves.h"
 #include "hdHair/image/ImageComparison.h"
+#include "hdHair/shading/MarschnerTables.h"
 #include "hdHair/render/BinSort.h"
 #include "hdHair/render/CameraView.h"
 #include "hdHair/render/Renderer.h"
@@ -47,12 +49,37 @@ struct Configuration {
     Complexity complexity = Complexity::Low;
 };
 
+struct BenchStage;
+void setLightCount(BenchStage& stage, int count);
+
 struct BenchStage {
     std::string path, name;
     Scene scene;
     CameraView camera;
     std::vector<StrandControlPoint> controlPoints;  // every segment, for the sort benchmark
+    std::vector<LightPrim> stageLights;             // as authored, for the light-count benchmarks
 };
+
+// Replaces the stage's lights with `count` distant lights of equal total
+// irradiance, spread around the camera's hemisphere.
+void setLightCount(BenchStage& stage, int count) {
+    std::vector<std::string> paths;
+    for (const auto& [path, entry] : stage.scene.lights()) paths.push_back(path);
+    for (const std::string& path : paths) stage.scene.remove(path);
+    for (int i = 0; i < count; ++i) {
+        LightPrim light;
+        light.path = "/BenchLights/light" + std::to_string(i);
+        light.intensity = 2.0f / float(count);
+        double azimuth = 6.283185307179586 * i / count, elevation = 0.3 + 0.5 * ((i * 7) % count) / count;
+        glm::dvec3 towards(std::cos(azimuth) * std::cos(elevation), std::sin(elevation),
+                           std::sin(azimuth) * std::cos(elevation));
+        glm::dvec3 z = glm::normalize(towards);
+        glm::dvec3 x = glm::normalize(glm::cross(glm::dvec3(0, 1, 0), z));
+        light.worldTransform = glm::dmat4(glm::dvec4(x, 0), glm::dvec4(glm::cross(z, x), 0), glm::dvec4(z, 0),
+                                          glm::dvec4(0, 0, 0, 1));
+        stage.scene.setLight(light);
+    }
+}
 
 std::unique_ptr<Renderer>& renderer() {
     static std::unique_ptr<Renderer> instance;
@@ -70,6 +97,21 @@ std::vector<Configuration> complexityConfigurations() {
     std::vector<Configuration> result;
     for (Complexity level : {Complexity::Low, Complexity::Medium, Complexity::High, Complexity::VeryHigh})
         result.push_back({toString(level), {}, level});
+    return result;
+}
+
+struct ShadingConfiguration {
+    Configuration configuration;
+    int lights;
+};
+
+std::vector<ShadingConfiguration> shadingConfigurations() {
+    std::vector<ShadingConfiguration> result;
+    for (const char* model : {"flat", "kajiyaKay", "marschner"})
+        for (int lights : {1, 4, 8, 16})
+            result.push_back({{fmt::format("{} {} lights", model, lights), {std::string("shadingModel=") + model},
+                               Complexity::Low},
+                              lights});
     return result;
 }
 
@@ -172,6 +214,8 @@ int main(int argc, char** argv) {
     std::vector<Configuration> transparencies = transparencyConfigurations();
     bool complexityTable = table == "all" || table == "complexity";
     bool transparencyTable = table == "all" || table == "transparency";
+    bool shadingTable = table == "all" || table == "shading";
+    std::vector<ShadingConfiguration> shadings = shadingConfigurations();
     for (const auto& stagePointer : stages) {
         BenchStage* stage = stagePointer.get();
         benchmark::RegisterBenchmark(("PrepareCurves/" + stage->name).c_str(), [stage](benchmark::State& state) {
@@ -209,6 +253,25 @@ int main(int argc, char** argv) {
                 ->UseRealTime();
         }
     }
+    for (const auto& stagePointer : stages) {
+        BenchStage* stage = stagePointer.get();
+        if (!shadingTable) break;
+        for (const ShadingConfiguration& shading : shadings) {
+            benchmark::RegisterBenchmark(frameName(*stage, shading.configuration).c_str(),
+                                         [stage, shading](benchmark::State& state) {
+                                             setLightCount(*stage, shading.lights);
+                                             RenderSettings settings = settingsFor(shading.configuration);
+                                             Diagnostics diagnostics;
+                                             for (auto _ : state)
+                                                 benchmark::DoNotOptimize(renderer()
+                                                                              ->render(stage->scene, stage->camera,
+                                                                                       settings, diagnostics)
+                                                                              .color.pixels.data());
+                                         })
+                ->Unit(benchmark::kMillisecond)
+                ->UseRealTime();
+        }
+    }
     RecordingReporter reporter;
     benchmark::RunSpecifiedBenchmarks(&reporter);
 
@@ -222,6 +285,35 @@ int main(int argc, char** argv) {
                 std::printf("\nThe CPU bin sort (256 bins) is %.1f%% of a binSorted frame.\n",
                             100.0 * sort->second / sorted->second);
         }
+    }
+    for (const auto& stage : stages) {
+        if (!shadingTable) break;
+        std::printf("\nShading, %s: time relative to flat with 1 light (same run)\n\n| model | 1 light | 4 lights | "
+                    "8 lights | 16 lights |\n|---|---|---|---|---|\n",
+                    stage->path.c_str());
+        auto base = reporter.seconds.find(frameName(*stage, shadings[0].configuration));
+        for (size_t i = 0; i < shadings.size(); i += 4) {
+            std::string row = "| " + shadings[i].configuration.settings[0].substr(13) + " |";
+            for (size_t j = i; j < i + 4; ++j) {
+                auto time = reporter.seconds.find(frameName(*stage, shadings[j].configuration));
+                row += (time != reporter.seconds.end() && base != reporter.seconds.end())
+                           ? fmt::format(" {:.2f}x |", time->second / base->second)
+                           : " not run |";
+            }
+            std::printf("%s\n", row.c_str());
+        }
+    }
+    if (shadingTable) {
+        // Tabled against analytic Marschner on the CPU, over directions a
+        // frame would see (the GPU evaluates the tabled form).
+        MarschnerParameters parameters;
+        parameters.sigmaA = marschnerSigmaAFromMelanin(0.3f, 0.0f);
+        std::printf("\nMarschner, tabled against analytic (radiance over 20,000 random directions):\n\n"
+                    "| table | precision | max | RMS | max / peak |\n|---|---|---|---|---|\n");
+        for (const MarschnerTableError& error : measureMarschnerTableErrors(parameters, {32, 64, 128}))
+            std::printf("| %dx%d | %s | %.4f | %.6f | %.2f%% |\n", error.width, error.height,
+                        error.precision == MarschnerTablePrecision::Half ? "half" : "float", error.maxAbsolute,
+                        error.rms, 100.0 * error.maxAbsolute / error.peak);
     }
     benchmark::Shutdown();
     renderer().reset();
