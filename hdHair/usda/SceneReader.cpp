@@ -386,8 +386,11 @@ void Reader::readLight(const Prim& prim, const Inherited& state, LightType type)
     light.worldTransform = state.world;
     light.visible = state.visible;
     // UsdLux 21.02 moved the inputs into the "inputs:" namespace; older files
-    // use the bare names, read when the new name has no value.
-    light.intensity = readFloat(prim, {"inputs:intensity", "intensity"}, light.intensity);
+    // use the bare names, read when the new name has no value. The schema
+    // fallbacks apply otherwise: DistantLight's intensity is 50000 ("to
+    // approximate the Sun", pxr/usd/usdLux/schema.usda), every other 1.
+    const float fallbackIntensity = type == LightType::Distant ? 50000.0f : 1.0f;
+    light.intensity = readFloat(prim, {"inputs:intensity", "intensity"}, fallbackIntensity);
     light.exposure = readFloat(prim, {"inputs:exposure", "exposure"}, light.exposure);
     light.color = readColor(prim, {"inputs:color", "color"}, light.color);
     light.enableColorTemperature =

@@ -23,8 +23,11 @@ struct RecordRun {
     std::string output;  // stdout and stderr together
 };
 
+// These tests exercise the embedded reader's messages and stats, so they ask
+// for it (builds with OpenUSD default to --reader usd), unless a test picks one.
 RecordRun record(const std::string& arguments, const std::string& environment = "") {
-    std::string command = environment + " " HDHAIR_RECORD " " + arguments + " 2>&1";
+    std::string reader = arguments.find("--reader") == std::string::npos ? "--reader embedded " : "";
+    std::string command = environment + " " HDHAIR_RECORD " " + reader + arguments + " 2>&1";
     RecordRun run;
     FILE* pipe = ::popen(command.c_str(), "r");
     if (!pipe) return run;

@@ -51,7 +51,8 @@ UsdStageRefPtr twoStrandsStage() {
     }
     UsdGeomCamera camera = UsdGeomCamera::Define(stage, SdfPath("/Camera"));
     camera.AddTranslateOp().Set(GfVec3d(0, 0, 10));
-    UsdLuxDistantLight::Define(stage, SdfPath("/Light"));
+    // UsdLux's DistantLight intensity falls back to 50000 (the Sun): author 1.
+    UsdLuxDistantLight::Define(stage, SdfPath("/Light")).CreateIntensityAttr(VtValue(1.0f));
     return stage;
 }
 
@@ -117,7 +118,12 @@ TEST_F(HdHairPlugin, LoadsThroughTheRegistryWithoutBecomingTheDefault) {
     ASSERT_TRUE(HdRendererPluginRegistry::GetInstance().GetPluginDesc(kPluginId, &desc));
     EXPECT_EQ(desc.displayName, "HdHair");
     EXPECT_GE(desc.priority, 100);
-    EXPECT_NE(HdRendererPluginRegistry::GetInstance().GetDefaultPluginId(true), kPluginId);
+    // Storm stays the default wherever it can run (it needs the host's GL,
+    // which this test does not create, so compare priorities).
+    HfPluginDesc storm;
+    if (HdRendererPluginRegistry::GetInstance().GetPluginDesc(TfToken("HdStormRendererPlugin"), &storm)) {
+        EXPECT_GT(desc.priority, storm.priority);
+    }
     // The handle releases the plugin when it goes out of scope.
     HdRendererPluginHandle plugin = HdRendererPluginRegistry::GetInstance().GetOrCreateRendererPlugin(kPluginId);
     ASSERT_TRUE(plugin);
@@ -155,7 +161,8 @@ TEST_F(HdHairPlugin, EditsResyncOnlyTheTouchedPrimAndChangeTheImage) {
     };
     UsdGeomBasisCurves curvesA(stage->GetPrimAtPath(SdfPath("/A")));
 
-    curvesA.GetPointsAttr().Set(VtVec3fArray{GfVec3f(-3, -1, 0), GfVec3f(-3, 1, 0)});
+    // The camera sees x in about [-2.1, 2.1]: stay in view.
+    curvesA.GetPointsAttr().Set(VtVec3fArray{GfVec3f(-1.5f, -1, 0), GfVec3f(-1.5f, 1, 0)});
     Frame moved = recorder.render();
     expectOnlyA(moved, "points");
     EXPECT_NE(moved.color, first.color);
@@ -165,7 +172,7 @@ TEST_F(HdHairPlugin, EditsResyncOnlyTheTouchedPrimAndChangeTheImage) {
     expectOnlyA(wider, "widths");
     EXPECT_GT(coverage(wider), coverage(moved));
 
-    UsdGeomXformable(curvesA).AddTranslateOp().Set(GfVec3d(0, 3, 0));
+    UsdGeomXformable(curvesA).AddTranslateOp().Set(GfVec3d(0, 0.5, 0));
     Frame translated = recorder.render();
     expectOnlyA(translated, "transform");
     EXPECT_NE(translated.color, wider.color);

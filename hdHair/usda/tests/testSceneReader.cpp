@@ -805,3 +805,17 @@ TEST(SceneReader, ReadSceneFileOpensAndReads) {
     Diagnostics diagnostics;
     EXPECT_THROW(readSceneFile("/nonexistent/hair.usda", 0.0, scene, diagnostics), InputError);
 }
+
+TEST(SceneReader, UnauthoredLightInputsTakeTheUsdLuxFallbacks) {
+    auto r = read(R"(
+def DistantLight "sun"
+{
+}
+def SphereLight "bulb"
+{
+}
+)");
+    EXPECT_FLOAT_EQ(r->scene.lights().at("/sun").prim->intensity, 50000.0f);
+    EXPECT_FLOAT_EQ(r->scene.lights().at("/bulb").prim->intensity, 1.0f);
+    EXPECT_FLOAT_EQ(r->scene.lights().at("/bulb").prim->exposure, 0.0f);
+}
