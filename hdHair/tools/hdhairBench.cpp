@@ -60,12 +60,16 @@ struct BenchStage {
     std::vector<LightPrim> stageLights;             // as authored, for the light-count benchmarks
 };
 
-// Replaces the stage's lights with `count` distant lights of equal total
-// irradiance, spread around the camera's hemisphere.
+constexpr int kStageLights = -1;  // the stage's own lights, as authored
+
+// Gives the stage `count` distant lights of equal total irradiance, spread
+// around the camera's hemisphere, or (kStageLights) its own lights back.
 void setLightCount(BenchStage& stage, int count) {
     std::vector<std::string> paths;
     for (const auto& [path, entry] : stage.scene.lights()) paths.push_back(path);
     for (const std::string& path : paths) stage.scene.remove(path);
+    if (count == kStageLights)
+        for (const LightPrim& light : stage.stageLights) stage.scene.setLight(light);
     for (int i = 0; i < count; ++i) {
         LightPrim light;
         light.path = "/BenchLights/light" + std::to_string(i);
@@ -104,6 +108,24 @@ struct ShadingConfiguration {
     Configuration configuration;
     int lights;
 };
+
+std::string frameName(const BenchStage& stage, const Configuration& configuration);
+
+// A frame benchmark: the stage with `lights` (or kStageLights) under a configuration.
+void registerFrame(BenchStage* stage, const Configuration& configuration, int lights) {
+    benchmark::RegisterBenchmark(frameName(*stage, configuration).c_str(),
+                                 [stage, configuration, lights](benchmark::State& state) {
+                                     setLightCount(*stage, lights);
+                                     RenderSettings settings = settingsFor(configuration);
+                                     Diagnostics diagnostics;
+                                     for (auto _ : state)
+                                         benchmark::DoNotOptimize(
+                                             renderer()->render(stage->scene, stage->camera, settings, diagnostics)
+                                                 .color.pixels.data());
+                                 })
+        ->Unit(benchmark::kMillisecond)
+        ->UseRealTime();
+}
 
 std::vector<ShadingConfiguration> shadingConfigurations() {
     std::vector<ShadingConfiguration> result;
@@ -197,6 +219,7 @@ int main(int argc, char** argv) {
                                 ? cameraViewFromPrim(*camera->second.prim, imageWidth)
                                 : frameBounds(bounds.min, bounds.max, stage->scene.info().upAxis, imageWidth,
                                               FramingStyle::FitAll);
+            for (const auto& [lightPath, entry] : stage->scene.lights()) stage->stageLights.push_back(*entry.prim);
             for (const auto& [curvesPath, entry] : stage->scene.curves()) {
                 PreparedCurves prepared = prepareCurves(*entry.prim, diagnostics);
                 stage->controlPoints.insert(stage->controlPoints.end(), prepared.controlPoints.begin(),
@@ -238,44 +261,18 @@ int main(int argc, char** argv) {
         std::vector<Configuration> frames;
         if (complexityTable) frames.insert(frames.end(), complexities.begin(), complexities.end());
         if (transparencyTable) frames.insert(frames.end(), transparencies.begin(), transparencies.end());
-        for (const Configuration& configuration : frames) {
-            benchmark::RegisterBenchmark(frameName(*stage, configuration).c_str(),
-                                         [stage, configuration](benchmark::State& state) {
-                                             RenderSettings settings = settingsFor(configuration);
-                                             Diagnostics diagnostics;
-                                             for (auto _ : state)
-                                                 benchmark::DoNotOptimize(renderer()
-                                                                              ->render(stage->scene, stage->camera,
-                                                                                       settings, diagnostics)
-                                                                              .color.pixels.data());
-                                         })
-                ->Unit(benchmark::kMillisecond)
-                ->UseRealTime();
-        }
+        for (const Configuration& configuration : frames) registerFrame(stage, configuration, kStageLights);
     }
     for (const auto& stagePointer : stages) {
-        BenchStage* stage = stagePointer.get();
         if (!shadingTable) break;
-        for (const ShadingConfiguration& shading : shadings) {
-            benchmark::RegisterBenchmark(frameName(*stage, shading.configuration).c_str(),
-                                         [stage, shading](benchmark::State& state) {
-                                             setLightCount(*stage, shading.lights);
-                                             RenderSettings settings = settingsFor(shading.configuration);
-                                             Diagnostics diagnostics;
-                                             for (auto _ : state)
-                                                 benchmark::DoNotOptimize(renderer()
-                                                                              ->render(stage->scene, stage->camera,
-                                                                                       settings, diagnostics)
-                                                                              .color.pixels.data());
-                                         })
-                ->Unit(benchmark::kMillisecond)
-                ->UseRealTime();
-        }
+        for (const ShadingConfiguration& shading : shadings)
+            registerFrame(stagePointer.get(), shading.configuration, shading.lights);
     }
     RecordingReporter reporter;
     benchmark::RunSpecifiedBenchmarks(&reporter);
 
     for (const auto& stage : stages) {
+        setLightCount(*stage, kStageLights);
         if (complexityTable) printTable(*stage, complexities, 3, 0, reporter, "Complexity");
         if (transparencyTable) {
             printTable(*stage, transparencies, transparencies.size() - 1, 0, reporter, "Transparency");
