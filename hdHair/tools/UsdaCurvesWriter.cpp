@@ -459,11 +459,11 @@ void writeFileAtomically(const std::string& path, const std::string& text) {
     }
 }
 
-HairStrands subsampleStrands(const HairStrands& strands, size_t maxStrands) {
-    const size_t n = strands.strandCount();
-    if (maxStrands >= n || maxStrands == 0) return strands;
-    std::vector<size_t> firstPoint(n + 1, 0);
-    for (size_t s = 0; s < n; ++s) firstPoint[s + 1] = firstPoint[s] + static_cast<size_t>(strands.vertexCounts[s]);
+namespace {
+
+// The asset's header values (defaults, name) with no strands: what the
+// subsampling and follow-strand passes fill anew.
+HairStrands withoutStrands(const HairStrands& strands) {
     HairStrands out = strands;
     out.vertexCounts.clear();
     out.points.clear();
@@ -471,6 +471,17 @@ HairStrands subsampleStrands(const HairStrands& strands, size_t maxStrands) {
     out.colors.clear();
     out.opacities.clear();
     out.strandThickness.clear();
+    return out;
+}
+
+}  // namespace
+
+HairStrands subsampleStrands(const HairStrands& strands, size_t maxStrands) {
+    const size_t n = strands.strandCount();
+    if (maxStrands >= n || maxStrands == 0) return strands;
+    std::vector<size_t> firstPoint(n + 1, 0);
+    for (size_t s = 0; s < n; ++s) firstPoint[s + 1] = firstPoint[s] + static_cast<size_t>(strands.vertexCounts[s]);
+    HairStrands out = withoutStrands(strands);
     for (size_t i = 0; i < maxStrands; ++i) {
         const size_t s = i * n / maxStrands;
         out.vertexCounts.push_back(strands.vertexCounts[s]);
@@ -496,13 +507,7 @@ HairStrands addFollowStrands(const HairStrands& strands, const FollowOptions& op
         throw std::invalid_argument("the follow tip separation must be a number >= 0");
     if (options.perGuide == 0) return strands;
     const size_t copies = static_cast<size_t>(options.perGuide) + 1;
-    HairStrands out = strands;
-    out.vertexCounts.clear();
-    out.points.clear();
-    out.widths.clear();
-    out.colors.clear();
-    out.opacities.clear();
-    out.strandThickness.clear();
+    HairStrands out = withoutStrands(strands);
     out.vertexCounts.reserve(strands.strandCount() * copies);
     out.points.reserve(strands.pointCount() * copies);
     size_t first = 0;
