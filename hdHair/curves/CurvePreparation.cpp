@@ -150,6 +150,15 @@ void primvarSpanControls(const ResolvedPrimvar& primvar, const CurveTopology& to
     }
 }
 
+// True when every element is the same (a per-curve or per-vertex primvar
+// authored with one value everywhere is as good as a constant one).
+bool allElementsEqual(const ResolvedPrimvar& primvar) {
+    const size_t count = primvar.elementCount(), tuple = static_cast<size_t>(primvar.tupleSize);
+    for (size_t e = 1; e < count; ++e)
+        if (!std::equal(primvar.element(e), primvar.element(e) + tuple, primvar.element(0))) return false;
+    return true;
+}
+
 // A Catmull-Rom span lies inside the convex hull of its Bezier controls
 // B0 = C1, B1 = C1 + (C2-C0)/6, B2 = C2 - (C3-C1)/6, B3 = C2 (its own
 // controls do not bound it: CR weights go negative). The same holds for the
@@ -168,7 +177,8 @@ void growBoundsBySpan(const StrandControlPoint* c, glm::vec3& lo, glm::vec3& hi)
 
 }  // namespace
 
-PreparedCurves prepareCurves(const CurvesPrim& prim, Diagnostics& diagnostics) {
+PreparedCurves prepareCurves(const CurvesPrim& prim, Diagnostics& diagnostics,
+                             const std::vector<ShadingPrimvarRequest>& shadingPrimvars) {
     PreparedCurves result;
     result.path = prim.path;
     constexpr float kHuge = std::numeric_limits<float>::max();
@@ -189,6 +199,18 @@ PreparedCurves prepareCurves(const CurvesPrim& prim, Diagnostics& diagnostics) {
     const ResolvedPrimvar colors = resolvePrimvar(prim, topology, "displayColor", kFallbackDisplayColor, diagnostics);
     const ResolvedPrimvar opacities =
         resolvePrimvar(prim, topology, opacityPrimvarName(prim), kFallbackDisplayOpacity, diagnostics);
+    std::vector<ResolvedPrimvar> shading;  // parallel to result.shadingPrimvars
+    for (const ShadingPrimvarRequest& request : shadingPrimvars) {
+        if (!prim.findPrimvar(request.name)) continue;
+        ResolvedPrimvar resolved = resolvePrimvar(prim, topology, request.name, request.fallback, diagnostics);
+        PreparedShadingPrimvar prepared;
+        prepared.name = request.name;
+        prepared.tupleSize = resolved.tupleSize;
+        prepared.varying = !allElementsEqual(resolved);
+        if (!prepared.varying) prepared.values.assign(resolved.element(0), resolved.element(0) + resolved.tupleSize);
+        result.shadingPrimvars.push_back(std::move(prepared));
+        shading.push_back(std::move(resolved));
+    }
 
     // Where each kept curve's segments go: an exclusive prefix sum.
     std::vector<size_t> firstSegment(curveCount + 1, 0);
@@ -201,6 +223,8 @@ PreparedCurves prepareCurves(const CurvesPrim& prim, Diagnostics& diagnostics) {
     if (segmentTotal == 0) return result;
     result.controlPoints.resize(4 * segmentTotal);
     result.segmentCurve.resize(segmentTotal);
+    for (PreparedShadingPrimvar& primvar : result.shadingPrimvars)
+        if (primvar.varying) primvar.values.resize(4 * segmentTotal * static_cast<size_t>(primvar.tupleSize));
 
     // Widths are object-space diameters (HdSt scales them by the transform).
     // A non-uniform scale stretches a round tube into an elliptical one, which
@@ -240,6 +264,12 @@ PreparedCurves prepareCurves(const CurvesPrim& prim, Diagnostics& diagnostics) {
                     controls[r].width = widthValues[r] * widthScale;
                     controls[r].color = glm::vec3(colorValues[3 * r], colorValues[3 * r + 1], colorValues[3 * r + 2]);
                     controls[r].opacity = opacityValues[r];
+                }
+                for (size_t k = 0; k < shading.size(); ++k) {
+                    PreparedShadingPrimvar& primvar = result.shadingPrimvars[k];
+                    if (primvar.varying)
+                        primvarSpanControls(shading[k], topology, stencil, i, s,
+                                            &primvar.values[4 * segment * static_cast<size_t>(primvar.tupleSize)]);
                 }
                 growBoundsBySpan(controls, curveMin[i], curveMax[i]);
             }

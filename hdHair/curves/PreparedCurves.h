@@ -10,6 +10,7 @@
 //  - uniform and constant primvars repeat one value four times.
 // Positions are in world space; widths are world-space diameters.
 
+#include <cstddef>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -29,13 +30,42 @@ struct StrandControlPoint {
 };
 static_assert(sizeof(StrandControlPoint) == 32, "tightly packed for the GPU");
 
+// A primvar the renderer asks prepareCurves to carry besides the colours
+// (hair parameters: hdHair/render/HairMaterial.h), with the value an
+// authored but unusable primvar falls back to (one element).
+struct ShadingPrimvarRequest {
+    std::string name;  // e.g. "hdHair:melanin"
+    std::vector<float> fallback;
+};
+
+// A requested primvar as authored on the prim, resolved like the colours.
+// Constant when all its values are equal (`values` then holds one element),
+// else varying: one element per control point, 4 a segment, following the
+// same interpolation rules as displayColor.
+struct PreparedShadingPrimvar {
+    std::string name;
+    int tupleSize = 1;
+    bool varying = false;
+    std::vector<float> values;
+
+    const float* at(size_t controlPoint) const {
+        return values.data() + (varying ? controlPoint : 0) * static_cast<size_t>(tupleSize);
+    }
+};
+
 struct PreparedCurves {
     std::string path;
     std::vector<StrandControlPoint> controlPoints;  // 4 per segment
     std::vector<uint32_t> segmentCurve;             // per segment: index of its curve in the prim
     uint32_t curveCount = 0;                        // curves kept (after dropping bad ones)
     glm::vec3 boundsMin{0.0f}, boundsMax{0.0f};     // world space, widths included; min > max when empty
+    std::vector<PreparedShadingPrimvar> shadingPrimvars;  // the requested ones that are authored
 
+    const PreparedShadingPrimvar* findShadingPrimvar(const std::string& name) const {
+        for (const PreparedShadingPrimvar& primvar : shadingPrimvars)
+            if (primvar.name == name) return &primvar;
+        return nullptr;
+    }
     size_t segmentCount() const { return segmentCurve.size(); }
     bool empty() const { return segmentCurve.empty(); }
 };
@@ -45,9 +75,11 @@ struct PreparedCurves {
 std::string opacityPrimvarName(const CurvesPrim& prim);
 
 // Validates, resolves every primvar (hdHair/curves/PrimvarResolution.h),
-// changes basis to Catmull-Rom and transforms to world space. Never throws for
-// bad data: each repair is reported to `diagnostics`, naming the prim and the
-// attribute. Thread-safe for distinct prims (Hydra syncs prims in parallel).
-PreparedCurves prepareCurves(const CurvesPrim& prim, Diagnostics& diagnostics);
+// changes basis to Catmull-Rom and transforms to world space, carrying the
+// `shadingPrimvars` the prim authors. Never throws for bad data: each repair
+// is reported to `diagnostics`, naming the prim and the attribute.
+// Thread-safe for distinct prims (Hydra syncs prims in parallel).
+PreparedCurves prepareCurves(const CurvesPrim& prim, Diagnostics& diagnostics,
+                             const std::vector<ShadingPrimvarRequest>& shadingPrimvars = {});
 
 }  // namespace hdhair

@@ -424,3 +424,37 @@ TEST(CurvePreparation, OpacityComesFromPrimvarsOpacityWhenDisplayOpacityIsAbsent
     EXPECT_FLOAT_EQ(prepareCurves(prim, diagnostics).controlPoints[1].opacity, 0.75f);
     EXPECT_TRUE(diagnostics.warnings().empty());
 }
+
+TEST(CurvePreparation, RequestedShadingPrimvarsTravelWithTheControlPointsLikeColours) {
+    const std::vector<ShadingPrimvarRequest> requests{{"hdHair:tint", {0.0f, 0.0f, 0.0f}},
+                                                      {"hdHair:unauthored", {1.0f}},
+                                                      {"hdHair:constant", {1.0f}}};
+    for (CurveBasis basis : {CurveBasis::Bezier, CurveBasis::Bspline, CurveBasis::CatmullRom}) {
+        for (CurveWrap wrap : {CurveWrap::Nonperiodic, CurveWrap::Periodic, CurveWrap::Pinned}) {
+            if (basis == CurveBasis::Bezier && wrap == CurveWrap::Pinned) continue;
+            std::vector<int> counts{7, 10};
+            if (basis == CurveBasis::Bezier && wrap == CurveWrap::Periodic) counts = {6, 9};
+            CurvesPrim prim = randomPrim(CurveType::Cubic, basis, wrap, counts, 11);
+            const size_t vertices = prim.points.size();
+            std::vector<float> tint = randomValues(3 * vertices, 0.0f, 1.0f, 5);
+            prim.primvars["displayColor"] = makePrimvar("displayColor", 3, Interpolation::Vertex, tint);
+            prim.primvars["hdHair:tint"] = makePrimvar("hdHair:tint", 3, Interpolation::Vertex, tint);
+            prim.primvars["hdHair:constant"] = makePrimvar("hdHair:constant", 1, Interpolation::Uniform, {2.0f, 2.0f});
+            Diagnostics diagnostics;
+            const PreparedCurves prepared = prepareCurves(prim, diagnostics, requests);
+            ASSERT_EQ(prepared.shadingPrimvars.size(), 2u) << "only authored primvars are carried";
+            EXPECT_EQ(prepared.findShadingPrimvar("hdHair:unauthored"), nullptr);
+            const PreparedShadingPrimvar* constant = prepared.findShadingPrimvar("hdHair:constant");
+            ASSERT_NE(constant, nullptr);
+            EXPECT_FALSE(constant->varying) << "equal per-curve values are one value";
+            EXPECT_EQ(constant->values, std::vector<float>{2.0f});
+            const PreparedShadingPrimvar* carried = prepared.findShadingPrimvar("hdHair:tint");
+            ASSERT_NE(carried, nullptr);
+            ASSERT_TRUE(carried->varying);
+            ASSERT_EQ(carried->values.size(), 3 * prepared.controlPoints.size());
+            for (size_t k = 0; k < prepared.controlPoints.size(); ++k)
+                EXPECT_EQ(glm::make_vec3(carried->at(k)), prepared.controlPoints[k].color) << k;
+            EXPECT_TRUE(diagnostics.warnings().empty());
+        }
+    }
+}
