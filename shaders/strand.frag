@@ -7,13 +7,16 @@
 #include "include/lights.glsl"
 #include "include/kajiyaKay.glsl"
 #include "include/marschner.glsl"
+#include "include/marschnerAnalytic.glsl"
+#include "include/catmullRom.glsl"
 #include "include/hairMaterials.glsl"
 #include "include/strandShading.glsl"
 
 layout(location = 0) in vec3 worldPosition;
 layout(location = 1) in vec3 worldTangent;
 layout(location = 2) in vec4 colorAlpha;
-layout(location = 3) flat in ivec3 ids;  // primId, elementId, material
+layout(location = 3) flat in ivec4 ids;  // primId, elementId, material, segment
+layout(location = 4) in float spanU;
 
 layout(location = 0) out vec4 outColor;
 // Picking and selection outputs; the render target binds them only when a
@@ -28,7 +31,7 @@ void main() {
     // The depth-and-ids pass under transparency keeps what a user would pick:
     // strands at least 10% opaque (Storm's default alpha threshold).
     if (frame.drawMode == 2 && colorAlpha.a < 0.1) discard;
-    vec3 radiance = strandRadiance(worldPosition, worldTangent, colorAlpha.rgb, ids.z);
+    vec3 radiance = strandRadiance(worldPosition, worldTangent, colorAlpha.rgb, ids.z, ids.w, spanU);
     if (frame.drawMode == 0) {
         outColor = vec4(radiance, 1.0);
     } else {

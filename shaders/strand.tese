@@ -21,7 +21,8 @@ layout(location = 2) flat in int tcsSegment[];
 layout(location = 0) out vec3 worldPosition;
 layout(location = 1) out vec3 worldTangent;
 layout(location = 2) out vec4 colorAlpha;  // displayColor, opacity x coverage
-layout(location = 3) flat out ivec3 ids;   // primId, elementId, material
+layout(location = 3) flat out ivec4 ids;   // primId, elementId, material, segment
+layout(location = 4) out float spanU;      // where on the span: per-point hair parameters
 
 void main() {
     float u = gl_TessCoord.x, v = gl_TessCoord.y;
@@ -65,6 +66,7 @@ void main() {
     worldTangent = tangent;
     colorAlpha = vec4(max(shade.rgb, vec3(0.0)), opacity);
     int segment = tcsSegment[0];
-    ids = ivec3(segmentPrim[segment], segmentCurve[segment], segmentMaterial[segment]);
+    ids = ivec4(segmentPrim[segment], segmentCurve[segment], segmentMaterial[segment], segment);
+    spanU = u;
     gl_Position = frame.viewProjection * vec4(position, 1.0);
 }

@@ -7,6 +7,8 @@
 #include "include/lights.glsl"
 #include "include/kajiyaKay.glsl"
 #include "include/marschner.glsl"
+#include "include/marschnerAnalytic.glsl"
+#include "include/catmullRom.glsl"
 #include "include/hairMaterials.glsl"
 #include "include/strandShading.glsl"
 #include "include/fragmentLists.glsl"
@@ -16,14 +18,15 @@ layout(early_fragment_tests) in;
 layout(location = 0) in vec3 worldPosition;
 layout(location = 1) in vec3 worldTangent;
 layout(location = 2) in vec4 colorAlpha;
-layout(location = 3) flat in ivec3 ids;  // primId, elementId, material
+layout(location = 3) flat in ivec4 ids;  // primId, elementId, material, segment
+layout(location = 4) in float spanU;
 
 layout(r32ui, binding = 0) uniform coherent uimage2D listHeads;
 
 void main() {
     float alpha = colorAlpha.a;
     if (alpha <= 0.0) return;
-    vec3 radiance = strandRadiance(worldPosition, worldTangent, colorAlpha.rgb, ids.z);
+    vec3 radiance = strandRadiance(worldPosition, worldTangent, colorAlpha.rgb, ids.z, ids.w, spanU);
     uint index = atomicAdd(fragmentCount, 1u);
     if (index >= capacity) return;  // over budget: the CPU sees the count and falls back
     uint previous = imageAtomicExchange(listHeads, ivec2(gl_FragCoord.xy), index);

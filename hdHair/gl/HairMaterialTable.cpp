@@ -6,10 +6,11 @@ namespace hdhair::gl {
 
 HairMaterialTable::HairMaterialTable() {
     // Shaders always declare the tables: start with two empty layers.
-    update({GpuHairMaterial{}}, {}, 1, 1);
+    update({GpuHairMaterial{}}, {}, {}, 1, 1);
 }
 
 void HairMaterialTable::update(const std::vector<GpuHairMaterial>& materials,
+                               const std::vector<glm::vec4>& parameterPoints,
                                const std::vector<const std::vector<uint16_t>*>& tableTexels, int width, int height) {
     size_t count = std::max<size_t>(materials.size(), 1);
     if (count > materialCapacity_) {
@@ -19,6 +20,16 @@ void HairMaterialTable::update(const std::vector<GpuHairMaterial>& materials,
     if (!materials.empty())
         glNamedBufferSubData(materials_.get(), 0, GLsizeiptr(materials.size() * sizeof(GpuHairMaterial)),
                              materials.data());
+
+    // Always a buffer at binding 9, even when no prim has per-point parameters.
+    size_t points = std::max<size_t>(parameterPoints.size(), 2);
+    if (points > parameterPointCapacity_) {
+        parameterPointCapacity_ = points;
+        parameterPoints_ = createBuffer(nullptr, points * sizeof(glm::vec4), GL_DYNAMIC_STORAGE_BIT);
+    }
+    if (!parameterPoints.empty())
+        glNamedBufferSubData(parameterPoints_.get(), 0, GLsizeiptr(parameterPoints.size() * sizeof(glm::vec4)),
+                             parameterPoints.data());
 
     GLuint name = 0;
     glCreateTextures(GL_TEXTURE_2D_ARRAY, 1, &name);
@@ -40,6 +51,7 @@ void HairMaterialTable::update(const std::vector<GpuHairMaterial>& materials,
 
 void HairMaterialTable::bind() const {
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 8, materials_.get());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 9, parameterPoints_.get());
     glBindTextureUnit(1, tables_.get());
 }
 

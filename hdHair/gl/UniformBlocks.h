@@ -40,11 +40,18 @@ static_assert(sizeof(LightUniforms) == 16 * 4 * kMaxLightsPerPass + 32, "std140 
 
 // One element of the HairMaterials storage buffer (shaders/include/hairMaterials.glsl).
 struct GpuHairMaterial {
-    glm::ivec4 modelAndLayer{1, 0, 0, 0};  // model (0 flat, 1 Kajiya-Kay, 2 Marschner), first table layer
-    glm::vec4 kajiyaKay{0.0f};             // Kd, Ks, p
-    glm::vec4 alpha{0.0f};                 // Marschner alpha_R, alpha_TT, alpha_TRT
-    glm::vec4 beta{0.0f};                  // Marschner beta_R, beta_TT, beta_TRT
+    // x: model (0 flat, 1 Kajiya-Kay, 2 Marschner); y: first table layer;
+    // z: flags (kHairMaterialPerPoint, kHairMaterialAnalytic); w: first per-point record.
+    glm::ivec4 modelAndLayer{1, 0, 0, 0};
+    glm::ivec4 segments{0};               // x: the prim's first segment (per-point materials)
+    glm::vec4 kajiyaKay{0.0f};            // Kd, Ks, p
+    glm::vec4 alphaEta{0.0f};             // Marschner alpha_R, alpha_TT, alpha_TRT; eta
+    glm::vec4 betaGlint{0.0f};            // Marschner beta_R, beta_TT, beta_TRT; glint scale k_G
+    glm::vec4 sigmaA{0.0f};               // Marschner sigma_a; caustic width w_c
+    glm::vec4 caustic{0.0f};              // caustic fade, caustic limit
 };
-static_assert(sizeof(GpuHairMaterial) == 64, "std430 layout of HairMaterial");
+static_assert(sizeof(GpuHairMaterial) == 112, "std430 layout of HairMaterial");
+constexpr int kHairMaterialPerPoint = 1;  // HAIR_MATERIAL_PER_POINT
+constexpr int kHairMaterialAnalytic = 2;  // HAIR_MATERIAL_ANALYTIC
 
 }  // namespace hdhair::gl

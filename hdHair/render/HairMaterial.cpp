@@ -1,9 +1,11 @@
 #include "hdHair/render/HairMaterial.h"
 
-#include <cmath>
+#include <algorithm>
+#include <cstddef>
 #include <optional>
 
 #include <fmt/format.h>
+#include <glm/common.hpp>
 
 #include "hdHair/base/Diagnostics.h"
 #include "hdHair/render/RenderSettings.h"
@@ -30,10 +32,17 @@ bool HairMaterial::operator==(const HairMaterial& other) const {
     return model == other.model && kajiyaKay.diffuse == other.kajiyaKay.diffuse &&
            kajiyaKay.specular == other.kajiyaKay.specular && kajiyaKay.shininess == other.kajiyaKay.shininess &&
            marschner.alpha == other.marschner.alpha && marschner.beta == other.marschner.beta &&
-           sharesTablesWith(other);
+           sharesTablesWith(other) && varies == other.varies && analyticAzimuthal == other.analyticAzimuthal &&
+           perPointPrim == other.perPointPrim;
 }
 
 namespace {
+
+// Schema defaults (schemas/HdHairAPI/schema.usda), in the primvars' units.
+constexpr float kDefaultMelanin = 0.3f;
+constexpr float kDefaultShiftDegrees = -7.5f;  // Marschner 2003 Table 1
+constexpr float kDefaultWidthDegrees = 7.5f;
+constexpr float kDefaultEta = 1.55f;
 
 bool parseModel(const std::string& token, ShadingModel* model) {
     if (token == "flat") *model = ShadingModel::Flat;
@@ -43,38 +52,141 @@ bool parseModel(const std::string& token, ShadingModel* model) {
     return true;
 }
 
-// The prim's value of a numeric hdHair primvar: its single value, or the mean
-// of per-curve/per-vertex values (with a warning: per prim for now).
-std::optional<std::vector<float>> primValue(const CurvesPrim& prim, const std::string& name, int tupleSize,
-                                            Diagnostics& diagnostics) {
-    const Primvar* primvar = prim.findPrimvar(name);
-    if (!primvar || primvar->values.empty()) return std::nullopt;
-    if (primvar->tupleSize != tupleSize) {
-        diagnostics.warn(prim.path + ".primvars:" + name,
-                         fmt::format("expected {} component(s) a value, found {}; ignored", tupleSize,
-                                     primvar->tupleSize));
-        return std::nullopt;
+// The hair parameters at one place: the whole prim (where a primvar varies,
+// the mean of its control-point values) or one control point.
+class HairParameterSource {
+public:
+    HairParameterSource(const CurvesPrim& prim, const PreparedCurves& prepared, std::optional<size_t> point)
+        : prim_(prim), prepared_(prepared), point_(point) {}
+
+    bool authored(const std::string& name) const { return prepared_.findShadingPrimvar(name) != nullptr; }
+    bool varies(const std::string& name) const {
+        const PreparedShadingPrimvar* primvar = prepared_.findShadingPrimvar(name);
+        return primvar && primvar->varying;
     }
-    size_t count = primvar->elementCount();
-    std::vector<float> mean(size_t(tupleSize), 0.0f);
-    for (size_t e = 0; e < count; ++e)
-        for (int c = 0; c < tupleSize; ++c) mean[size_t(c)] += primvar->values[e * size_t(tupleSize) + size_t(c)];
-    for (float& value : mean) value /= float(count);
-    for (float value : mean)
-        if (!std::isfinite(value)) {
-            diagnostics.warn(prim.path + ".primvars:" + name, "not finite; ignored");
-            return std::nullopt;
+    std::optional<float> scalar(const std::string& name) const {
+        std::optional<glm::vec4> value = tuple(name);
+        return value ? std::optional<float>(value->x) : std::nullopt;
+    }
+    std::optional<glm::vec3> vector3(const std::string& name) const {
+        std::optional<glm::vec4> value = tuple(name);
+        return value ? std::optional<glm::vec3>(glm::vec3(*value)) : std::nullopt;
+    }
+
+    // displayColor, when the prim authors it (hair colour as absorption's source).
+    bool colorAuthored() const { return prim_.findPrimvar("displayColor") != nullptr; }
+    bool colorVaries() const {
+        const std::vector<StrandControlPoint>& points = prepared_.controlPoints;
+        return std::any_of(points.begin(), points.end(),
+                           [&](const StrandControlPoint& p) { return p.color != points.front().color; });
+    }
+    glm::vec3 color() const {
+        const std::vector<StrandControlPoint>& points = prepared_.controlPoints;
+        if (points.empty()) return glm::vec3(0.5f);
+        if (point_) return points[*point_].color;
+        glm::dvec3 sum(0.0);
+        for (const StrandControlPoint& p : points) sum += glm::dvec3(p.color);
+        return glm::vec3(sum / double(points.size()));
+    }
+
+private:
+    std::optional<glm::vec4> tuple(const std::string& name) const {
+        const PreparedShadingPrimvar* primvar = prepared_.findShadingPrimvar(name);
+        if (!primvar) return std::nullopt;
+        const size_t tupleSize = size_t(std::min(primvar->tupleSize, 4));
+        glm::vec4 value(0.0f);
+        if (!primvar->varying || point_) {
+            const float* element = primvar->at(point_.value_or(0));
+            for (size_t c = 0; c < tupleSize; ++c) value[int(c)] = element[c];
+            return value;
         }
-    if (count > 1 && name.rfind("hdHair:", 0) == 0)
-        diagnostics.warn(prim.path + ".primvars:" + name,
-                         fmt::format("{} values: hair parameters are per prim in this release; using their mean",
-                                     count));
-    return mean;
+        const size_t count = prepared_.controlPoints.size();
+        if (count == 0) return std::nullopt;
+        glm::dvec4 sum(0.0);
+        for (size_t k = 0; k < count; ++k)
+            for (size_t c = 0; c < tupleSize; ++c) sum[int(c)] += primvar->at(k)[c];
+        return glm::vec4(sum / double(count));
+    }
+
+    const CurvesPrim& prim_;
+    const PreparedCurves& prepared_;
+    std::optional<size_t> point_;
+};
+
+// Overrides the parameters the source authors; the rest keep their values.
+void applyHairParameters(const HairParameterSource& at, ShadingModel model, KajiyaKayParameters& kajiyaKay,
+                         MarschnerParameters& marschner) {
+    if (model == ShadingModel::KajiyaKay) {
+        kajiyaKay.diffuse = at.scalar("hdHair:kajiyaKay:diffuse").value_or(kajiyaKay.diffuse);
+        kajiyaKay.specular = at.scalar("hdHair:kajiyaKay:specular").value_or(kajiyaKay.specular);
+        kajiyaKay.shininess = at.scalar("hdHair:kajiyaKay:shininess").value_or(kajiyaKay.shininess);
+    }
+    if (model != ShadingModel::Marschner) return;
+    // Marschner et al. 2003, Table 1 relations between the lobes.
+    std::optional<float> shift = at.scalar("hdHair:longitudinalShift");
+    std::optional<float> width = at.scalar("hdHair:longitudinalWidth");
+    if (shift || width) {
+        MarschnerParameters lobes =
+            marschnerParametersFromR(shift ? *shift * kMarschnerDegrees : marschner.alpha.x,
+                                     width ? *width * kMarschnerDegrees : marschner.beta.x);
+        marschner.alpha = lobes.alpha;
+        marschner.beta = lobes.beta;
+    }
+    marschner.eta = at.scalar("hdHair:eta").value_or(marschner.eta);
+    if (std::optional<glm::vec3> absorption = at.vector3("hdHair:absorption")) {
+        // Not clamped here: control points outside a curve (a linear span's
+        // 2a - b) may be negative so that interpolation stays linear; the
+        // model counts σ_a < 0 as 0 where it evaluates.
+        marschner.sigmaA = *absorption;
+    } else if (at.authored("hdHair:melanin")) {
+        marschner.sigmaA = marschnerSigmaAFromMelanin(at.scalar("hdHair:melanin").value_or(kDefaultMelanin),
+                                                      at.scalar("hdHair:melaninRedness").value_or(0.0f));
+    } else if (at.colorAuthored()) {
+        marschner.sigmaA = marschnerSigmaAFromColor(glm::clamp(at.color(), glm::vec3(1e-3f), glm::vec3(1.0f)));
+    }
+}
+
+// Which of the model's parameters vary over the prim.
+unsigned variationOf(const HairParameterSource& prim, ShadingModel model) {
+    unsigned varies = kNothingVaries;
+    if (model == ShadingModel::KajiyaKay &&
+        (prim.varies("hdHair:kajiyaKay:diffuse") || prim.varies("hdHair:kajiyaKay:specular") ||
+         prim.varies("hdHair:kajiyaKay:shininess")))
+        varies |= kKajiyaKayVaries;
+    if (model != ShadingModel::Marschner) return varies;
+    if (prim.varies("hdHair:longitudinalShift") || prim.varies("hdHair:longitudinalWidth"))
+        varies |= kLongitudinalVaries;
+    if (prim.varies("hdHair:eta")) varies |= kEtaVaries;
+    bool absorptionVaries;
+    if (prim.authored("hdHair:absorption"))
+        absorptionVaries = prim.varies("hdHair:absorption");
+    else if (prim.authored("hdHair:melanin"))
+        absorptionVaries = prim.varies("hdHair:melanin") || prim.varies("hdHair:melaninRedness");
+    else
+        absorptionVaries = prim.colorAuthored() && prim.colorVaries();
+    if (absorptionVaries) varies |= kAbsorptionVaries;
+    return varies;
 }
 
 }  // namespace
 
-HairMaterial hairMaterialFor(const CurvesPrim& prim, const RenderSettings& settings, Diagnostics& diagnostics) {
+const std::vector<ShadingPrimvarRequest>& hairParameterPrimvars() {
+    static const std::vector<ShadingPrimvarRequest> requests{
+        {"hdHair:melanin", {kDefaultMelanin}},
+        {"hdHair:melaninRedness", {0.0f}},
+        {"hdHair:absorption", {0.0f, 0.0f, 0.0f}},  // an unusable absorption means no absorption
+        {"hdHair:eta", {kDefaultEta}},
+        {"hdHair:longitudinalShift", {kDefaultShiftDegrees}},
+        {"hdHair:longitudinalWidth", {kDefaultWidthDegrees}},
+        {"hdHair:kajiyaKay:diffuse", {KajiyaKayParameters{}.diffuse}},
+        {"hdHair:kajiyaKay:specular", {KajiyaKayParameters{}.specular}},
+        {"hdHair:kajiyaKay:shininess", {KajiyaKayParameters{}.shininess}},
+    };
+    return requests;
+}
+
+HairMaterial hairMaterialFor(const CurvesPrim& prim, const PreparedCurves& prepared, const RenderSettings& settings,
+                             Diagnostics& diagnostics) {
     HairMaterial material;
     parseModel(settings.getToken("shadingModel"), &material.model);
     if (!prim.shadingModel.empty() && !parseModel(prim.shadingModel, &material.model))
@@ -82,35 +194,43 @@ HairMaterial hairMaterialFor(const CurvesPrim& prim, const RenderSettings& setti
                          fmt::format("unknown shading model '{}' (kajiyaKay, marschner or flat); using {}",
                                      prim.shadingModel, toString(material.model)));
 
-    auto scalar = [&](const std::string& name, float fallback) {
-        std::optional<std::vector<float>> value = primValue(prim, name, 1, diagnostics);
-        return value ? (*value)[0] : fallback;
-    };
-    material.kajiyaKay.diffuse = scalar("hdHair:kajiyaKay:diffuse", float(settings.getFloat("kajiyaKay:diffuse")));
-    material.kajiyaKay.specular = scalar("hdHair:kajiyaKay:specular", float(settings.getFloat("kajiyaKay:specular")));
-    material.kajiyaKay.shininess =
-        scalar("hdHair:kajiyaKay:shininess", float(settings.getFloat("kajiyaKay:shininess")));
-
+    material.kajiyaKay.diffuse = float(settings.getFloat("kajiyaKay:diffuse"));
+    material.kajiyaKay.specular = float(settings.getFloat("kajiyaKay:specular"));
+    material.kajiyaKay.shininess = float(settings.getFloat("kajiyaKay:shininess"));
     if (material.model == ShadingModel::Marschner) {
-        // Marschner et al. 2003, Table 1 relations between the lobes.
-        float alphaR = scalar("hdHair:longitudinalShift", -7.5f) * kMarschnerDegrees;
-        float betaR = scalar("hdHair:longitudinalWidth", 7.5f) * kMarschnerDegrees;
-        material.marschner = marschnerParametersFromR(alphaR, betaR);
-        material.marschner.eta = scalar("hdHair:eta", 1.55f);
-        if (auto absorption = primValue(prim, "hdHair:absorption", 3, diagnostics)) {
-            material.marschner.sigmaA = glm::max(glm::vec3((*absorption)[0], (*absorption)[1], (*absorption)[2]),
-                                                 glm::vec3(0.0f));
-        } else if (prim.findPrimvar("hdHair:melanin")) {
-            material.marschner.sigmaA =
-                marschnerSigmaAFromMelanin(scalar("hdHair:melanin", 0.3f), scalar("hdHair:melaninRedness", 0.0f));
-        } else if (auto color = primValue(prim, "displayColor", 3, diagnostics)) {
-            material.marschner.sigmaA = marschnerSigmaAFromColor(
-                glm::clamp(glm::vec3((*color)[0], (*color)[1], (*color)[2]), glm::vec3(1e-3f), glm::vec3(1.0f)));
-        } else {
-            material.marschner.sigmaA = marschnerSigmaAFromMelanin(0.3f, 0.0f);
+        material.marschner = marschnerParametersFromR(kDefaultShiftDegrees * kMarschnerDegrees,
+                                                      kDefaultWidthDegrees * kMarschnerDegrees);
+        material.marschner.eta = kDefaultEta;
+        material.marschner.sigmaA = marschnerSigmaAFromMelanin(kDefaultMelanin, 0.0f);
+    }
+    const HairParameterSource wholePrim(prim, prepared, std::nullopt);
+    applyHairParameters(wholePrim, material.model, material.kajiyaKay, material.marschner);
+    material.varies = variationOf(wholePrim, material.model);
+    if (material.perPoint()) material.perPointPrim = prim.path;
+    material.analyticAzimuthal = material.model == ShadingModel::Marschner &&
+                                 (settings.getToken("marschner:azimuthal") == "analytic" ||
+                                  (material.varies & (kAbsorptionVaries | kEtaVaries)) != 0);
+    return material;
+}
+
+std::vector<glm::vec4> hairParameterPoints(const HairMaterial& material, const CurvesPrim& prim,
+                                           const PreparedCurves& prepared) {
+    std::vector<glm::vec4> points;
+    if (!material.perPoint()) return points;
+    const size_t count = prepared.controlPoints.size();
+    points.resize(2 * count, glm::vec4(0.0f));
+    for (size_t k = 0; k < count; ++k) {
+        KajiyaKayParameters kajiyaKay = material.kajiyaKay;
+        MarschnerParameters marschner = material.marschner;
+        applyHairParameters(HairParameterSource(prim, prepared, k), material.model, kajiyaKay, marschner);
+        if (material.model == ShadingModel::KajiyaKay) {
+            points[2 * k] = glm::vec4(kajiyaKay.diffuse, kajiyaKay.specular, kajiyaKay.shininess, 0.0f);
+        } else if (material.model == ShadingModel::Marschner) {
+            points[2 * k] = glm::vec4(marschner.sigmaA, marschner.eta);
+            points[2 * k + 1] = glm::vec4(marschner.alpha.x, marschner.beta.x, 0.0f, 0.0f);
         }
     }
-    return material;
+    return points;
 }
 
 }  // namespace hdhair

@@ -109,6 +109,10 @@ RenderPlan makeRenderPlan(const Scene& scene, const RenderSettings& settings, co
 
     PlannedPass strandPass{"strands", strands.segments > 0, ""};
     std::string models = strands.shadingModels.empty() ? std::string("kajiyaKay") : strands.shadingModels;
+    if (strands.perPointPrims > 0)
+        models += fmt::format(" (per-curve/vertex parameters on {} prim(s))", strands.perPointPrims);
+    if (strands.analyticPrims > 0)
+        models += fmt::format(" (Marschner azimuthal terms per fragment on {} prim(s))", strands.analyticPrims);
     std::string shading = plan.flatShading ? "flat displayColor"
                                            : fmt::format("{}, {} light(s){}", models, plan.lights.lights.size(),
                                                          plan.cameraLight ? " incl. the camera light" : "");

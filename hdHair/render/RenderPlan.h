@@ -32,6 +32,8 @@ struct StrandSummary {
     double minProjectedWidthPixels = 0.0;
     bool anyLit = true;          // some prim's material is lit (not flat)
     std::string shadingModels;   // the models in use, e.g. "kajiyaKay+marschner"
+    size_t perPointPrims = 0;    // prims whose hair parameters vary per curve or vertex
+    size_t analyticPrims = 0;    // Marschner prims shaded with per-fragment azimuthal terms
 };
 
 struct PlannedPass {

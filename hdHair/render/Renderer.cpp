@@ -136,7 +136,8 @@ SceneBounds Renderer::prepare(const Scene& scene, Diagnostics& diagnostics) {
         changed.emplace_back(entry.prim.get(), &cached);
     }
     tbb::parallel_for(size_t(0), changed.size(), [&](size_t i) {
-        auto prepared = std::make_shared<PreparedCurves>(prepareCurves(*changed[i].first, diagnostics));
+        auto prepared = std::make_shared<PreparedCurves>(
+            prepareCurves(*changed[i].first, diagnostics, hairParameterPrimvars()));
         CachedCurves& cached = *changed[i].second;
         cached.minSpanWidth = std::numeric_limits<float>::max();
         cached.fullyOpaque = true;
@@ -146,6 +147,8 @@ SceneBounds Renderer::prepare(const Scene& scene, Diagnostics& diagnostics) {
             if (c % 4 == 1 || c % 4 == 2) cached.minSpanWidth = std::min(cached.minSpanWidth, point.width);
         }
         cached.prepared = std::move(prepared);
+        cached.parameterPoints.clear();
+        cached.pointsMaterial = HairMaterial{};
     });
     pendingPrepareMilliseconds_ += millisecondsSince(start);
 
@@ -199,9 +202,10 @@ void Renderer::updateGeometry(const std::vector<VisiblePrim>& visible, const std
     stats.passes.push_back({"upload", millisecondsSince(start)});
 }
 
-void Renderer::updateMaterials(const std::vector<HairMaterial>& materials) {
-    if (materials == uploadedMaterials_) return;
+void Renderer::updateMaterials(const std::vector<HairMaterial>& materials, const std::vector<VisiblePrim>& visible) {
+    if (materials == uploadedMaterials_ && geometryKey_ == materialsGeometryKey_) return;
     std::vector<gl::GpuHairMaterial> gpu;
+    std::vector<glm::vec4> parameterPoints;
     std::vector<const std::vector<uint16_t>*> tables;
     int width = 1, height = 1;
     for (const HairMaterial& material : materials) {
@@ -209,9 +213,13 @@ void Renderer::updateMaterials(const std::vector<HairMaterial>& materials) {
         entry.modelAndLayer = glm::ivec4(int(material.model), 0, 0, 0);
         entry.kajiyaKay = glm::vec4(material.kajiyaKay.diffuse, material.kajiyaKay.specular,
                                     material.kajiyaKay.shininess, 0.0f);
-        if (material.model == ShadingModel::Marschner) {
-            entry.alpha = glm::vec4(material.marschner.alpha, 0.0f);
-            entry.beta = glm::vec4(material.marschner.beta, 0.0f);
+        const MarschnerParameters& marschner = material.marschner;
+        entry.alphaEta = glm::vec4(marschner.alpha, marschner.eta);
+        entry.betaGlint = glm::vec4(marschner.beta, marschner.glintScale);
+        entry.sigmaA = glm::vec4(marschner.sigmaA, marschner.causticWidth);
+        entry.caustic = glm::vec4(marschner.causticFade, marschner.causticLimit, 0.0f, 0.0f);
+        if (material.analyticAzimuthal) entry.modelAndLayer.z |= gl::kHairMaterialAnalytic;
+        if (material.usesTables()) {
             // Tables depend on eta, absorption and glints only: built once per
             // distinct set and kept for later frames.
             auto cached = std::find_if(marschnerTables_.begin(), marschnerTables_.end(),
@@ -229,8 +237,24 @@ void Renderer::updateMaterials(const std::vector<HairMaterial>& materials) {
         }
         gpu.push_back(entry);
     }
-    glThread_->run([&] { materialTable_->update(gpu, tables, width, height); });
+    // Per-point records, prim by prim; a per-point material belongs to one
+    // prim, so it records where that prim's segments and records start.
+    int32_t firstSegment = 0;
+    for (const VisiblePrim& prim : visible) {
+        const HairMaterial& material = materials[size_t(prim.material)];
+        if (material.perPoint()) {
+            gl::GpuHairMaterial& entry = gpu[size_t(prim.material)];
+            entry.modelAndLayer.z |= gl::kHairMaterialPerPoint;
+            entry.modelAndLayer.w = int32_t(parameterPoints.size() / 2);
+            entry.segments.x = firstSegment;
+            const std::vector<glm::vec4>& points = prim.cached->parameterPoints;
+            parameterPoints.insert(parameterPoints.end(), points.begin(), points.end());
+        }
+        firstSegment += int32_t(prim.cached->prepared->segmentCount());
+    }
+    glThread_->run([&] { materialTable_->update(gpu, parameterPoints, tables, width, height); });
     uploadedMaterials_ = materials;
+    materialsGeometryKey_ = geometryKey_;
 }
 
 RenderResult Renderer::render(const Scene& scene, const CameraView& camera, const RenderSettings& settings,
@@ -251,9 +275,15 @@ RenderResult Renderer::render(const Scene& scene, const CameraView& camera, cons
     summary.anyLit = false;
     uint64_t curveCount = 0;
     for (const auto& [path, entry] : scene.curves()) {
-        const CachedCurves& cached = curves_.at(path);
+        CachedCurves& cached = curves_.at(path);
         if (!entry.prim->visible || cached.prepared->empty()) continue;
-        HairMaterial material = hairMaterialFor(*entry.prim, settings, diagnostics);
+        HairMaterial material = hairMaterialFor(*entry.prim, *cached.prepared, settings, diagnostics);
+        if (material.perPoint() && !(material == cached.pointsMaterial)) {
+            cached.parameterPoints = hairParameterPoints(material, *entry.prim, *cached.prepared);
+            cached.pointsMaterial = material;
+        }
+        summary.perPointPrims += material.perPoint() ? 1 : 0;
+        summary.analyticPrims += material.analyticAzimuthal ? 1 : 0;
         auto found = std::find(materials.begin(), materials.end(), material);
         if (found == materials.end()) found = materials.insert(materials.end(), material);
         int materialIndex = int(found - materials.begin());
@@ -271,7 +301,7 @@ RenderResult Renderer::render(const Scene& scene, const CameraView& camera, cons
         curveCount += cached.prepared->curveCount;
     }
     updateGeometry(visible, geometryKey, stats);
-    updateMaterials(materials);
+    updateMaterials(materials, visible);
     result.plan = makeRenderPlan(scene, settings, camera, summary, outputs.ids);
     RenderPlan& plan = result.plan;
 

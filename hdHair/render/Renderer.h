@@ -82,19 +82,24 @@ private:
         std::shared_ptr<const PreparedCurves> prepared;
         float minSpanWidth = 0.0f;  // thinnest width at any span end
         bool fullyOpaque = true;    // every control point's opacity is exactly 1
+        // Per-point hair parameters (hairParameterPoints) and the material they were made for.
+        HairMaterial pointsMaterial;
+        std::vector<glm::vec4> parameterPoints;
     };
 
     struct VisiblePrim {
         int primId;
-        const CachedCurves* cached;
+        CachedCurves* cached;
         int material;  // index into the frame's materials
     };
     // Combines the visible prims into one geometry (when the set, a version
     // or a material assignment changed).
     void updateGeometry(const std::vector<VisiblePrim>& visible, const std::vector<uint64_t>& key, RenderStats& stats);
-    // Uploads the frame's materials and their Marschner tables (built once
-    // per distinct parameter set and kept).
-    void updateMaterials(const std::vector<HairMaterial>& materials);
+    // Uploads the frame's materials, the per-point parameters of prims whose
+    // parameters vary, and the Marschner tables (built once per distinct
+    // parameter set and kept). After updateGeometry: per-point records are
+    // indexed by segment.
+    void updateMaterials(const std::vector<HairMaterial>& materials, const std::vector<VisiblePrim>& visible);
 
     std::unique_ptr<gl::GlRenderThread> glThread_;
     std::unique_ptr<gl::StrandPass> strandPass_;
@@ -102,6 +107,7 @@ private:
     std::unique_ptr<gl::LightBatchAccumulation> lightBatchAccumulation_;
     std::unique_ptr<gl::HairMaterialTable> materialTable_;
     std::vector<HairMaterial> uploadedMaterials_;
+    std::vector<uint64_t> materialsGeometryKey_;  // geometryKey_ when the materials were uploaded
     struct CachedTables {
         HairMaterial material;
         std::vector<uint16_t> halfTexels;

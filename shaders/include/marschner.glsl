@@ -61,30 +61,48 @@ vec3 marschnerSafeNormalize(vec3 v) {
     return (len > 1e-20 && !isinf(len) && !isnan(len)) ? v / len : vec3(0.0);
 }
 
+// The angles of a configuration (Marschner.cpp marschnerAngles): zero vectors
+// count as perpendicular to everything, a direction along t has phi = 0.
+struct MarschnerAngles {
+    float sinThetaI, cosThetaI, sinThetaR, cosThetaR;
+    float phi;  // |phi_r - phi_i| in [0, pi]
+};
+
+MarschnerAngles marschnerAngles(vec3 t, vec3 wi, vec3 wo) {
+    vec3 tn = marschnerSafeNormalize(t), inDir = marschnerSafeNormalize(wi), outDir = marschnerSafeNormalize(wo);
+    MarschnerAngles angles;
+    // sin(theta) = t . w; theta from the normal plane.
+    angles.sinThetaI = clamp(dot(tn, inDir), -1.0, 1.0);
+    angles.sinThetaR = clamp(dot(tn, outDir), -1.0, 1.0);
+    angles.cosThetaI = sqrt(max(0.0, 1.0 - angles.sinThetaI * angles.sinThetaI));
+    angles.cosThetaR = sqrt(max(0.0, 1.0 - angles.sinThetaR * angles.sinThetaR));
+    // phi: angle between the projections onto the normal plane; 0 when either is degenerate.
+    vec3 pi = inDir - angles.sinThetaI * tn, po = outDir - angles.sinThetaR * tn;
+    float lengths = length(pi) * length(po);
+    angles.phi = lengths > 1e-12 ? abs(atan(length(cross(pi, po)), dot(pi, po))) : 0.0;
+    return angles;
+}
+
+// f_p = M_p N_p for the three lobes (Marschner.cpp combineMarschnerLobes).
+MarschnerLobes marschnerCombineLobes(MarschnerAngles angles, vec3 nR, vec3 nTT, vec3 nTRT, vec3 alpha, vec3 beta) {
+    MarschnerLobes lobes;
+    lobes.R = max(nR, vec3(0.0)) * marschnerLongitudinal(angles.sinThetaI, angles.cosThetaI, angles.sinThetaR,
+                                                         angles.cosThetaR, alpha.x, beta.x);
+    lobes.TT = max(nTT, vec3(0.0)) * marschnerLongitudinal(angles.sinThetaI, angles.cosThetaI, angles.sinThetaR,
+                                                           angles.cosThetaR, alpha.y, beta.y);
+    lobes.TRT = max(nTRT, vec3(0.0)) * marschnerLongitudinal(angles.sinThetaI, angles.cosThetaI, angles.sinThetaR,
+                                                             angles.cosThetaR, alpha.z, beta.z);
+    return lobes;
+}
+
 MarschnerLobes marschnerTabledLobes(vec3 t, vec3 wi, vec3 wo, sampler2DArray tables, float baseLayer, vec3 alpha,
                                     vec3 beta) {
-    vec3 tn = marschnerSafeNormalize(t), inDir = marschnerSafeNormalize(wi), outDir = marschnerSafeNormalize(wo);
-    // sin(theta) = t . w; theta from the normal plane (marschnerAngles).
-    float sinThetaI = clamp(dot(tn, inDir), -1.0, 1.0);
-    float sinThetaR = clamp(dot(tn, outDir), -1.0, 1.0);
-    float cosThetaI = sqrt(max(0.0, 1.0 - sinThetaI * sinThetaI));
-    float cosThetaR = sqrt(max(0.0, 1.0 - sinThetaR * sinThetaR));
-    // phi: angle between the projections onto the normal plane; 0 when either is degenerate.
-    vec3 pi = inDir - sinThetaI * tn, po = outDir - sinThetaR * tn;
-    float lengths = length(pi) * length(po);
-    float phi = lengths > 1e-12 ? atan(length(cross(pi, po)), dot(pi, po)) : 0.0;
+    MarschnerAngles angles = marschnerAngles(t, wi, wo);
     // N_p(phi, cos theta_r): two bilinear fetches at (phi / pi, cos theta_r).
-    vec2 st = vec2(clamp(abs(phi) / MARSCHNER_PI, 0.0, 1.0), cosThetaR);
+    vec2 st = vec2(clamp(angles.phi / MARSCHNER_PI, 0.0, 1.0), angles.cosThetaR);
     vec4 layer0 = texture(tables, vec3(st, baseLayer));
     vec4 layer1 = texture(tables, vec3(st, baseLayer + 1.0));
-    MarschnerLobes lobes;
-    lobes.R = max(vec3(layer0.a), vec3(0.0)) *
-              marschnerLongitudinal(sinThetaI, cosThetaI, sinThetaR, cosThetaR, alpha.x, beta.x);
-    lobes.TT = max(layer0.rgb, vec3(0.0)) *
-               marschnerLongitudinal(sinThetaI, cosThetaI, sinThetaR, cosThetaR, alpha.y, beta.y);
-    lobes.TRT = max(layer1.rgb, vec3(0.0)) *
-                marschnerLongitudinal(sinThetaI, cosThetaI, sinThetaR, cosThetaR, alpha.z, beta.z);
-    return lobes;
+    return marschnerCombineLobes(angles, vec3(layer0.a), layer0.rgb, layer1.rgb, alpha, beta);
 }
 
 // R + TT + TRT: the radiance towards wo per unit irradiance from wi.
