@@ -782,6 +782,9 @@ def check_curves(path, prim):
             default = "vertex" if name == "widths" else "constant"
             interp = attr["meta"].get("interpolation", default)
             assert interp in sizes, (path, name, interp)
+            if not isinstance(attr["value"], list):
+                assert interp == "constant", (path, name, "a scalar primvar is constant")
+                continue
             assert len(attr["value"]) == sizes[interp], "%s.%s: %d values for %s (expected %d)" % (
                 path, name, len(attr["value"]), interp, sizes[interp])
     if "extent" in a:

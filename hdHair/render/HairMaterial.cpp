@@ -206,10 +206,12 @@ HairMaterial hairMaterialFor(const CurvesPrim& prim, const PreparedCurves& prepa
     const HairParameterSource wholePrim(prim, prepared, std::nullopt);
     applyHairParameters(wholePrim, material.model, material.kajiyaKay, material.marschner);
     material.varies = variationOf(wholePrim, material.model);
+    const std::string azimuthal = settings.getToken("marschner:azimuthal");
+    // Forced tables: absorption and eta stay at their means over the prim.
+    if (azimuthal == "tables") material.varies &= ~unsigned(kAbsorptionVaries | kEtaVaries);
     if (material.perPoint()) material.perPointPrim = prim.path;
     material.analyticAzimuthal = material.model == ShadingModel::Marschner &&
-                                 (settings.getToken("marschner:azimuthal") == "analytic" ||
-                                  (material.varies & (kAbsorptionVaries | kEtaVaries)) != 0);
+                                 (azimuthal == "analytic" || (material.varies & (kAbsorptionVaries | kEtaVaries)) != 0);
     return material;
 }
 

@@ -45,7 +45,8 @@ struct HairMaterial {
     unsigned varies = kNothingVaries;
     // Marschner's azimuthal terms evaluated per fragment instead of read from
     // the material's tables: where absorption or η vary (tables are per
-    // material) or when the setting marschner:azimuthal is "analytic".
+    // material) unless the setting marschner:azimuthal is "tables" (then the
+    // prim's mean absorption and η serve), or everywhere with "analytic".
     bool analyticAzimuthal = false;
     // The prim a material with per-point parameters belongs to (such a
     // material is never shared); empty otherwise.

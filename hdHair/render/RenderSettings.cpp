@@ -65,10 +65,11 @@ const std::vector<SettingDescriptor>& RenderSettings::descriptors() {
         {"kajiyaKay:diffuse", SettingType::Float, "1", "Kajiya-Kay diffuse weight Kd", 0.0, 100.0, {}},
         {"kajiyaKay:specular", SettingType::Float, "0.35", "Kajiya-Kay specular weight Ks", 0.0, 100.0, {}},
         {"kajiyaKay:shininess", SettingType::Float, "60", "Kajiya-Kay specular exponent p", 1.0, 10000.0, {}},
-        {"marschner:azimuthal", SettingType::Token, "tables",
-         "Marschner's azimuthal terms: tables per material (fast), or analytic per fragment (the reference; "
-         "always used where absorption or eta vary per curve or vertex)",
-         0, 0, {"tables", "analytic"}},
+        {"marschner:azimuthal", SettingType::Token, "auto",
+         "Marschner's azimuthal terms: auto (tables per material; per fragment where absorption or eta vary "
+         "per curve or vertex), tables (always; such prims use their mean absorption and eta), or analytic "
+         "(always per fragment: the reference)",
+         0, 0, {"auto", "tables", "analytic"}},
         {"cameraLight", SettingType::Token, "auto",
          "Light from the camera: auto (only when the stage has no lights), on, off", 0, 0,
          {"auto", "on", "off"}},

@@ -16,6 +16,7 @@
 // most accurate configuration (RMSE and largest difference, pre-multiplied
 // linear RGBA).
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -105,6 +106,7 @@ std::vector<Configuration> complexityConfigurations() {
 }
 
 struct ShadingConfiguration {
+    std::string model;  // the table's row
     Configuration configuration;
     int lights;
 };
@@ -129,11 +131,16 @@ void registerFrame(BenchStage* stage, const Configuration& configuration, int li
 
 std::vector<ShadingConfiguration> shadingConfigurations() {
     std::vector<ShadingConfiguration> result;
-    for (const char* model : {"flat", "kajiyaKay", "marschner"})
+    const std::pair<const char*, std::vector<std::string>> models[] = {
+        {"flat", {"shadingModel=flat"}},
+        {"kajiyaKay", {"shadingModel=kajiyaKay"}},
+        {"marschner (tables)", {"shadingModel=marschner", "marschner:azimuthal=tables"}},
+        {"marschner (auto)", {"shadingModel=marschner", "marschner:azimuthal=auto"}},
+        {"marschner (analytic)", {"shadingModel=marschner", "marschner:azimuthal=analytic"}},
+    };
+    for (const auto& [model, settings] : models)
         for (int lights : {1, 4, 8, 16})
-            result.push_back({{fmt::format("{} {} lights", model, lights), {std::string("shadingModel=") + model},
-                               Complexity::Low},
-                              lights});
+            result.push_back({model, {fmt::format("{} {} lights", model, lights), settings, Complexity::Low}, lights});
     return result;
 }
 
@@ -290,7 +297,7 @@ int main(int argc, char** argv) {
                     stage->path.c_str());
         auto base = reporter.seconds.find(frameName(*stage, shadings[0].configuration));
         for (size_t i = 0; i < shadings.size(); i += 4) {
-            std::string row = "| " + shadings[i].configuration.settings[0].substr(13) + " |";
+            std::string row = "| " + shadings[i].model + " |";
             for (size_t j = i; j < i + 4; ++j) {
                 auto time = reporter.seconds.find(frameName(*stage, shadings[j].configuration));
                 row += (time != reporter.seconds.end() && base != reporter.seconds.end())
@@ -300,9 +307,32 @@ int main(int argc, char** argv) {
             std::printf("%s\n", row.c_str());
         }
     }
+    for (const auto& stage : stages) {
+        if (!shadingTable) break;
+        // The images of the two Marschner paths, with the stage's own lights.
+        setLightCount(*stage, kStageLights);
+        Diagnostics diagnostics;
+        auto marschnerImage = [&](const char* azimuthal) {
+            RenderSettings settings;
+            settings.set("shadingModel", "marschner");
+            settings.set("marschner:azimuthal", azimuthal);
+            return renderer()->render(stage->scene, stage->camera, settings, diagnostics).color;
+        };
+        Image analytic = marschnerImage("analytic");
+        double peak = 0.0;
+        for (float value : analytic.pixels) peak = std::max(peak, double(value));
+        std::printf("\nMarschner images, %s: against analytic (GPU, stage lights; brightest channel %.3f)\n\n"
+                    "| marschner:azimuthal | RMSE | max difference | pixels over 1/255 |\n|---|---|---|---|\n",
+                    stage->path.c_str(), peak);
+        for (const char* azimuthal : {"tables", "auto"}) {
+            ImageDifference difference = compareImages(marschnerImage(azimuthal), analytic, 1.0 / 255.0);
+            std::printf("| %s | %.5f | %.4f | %.2f%% |\n", azimuthal, difference.rootMeanSquare,
+                        difference.maxDifference, 100.0 * difference.fractionOverThreshold);
+        }
+    }
     if (shadingTable) {
         // Tabled against analytic Marschner on the CPU, over directions a
-        // frame would see (the GPU evaluates the tabled form).
+        // frame would see.
         MarschnerParameters parameters;
         parameters.sigmaA = marschnerSigmaAFromMelanin(0.3f, 0.0f);
         std::printf("\nMarschner, tabled against analytic (radiance over 20,000 random directions):\n\n"

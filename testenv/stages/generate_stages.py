@@ -186,6 +186,48 @@ def interpolations():
 
 
 # ---------------------------------------------------------------------------
+# hair_parameters.usda: HdHairAPI parameters per curve and per vertex
+# ---------------------------------------------------------------------------
+
+
+def hair_parameters():
+    """Four prims of three hanging curves (5 real points each, x = cx - 3, cx, cx + 3), each varying
+    one HdHairAPI parameter over the prim; one constant brown displayColor everywhere."""
+    real = 5
+    specs = [
+        ("melanin_per_curve", "marschner",
+         [u.Attr("float[]", "primvars:hdHair:melanin", [0.1, 0.5, 0.9], interpolation="uniform")]),
+        ("shift_per_vertex", "marschner",
+         [u.Attr("float[]", "primvars:hdHair:melanin", [0.4], interpolation="constant"),
+          u.Attr("float[]", "primvars:hdHair:longitudinalShift",
+                 [u.rnd(-12 + 10 * t) for _ in range(3) for t in [0.0] + [j / (real - 1) for j in range(real)] + [1.0]],
+                 interpolation="vertex")]),
+        ("absorption_varying", "marschner",
+         [u.Attr("color3f[]", "primvars:hdHair:absorption",
+                 [rp((0.2 + 2.0 * t, 0.4 + 2.5 * t, 0.8 + 3.0 * t)) for _ in range(3)
+                  for t in [j / (real - 1) for j in range(real)]], interpolation="varying")]),
+        ("specular_per_curve", "kajiyaKay",
+         [u.Attr("float[]", "primvars:hdHair:kajiyaKay:specular", [0.0, 0.5, 2.0], interpolation="uniform")]),
+    ]
+    prims = []
+    for col, (name, model, extra) in enumerate(specs):
+        cx = (col - 1.5) * CELL
+        points, counts = [], []
+        for k in range(3):
+            x = cx + 3.0 * (k - 1)
+            pts = [(x + 0.6 * math.sin(math.pi * j / (real - 1)), 4 - 8 * j / (real - 1), 0) for j in range(real)]
+            full = u.add_phantoms(pts)
+            points += [rp(p) for p in full]
+            counts.append(len(full))
+        extra = [u.Attr("token", "primvars:hdHair:shadingModel", model, interpolation="constant")] + extra
+        prims.append(u.basis_curves(name, counts, points, [0.5], "constant", colors=[(0.45, 0.3, 0.2)],
+                                    colors_interp="constant", extra=extra))
+    layer = u.Layer(doc=DOC, default_prim="World")
+    layer.add(world(*prims, key_light(travel=(0.3, -0.4, -1.0), intensity=4)))
+    return add_framed_camera(layer, "hair_parameters.usda", {}, fill=0.9)
+
+
+# ---------------------------------------------------------------------------
 # xforms.usda: transform ops, nesting, resetXformStack, !invert!, time samples
 # ---------------------------------------------------------------------------
 
@@ -325,6 +367,7 @@ def main():
         "empty.usda": empty().text(),
         "bases.usda": bases().text(),
         "interpolations.usda": interpolations().text(),
+        "hair_parameters.usda": hair_parameters().text(),
         "xforms.usda": xforms().text(),
         "widths.usda": widths_stage(1).text(),
         "widths_doubled.usda": widths_stage(2).text(),

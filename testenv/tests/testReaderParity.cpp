@@ -38,6 +38,7 @@ const Stage kStages[] = {
     {"dense_clump", "examples/dense_clump.usda", "/World/main_cam"},
     {"bases", "testenv/stages/bases.usda", "/World/main_cam"},
     {"interpolations", "testenv/stages/interpolations.usda", "/World/main_cam"},
+    {"hair_parameters", "testenv/stages/hair_parameters.usda", "/World/main_cam"},
     {"xforms", "testenv/stages/xforms.usda", "/World/main_cam"},
     {"widths", "testenv/stages/widths.usda", "/World/main_cam"},
     {"composition", "testenv/stages/composition/root.usda", "/World/main_cam"},

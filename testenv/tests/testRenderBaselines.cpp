@@ -42,6 +42,7 @@ const BaselineCase kCases[] = {
     {"dense_clump", "examples/dense_clump.usda", "/World/main_cam", 320, 0.0},
     {"bases", "testenv/stages/bases.usda", "/World/main_cam", 320, 0.0},
     {"interpolations", "testenv/stages/interpolations.usda", "/World/main_cam", 256, 0.0},
+    {"hair_parameters", "testenv/stages/hair_parameters.usda", "/World/main_cam", 256, 0.0},
     {"xforms_time1", "testenv/stages/xforms.usda", "/World/main_cam", 256, 1.0},
     {"xforms_time10", "testenv/stages/xforms.usda", "/World/main_cam", 256, 10.0},
     {"composition", "testenv/stages/composition/root.usda", "/World/main_cam", 256, 0.0},

@@ -65,7 +65,7 @@ LightPrim distantFrom(glm::dvec3 towardsLight) {
     return light;
 }
 
-RenderSettings withModel(const std::string& model, const std::string& azimuthal = "tables") {
+RenderSettings withModel(const std::string& model, const std::string& azimuthal = "auto") {
     RenderSettings settings;
     settings.set("shadingModel", model);
     settings.set("marschner:azimuthal", azimuthal);

@@ -42,7 +42,7 @@ struct Resolved {
     HairMaterial material;
 };
 
-Resolved resolve(const CurvesPrim& prim, Diagnostics& diagnostics, const std::string& azimuthal = "tables") {
+Resolved resolve(const CurvesPrim& prim, Diagnostics& diagnostics, const std::string& azimuthal = "auto") {
     RenderSettings settings;
     settings.set("marschner:azimuthal", azimuthal);
     Resolved result;
@@ -138,6 +138,19 @@ TEST(HairMaterial, KajiyaKayWeightsPerCurve) {
     std::vector<glm::vec4> points = hairParameterPoints(r.material, prim, r.prepared);
     EXPECT_EQ(points[0], glm::vec4(1.0f, 0.0f, 60.0f, 0.0f)) << "settings' Kd and p, the curve's Ks";
     EXPECT_EQ(points[2 * 4], glm::vec4(1.0f, 1.0f, 60.0f, 0.0f));
+}
+
+TEST(HairMaterial, ForcedTablesUseTheMeanAbsorption) {
+    CurvesPrim prim = twoStrands("marschner");
+    prim.primvars["hdHair:absorption"] =
+        primvar("hdHair:absorption", Interpolation::Uniform, 3, {0.2f, 0.4f, 0.6f, 1.0f, 1.2f, 1.4f});
+    prim.primvars["hdHair:longitudinalWidth"] = primvar("hdHair:longitudinalWidth", Interpolation::Uniform, 1, {5, 9});
+    Diagnostics diagnostics;
+    Resolved r = resolve(prim, diagnostics, "tables");
+    EXPECT_EQ(r.material.varies, unsigned(kLongitudinalVaries)) << "what tables cannot vary is held at its mean";
+    EXPECT_TRUE(r.material.usesTables());
+    EXPECT_NEAR(r.material.marschner.sigmaA.x, 0.6f, 1e-6f);
+    EXPECT_NEAR(r.material.marschner.sigmaA.z, 1.0f, 1e-6f);
 }
 
 TEST(HairMaterial, TheAnalyticSettingRoutesEveryMarschnerPrim) {
