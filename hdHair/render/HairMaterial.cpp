@@ -215,6 +215,12 @@ HairMaterial hairMaterialFor(const CurvesPrim& prim, const PreparedCurves& prepa
     return material;
 }
 
+std::string hairMaterialSettingsKey(const RenderSettings& settings) {
+    return fmt::format("{}|{}|{}|{}|{}", settings.getToken("shadingModel"), settings.getFloat("kajiyaKay:diffuse"),
+                       settings.getFloat("kajiyaKay:specular"), settings.getFloat("kajiyaKay:shininess"),
+                       settings.getToken("marschner:azimuthal"));
+}
+
 std::vector<glm::vec4> hairParameterPoints(const HairMaterial& material, const CurvesPrim& prim,
                                            const PreparedCurves& prepared) {
     std::vector<glm::vec4> points;

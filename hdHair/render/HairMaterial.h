@@ -71,6 +71,10 @@ const std::vector<ShadingPrimvarRequest>& hairParameterPrimvars();
 HairMaterial hairMaterialFor(const CurvesPrim& prim, const PreparedCurves& prepared, const RenderSettings& settings,
                              Diagnostics& diagnostics);
 
+// The render settings hairMaterialFor reads, as one string: a prim's
+// material stays valid while this and the prim's version are unchanged.
+std::string hairMaterialSettingsKey(const RenderSettings& settings);
+
 // For a material with perPoint(): two vec4s per control point of `prepared`,
 // the layout shaders/include/hairMaterials.glsl interpolates:
 //   Kajiya-Kay: (Kd, Ks, p, 0), (0, 0, 0, 0);

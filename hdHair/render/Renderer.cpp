@@ -147,8 +147,8 @@ SceneBounds Renderer::prepare(const Scene& scene, Diagnostics& diagnostics) {
             if (c % 4 == 1 || c % 4 == 2) cached.minSpanWidth = std::min(cached.minSpanWidth, point.width);
         }
         cached.prepared = std::move(prepared);
+        cached.material.reset();
         cached.parameterPoints.clear();
-        cached.pointsMaterial = HairMaterial{};
     });
     pendingPrepareMilliseconds_ += millisecondsSince(start);
 
@@ -268,6 +268,7 @@ RenderResult Renderer::render(const Scene& scene, const CameraView& camera, cons
     pendingPrepareMilliseconds_ = 0.0;
 
     std::vector<VisiblePrim> visible;
+    const std::string materialSettings = hairMaterialSettingsKey(settings);
     std::vector<uint64_t> geometryKey;  // versions, then material indices
     std::vector<HairMaterial> materials;
     StrandSummary summary;
@@ -277,11 +278,12 @@ RenderResult Renderer::render(const Scene& scene, const CameraView& camera, cons
     for (const auto& [path, entry] : scene.curves()) {
         CachedCurves& cached = curves_.at(path);
         if (!entry.prim->visible || cached.prepared->empty()) continue;
-        HairMaterial material = hairMaterialFor(*entry.prim, *cached.prepared, settings, diagnostics);
-        if (material.perPoint() && !(material == cached.pointsMaterial)) {
-            cached.parameterPoints = hairParameterPoints(material, *entry.prim, *cached.prepared);
-            cached.pointsMaterial = material;
+        if (!cached.material || cached.materialSettings != materialSettings) {
+            cached.material = hairMaterialFor(*entry.prim, *cached.prepared, settings, diagnostics);
+            cached.materialSettings = materialSettings;
+            cached.parameterPoints = hairParameterPoints(*cached.material, *entry.prim, *cached.prepared);
         }
+        const HairMaterial& material = *cached.material;
         summary.perPointPrims += material.perPoint() ? 1 : 0;
         summary.analyticPrims += material.analyticAzimuthal ? 1 : 0;
         auto found = std::find(materials.begin(), materials.end(), material);

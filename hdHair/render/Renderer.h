@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -82,8 +83,10 @@ private:
         std::shared_ptr<const PreparedCurves> prepared;
         float minSpanWidth = 0.0f;  // thinnest width at any span end
         bool fullyOpaque = true;    // every control point's opacity is exactly 1
-        // Per-point hair parameters (hairParameterPoints) and the material they were made for.
-        HairMaterial pointsMaterial;
+        // The prim's material, resolved once per version and material
+        // settings (hairMaterialSettingsKey), and its per-point parameters.
+        std::optional<HairMaterial> material;
+        std::string materialSettings;
         std::vector<glm::vec4> parameterPoints;
     };
 
