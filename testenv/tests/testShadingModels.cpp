@@ -122,19 +122,25 @@ TEST(ShadingModels, GpuKajiyaKayMatchesTheCpuModel) {
     }
 }
 
+// The centre pixel of a brown strand lit from `direction`, and the material
+// the renderer resolved for it.
+struct LitStrand {
+    glm::vec3 gpu;
+    HairMaterial material;
+};
+LitStrand renderLitStrand(const glm::dvec3& direction, const RenderSettings& settings) {
+    Scene scene;
+    CurvesPrim hair = strand("/hair", 0.0f, {0.5f, 0.3f, 0.15f});
+    scene.setCurves(hair);
+    scene.setLight(distantFrom(direction));
+    Diagnostics diagnostics;
+    return {centrePixel(scene, settings),
+            hairMaterialFor(hair, prepareCurves(hair, diagnostics, hairParameterPrimvars()), settings, diagnostics)};
+}
+
 TEST(ShadingModels, GpuMarschnerMatchesTheCpuTabledModel) {
-    const glm::vec3 color(0.5f, 0.3f, 0.15f);
     for (const glm::dvec3& direction : kLightDirections) {
-        Scene scene;
-        CurvesPrim hair = strand("/hair", 0.0f, color);
-        scene.setCurves(hair);
-        scene.setLight(distantFrom(direction));
-        glm::vec3 gpu = centrePixel(scene, "marschner");
-        RenderSettings settings;
-        settings.set("shadingModel", "marschner");
-        Diagnostics diagnostics;
-        HairMaterial material =
-            hairMaterialFor(hair, prepareCurves(hair, diagnostics, hairParameterPrimvars()), settings, diagnostics);
+        auto [gpu, material] = renderLitStrand(direction, withModel("marschner"));
         MarschnerTables tables = buildMarschnerTables(material.marschner);
         MarschnerLobes lobes = evaluateMarschnerTabled({1, 0, 0}, glm::vec3(glm::normalize(direction)), {0, 0, 1},
                                                        material.marschner, tables);
@@ -146,17 +152,8 @@ TEST(ShadingModels, GpuMarschnerMatchesTheCpuTabledModel) {
 }
 
 TEST(ShadingModels, GpuAnalyticMarschnerMatchesTheCpuModel) {
-    const glm::vec3 color(0.5f, 0.3f, 0.15f);
     for (const glm::dvec3& direction : kLightDirections) {
-        Scene scene;
-        CurvesPrim hair = strand("/hair", 0.0f, color);
-        scene.setCurves(hair);
-        scene.setLight(distantFrom(direction));
-        RenderSettings settings = withModel("marschner", "analytic");
-        glm::vec3 gpu = centrePixel(scene, settings);
-        Diagnostics diagnostics;
-        HairMaterial material =
-            hairMaterialFor(hair, prepareCurves(hair, diagnostics, hairParameterPrimvars()), settings, diagnostics);
+        auto [gpu, material] = renderLitStrand(direction, withModel("marschner", "analytic"));
         ASSERT_TRUE(material.analyticAzimuthal);
         MarschnerLobes lobes = evaluateMarschner({1, 0, 0}, glm::vec3(glm::normalize(direction)), {0, 0, 1},
                                                  material.marschner);
