@@ -7,6 +7,7 @@
 // longer ones are walked in depth order by repeated selection, which is
 // O(k^2) but exact for any length: this pass is the ground truth.
 #include "include/fragmentLists.glsl"
+#include "include/strandGeometry.glsl"
 
 #define LOCAL_FRAGMENTS 64
 
@@ -27,7 +28,7 @@ void main() {
     uint head = imageLoad(listHeads, ivec2(gl_FragCoord.xy)).r;
     vec4 color = vec4(0.0);
     float transmittance = 1.0;
-    ivec2 frontIds = ivec2(-1);
+    int frontSegment = -1;  // the nearest fragment's segment: what a user picks
 
     // Gather first, sort afterwards, on copies of the depths held in
     // registers: Mesa 22.3's llvmpipe composited wrong lists when the sort
@@ -62,7 +63,7 @@ void main() {
     if (fits) {
         for (int i = 0; i < count; ++i) {
             FragmentNode node = nodes[local[i]];
-            if (i == 0) frontIds = ivec2(node.primId, node.elementId);
+            if (i == 0) frontSegment = node.segment;
             color.rgb += transmittance * node.color.rgb;
             transmittance *= 1.0 - node.color.a;
         }
@@ -79,7 +80,7 @@ void main() {
             }
             if (best == HDHAIR_LIST_END) break;
             FragmentNode node = nodes[best];
-            if (first) frontIds = ivec2(node.primId, node.elementId);
+            if (first) frontSegment = node.segment;
             color.rgb += transmittance * node.color.rgb;
             transmittance *= 1.0 - node.color.a;
             lastDepth = node.depth;
@@ -89,7 +90,7 @@ void main() {
     }
     color.a = 1.0 - transmittance;
     outColor = color;
-    outPrimId = frontIds.x;
-    outInstanceId = frontIds.x >= 0 ? 0 : -1;
-    outElementId = frontIds.y;
+    outPrimId = frontSegment >= 0 ? segmentPrim[frontSegment].x : -1;
+    outInstanceId = frontSegment >= 0 ? segmentPrim[frontSegment].y : -1;
+    outElementId = frontSegment >= 0 ? segmentCurve[frontSegment] : -1;
 }

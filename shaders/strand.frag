@@ -11,6 +11,7 @@
 #include "include/catmullRom.glsl"
 #include "include/hairMaterials.glsl"
 #include "include/strandShading.glsl"
+#include "include/strandGeometry.glsl"
 
 layout(location = 0) in vec3 worldPosition;
 layout(location = 1) in vec3 worldTangent;
@@ -38,6 +39,6 @@ void main() {
         outColor = vec4(radiance * colorAlpha.a, colorAlpha.a);
     }
     outPrimId = ids.x;
-    outInstanceId = 0;  // curves are not instanced yet: instance 0 of the prim
+    outInstanceId = segmentPrim[ids.w].y;
     outElementId = ids.y;
 }

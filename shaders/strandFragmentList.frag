@@ -30,5 +30,5 @@ void main() {
     uint index = atomicAdd(fragmentCount, 1u);
     if (index >= capacity) return;  // over budget: the CPU sees the count and falls back
     uint previous = imageAtomicExchange(listHeads, ivec2(gl_FragCoord.xy), index);
-    nodes[index] = FragmentNode(vec4(radiance * alpha, alpha), gl_FragCoord.z, previous, ids.x, ids.y);
+    nodes[index] = FragmentNode(vec4(radiance * alpha, alpha), gl_FragCoord.z, previous, ids.w);
 }

@@ -33,6 +33,7 @@ enum class CurveStatus : uint8_t {
     TooFewVertices,   // no span to draw
     MissingVertices,  // counts run past the end of points
     NonFinitePoint,
+    Invisible,  // hidden through CurvesPrim::invisibleCurves: not drawn, not a defect
 };
 
 struct CurveCheck {
@@ -192,6 +193,10 @@ PreparedCurves prepareCurves(const CurvesPrim& prim, Diagnostics& diagnostics,
     tbb::parallel_for(tbb::blocked_range<size_t>(0, curveCount), [&](const tbb::blocked_range<size_t>& range) {
         for (size_t i = range.begin(); i != range.end(); ++i) checks[i] = checkCurve(prim, topology, i);
     });
+    // Hidden curves are not drawn, so their defects are not worth a warning.
+    for (int hidden : prim.invisibleCurves)
+        if (hidden >= 0 && static_cast<size_t>(hidden) < curveCount)
+            checks[static_cast<size_t>(hidden)].status = CurveStatus::Invisible;
     reportCurveChecks(prim, topology, checks, diagnostics);
 
     ResolvedPrimvar widths = resolvePrimvar(prim, topology, "widths", kFallbackWidth, diagnostics);

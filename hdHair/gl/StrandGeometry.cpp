@@ -5,11 +5,11 @@
 namespace hdhair::gl {
 
 StrandGeometry::StrandGeometry(const std::vector<StrandControlPoint>& controlPoints,
-                               const std::vector<int32_t>& segmentCurves, const std::vector<int32_t>& segmentPrims,
+                               const std::vector<int32_t>& segmentCurves, const std::vector<glm::ivec2>& segmentPrims,
                                const std::vector<int32_t>& segmentMaterials)
     : controlPoints_(createBuffer(controlPoints.data(), controlPoints.size() * sizeof(StrandControlPoint))),
       segmentCurves_(createBuffer(segmentCurves.data(), segmentCurves.size() * sizeof(int32_t))),
-      segmentPrims_(createBuffer(segmentPrims.data(), segmentPrims.size() * sizeof(int32_t))),
+      segmentPrims_(createBuffer(segmentPrims.data(), segmentPrims.size() * sizeof(glm::ivec2))),
       segmentMaterials_(createBuffer(segmentMaterials.data(), segmentMaterials.size() * sizeof(int32_t))),
       segmentCount_(segmentCurves.size()) {}
 

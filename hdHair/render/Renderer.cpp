@@ -181,7 +181,8 @@ void Renderer::updateGeometry(const std::vector<VisiblePrim>& visible, const std
     for (const VisiblePrim& prim : visible) segments += prim.cached->prepared->segmentCount();
     controlPoints_.clear();
     controlPoints_.reserve(4 * segments);
-    std::vector<int32_t> segmentCurves, segmentPrims, segmentMaterials;
+    std::vector<int32_t> segmentCurves, segmentMaterials;
+    std::vector<glm::ivec2> segmentPrims;
     segmentCurves.reserve(segments);
     segmentPrims.reserve(segments);
     segmentMaterials.reserve(segments);
@@ -190,7 +191,7 @@ void Renderer::updateGeometry(const std::vector<VisiblePrim>& visible, const std
         controlPoints_.insert(controlPoints_.end(), prepared.controlPoints.begin(), prepared.controlPoints.end());
         for (uint32_t curve : prepared.segmentCurve) {
             segmentCurves.push_back(int32_t(curve));
-            segmentPrims.push_back(prim.primId);
+            segmentPrims.emplace_back(prim.primId, prim.instanceId);
             segmentMaterials.push_back(prim.material);
         }
     }
@@ -289,7 +290,7 @@ RenderResult Renderer::render(const Scene& scene, const CameraView& camera, cons
         auto found = std::find(materials.begin(), materials.end(), material);
         if (found == materials.end()) found = materials.insert(materials.end(), material);
         int materialIndex = int(found - materials.begin());
-        visible.push_back({entry.prim->primId, &cached, materialIndex});
+        visible.push_back({entry.prim->primId, entry.prim->instanceId, &cached, materialIndex});
         geometryKey.push_back(cached.version);
         geometryKey.push_back(uint64_t(materialIndex));
         summary.anyLit = summary.anyLit || material.model != ShadingModel::Flat;

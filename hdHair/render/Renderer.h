@@ -92,6 +92,7 @@ private:
 
     struct VisiblePrim {
         int primId;
+        int instanceId;
         CachedCurves* cached;
         int material;  // index into the frame's materials
     };

@@ -42,6 +42,13 @@ struct CurvesPrim {
     bool visible = true;
     // Written to the primId output for picking: Hydra's HdRprim::GetPrimId().
     int primId = -1;
+    // Written to the instanceId output: which instance of an instanced prim
+    // this is (Hydra's instance index; 0 for a prim that is not instanced).
+    int instanceId = 0;
+    // Curves not drawn, by index (Hydra's HdBasisCurvesTopology invisible
+    // curves). They keep their vertices and primvar elements, so the other
+    // curves' data and elementIds do not shift.
+    std::vector<int> invisibleCurves;
     // primvars:hdHair:shadingModel (HdHairAPI): "kajiyaKay", "marschner" or
     // "flat"; empty means the shadingModel render setting.
     std::string shadingModel;

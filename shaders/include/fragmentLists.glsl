@@ -7,8 +7,7 @@ struct FragmentNode {
     vec4 color;     // pre-multiplied RGB and alpha
     float depth;    // window depth
     uint next;      // next node of the same pixel, or HDHAIR_LIST_END
-    int primId;
-    int elementId;
+    int segment;    // the strand segment, for the ids (strandGeometry.glsl)
 };
 
 layout(std430, binding = 5) buffer FragmentNodes {

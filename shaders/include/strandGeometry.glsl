@@ -4,13 +4,13 @@
 layout(std430, binding = 1) readonly buffer ControlPoints {
     vec4 controlPoints[];
 };
-// Per segment: the curve's index in its prim (Hydra's elementId) and the
-// prim's id (Hydra's primId).
+// Per segment: the curve's index in its prim (Hydra's elementId), and the
+// prim's id and instance index (Hydra's primId and instanceId).
 layout(std430, binding = 2) readonly buffer SegmentCurves {
     int segmentCurve[];
 };
 layout(std430, binding = 3) readonly buffer SegmentPrims {
-    int segmentPrim[];
+    ivec2 segmentPrim[];  // (primId, instanceId)
 };
 // Segments in drawing order, far to near (used when frame.orderedDraw is 1).
 layout(std430, binding = 4) readonly buffer DrawOrder {

@@ -105,6 +105,24 @@ TEST(PrepareCurves, ANonFinitePointDropsItsCurve) {
         EXPECT_TRUE(std::isfinite(control.position.x) && std::isfinite(control.position.y));
 }
 
+TEST(PrepareCurves, InvisibleCurvesAreSkippedWithoutShiftingTheOthers) {
+    CurvesPrim prim = randomPrim(CurveType::Cubic, CurveBasis::CatmullRom, CurveWrap::Nonperiodic, {4, 5, 6}, 2);
+    prim.primvars["widths"] = makePrimvar("widths", 1, Interpolation::Uniform, {0.1f, 0.2f, 0.3f});
+    // A hidden curve with a broken point: hidden, so not worth a warning.
+    prim.points[6].y = std::numeric_limits<float>::quiet_NaN();
+    prim.invisibleCurves = {1, 7, -1};  // out-of-range indices hide nothing
+    Diagnostics diagnostics;
+    const PreparedCurves prepared = prepareCurves(prim, diagnostics);
+    EXPECT_EQ(prepared.curveCount, 2u);
+    EXPECT_EQ(prepared.segmentCurve, (std::vector<uint32_t>{0, 2, 2, 2}));
+    EXPECT_FLOAT_EQ(segment(prepared, 0)[1].width, 0.1f);
+    EXPECT_FLOAT_EQ(segment(prepared, 1)[1].width, 0.3f);
+    EXPECT_EQ(diagnostics.warningCount(), 0u);
+
+    prim.invisibleCurves = {0, 1, 2};
+    EXPECT_TRUE(prepareCurves(prim, diagnostics).empty());
+}
+
 TEST(PrepareCurves, ManyBadCurvesAreSummarised) {
     CurvesPrim prim =
         randomPrim(CurveType::Linear, CurveBasis::Bezier, CurveWrap::Nonperiodic, std::vector<int>(30, 2), 3);

@@ -70,6 +70,36 @@ TEST(Renderer, IdOutputsNamePrimAndCurveUnderEachPixel) {
     EXPECT_TRUE(diagnostics.warnings().empty());
 }
 
+TEST(Renderer, IdOutputsNameTheInstanceInEveryTransparencyMode) {
+    // Instances of one prim (as the Hydra plugin expands them) share the
+    // prim id and differ by instance id; the exact mode resolves ids from its
+    // fragment lists rather than from the strand pass.
+    Scene scene;
+    CurvesPrim first = horizontalStrands("/proto{0}", 5, {0.5f});
+    CurvesPrim second = horizontalStrands("/proto{1}", 5, {0.5f});
+    second.instanceId = 1;
+    second.worldTransform = glm::translate(glm::dmat4(1.0), glm::dvec3(0.0, -1.0, 0.0));
+    for (CurvesPrim* prim : {&first, &second}) prim->primvars["displayOpacity"].values = {0.6f};
+    scene.setCurves(first);
+    scene.setCurves(second);
+    Renderer renderer(gl::GlBackend::Egl);
+    CameraView camera = squareCamera(64);
+    for (const char* mode : {"binSorted", "exact", "unsorted", "opaque"}) {
+        RenderSettings settings;
+        settings.set("transparency", mode);
+        Diagnostics diagnostics;
+        RenderResult result = renderer.render(scene, camera, settings, diagnostics, RenderOutputs{true});
+        auto at = [&](const std::vector<int32_t>& ids, float y) { return ids[size_t(pixelRow(camera, y)) * 64 + 32]; };
+        EXPECT_EQ(at(result.primIds, 0.5f), 5) << mode;
+        EXPECT_EQ(at(result.instanceIds, 0.5f), 0) << mode;
+        EXPECT_EQ(at(result.primIds, -0.5f), 5) << mode;
+        EXPECT_EQ(at(result.instanceIds, -0.5f), 1) << mode;
+        EXPECT_EQ(at(result.elementIds, -0.5f), 0) << mode;
+        EXPECT_EQ(at(result.instanceIds, 0.0f), -1) << mode;
+        EXPECT_TRUE(diagnostics.warnings().empty()) << mode;
+    }
+}
+
 TEST(Renderer, ElementIdsSurviveDrawBatching) {
     // Many curves in one prim are drawn in several batches; gl_PrimitiveID
     // restarts in each, so the batch's first segment must be added back.
