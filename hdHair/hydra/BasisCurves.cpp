@@ -7,6 +7,7 @@
 #include "pxr/imaging/hd/tokens.h"
 
 #include "hdHair/hydra/HydraCamera.h"
+#include "hdHair/hydra/Instancer.h"
 #include "hdHair/hydra/RenderParam.h"
 #include "hdHair/hydra/VtValueConversion.h"
 
@@ -73,15 +74,16 @@ void HdHairBasisCurves::Sync(HdSceneDelegate* sceneDelegate, HdRenderParam* rend
     _curves.visible = IsVisible();
     if (HdChangeTracker::IsPrimIdDirty(bits, id) || _curves.primId < 0) _curves.primId = GetPrimId();
     if (HdChangeTracker::IsTransformDirty(bits, id)) {
-        GfMatrix4d toWorld = sceneDelegate->GetTransform(id);
-        _curves.worldTransform = hdhair::hydra::matrixFromGf(toWorld.data());
+        _primTransform = sceneDelegate->GetTransform(id);
+        _curves.worldTransform = hdhair::hydra::matrixFromGf(_primTransform.data());
     }
+    _SyncInstances(sceneDelegate, dirtyBits);
     if (HdChangeTracker::IsDisplayStyleDirty(bits, id)) _refineLevel = GetDisplayStyle(sceneDelegate).refineLevel;
     if (HdChangeTracker::IsTopologyDirty(bits, id)) _SyncTopology(sceneDelegate);
     if (HdChangeTracker::IsAnyPrimvarDirty(bits, id)) _SyncPrimvars(sceneDelegate, bits);
     if (bits & HdChangeTracker::DirtyMaterialId) SetMaterialId(sceneDelegate->GetMaterialId(id));
 
-    param->SetCurves(this, _curves, _refineLevel);
+    param->SetCurves(this, _curves, _refineLevel, _instanceTransforms);
     *dirtyBits &= ~HdChangeTracker::AllSceneDirtyBits;
 }
 
@@ -106,6 +108,38 @@ void HdHairBasisCurves::_SyncTopology(HdSceneDelegate* sceneDelegate) {
     _curves.curveVertexCounts.assign(counts.begin(), counts.end());
     VtIntArray const& indices = topology.GetCurveIndices();
     _curveIndices.assign(indices.begin(), indices.end());
+    // Storm hides invisible curves and, for curves, ignores invisible
+    // points (they only hide points in its points repr); so does hdHair.
+    VtIntArray const& invisible = topology.GetInvisibleCurves();
+    _curves.invisibleCurves.assign(invisible.begin(), invisible.end());
+}
+
+void HdHairBasisCurves::_SyncInstances(HdSceneDelegate* sceneDelegate, HdDirtyBits* dirtyBits) {
+    HdDirtyBits const bits = *dirtyBits;
+    _UpdateInstancer(sceneDelegate, dirtyBits);
+    SdfPath const& instancerId = GetInstancerId();
+    if (instancerId.IsEmpty()) {
+        _instanceTransforms.reset();
+        return;
+    }
+    // Syncs the instancer and its parents if dirty; Hydra leaves that to rprims.
+    HdInstancer::_SyncInstancerAndParents(sceneDelegate->GetRenderIndex(), instancerId);
+    SdfPath const& id = GetId();
+    if (_instanceTransforms && !HdChangeTracker::IsInstancerDirty(bits, id) &&
+        !HdChangeTracker::IsInstanceIndexDirty(bits, id) && !HdChangeTracker::IsTransformDirty(bits, id))
+        return;
+    auto* instancer = static_cast<HdHairInstancer*>(sceneDelegate->GetRenderIndex().GetInstancer(instancerId));
+    if (!instancer) {
+        TF_WARN("hdHair: %s: instancer %s is missing; prim not drawn", id.GetText(), instancerId.GetText());
+        _instanceTransforms.emplace();
+        return;
+    }
+    std::vector<glm::dmat4> transforms;
+    for (GfMatrix4d const& instance : instancer->ComputeInstanceTransforms(id)) {
+        GfMatrix4d const toWorld = _primTransform * instance;  // the prim's transform applies first
+        transforms.push_back(hdhair::hydra::matrixFromGf(toWorld.data()));
+    }
+    _instanceTransforms = std::move(transforms);
 }
 
 void HdHairBasisCurves::_SyncPrimvars(HdSceneDelegate* sceneDelegate, HdDirtyBits bits) {

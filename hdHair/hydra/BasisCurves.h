@@ -6,7 +6,12 @@
 // engine's curve preparation resolves them with the same rules (and
 // messages) as for the embedded .usda reader.
 
+#include <optional>
+#include <vector>
+
 #include "pxr/imaging/hd/basisCurves.h"
+
+#include <glm/mat4x4.hpp>
 
 #include "hdHair/scene/CurvesPrim.h"
 
@@ -29,10 +34,15 @@ protected:
 private:
     void _SyncTopology(HdSceneDelegate* sceneDelegate);
     void _SyncPrimvars(HdSceneDelegate* sceneDelegate, HdDirtyBits dirtyBits);
+    void _SyncInstances(HdSceneDelegate* sceneDelegate, HdDirtyBits* dirtyBits);
 
     hdhair::CurvesPrim _curves;
     std::vector<int> _curveIndices;  // topology indices (rare: UsdImaging sends none)
     int _refineLevel = 0;
+    // For a prototype of an instancer: each instance's world transform
+    // (instance x the prim's own); nullopt when the prim is not instanced.
+    std::optional<std::vector<glm::dmat4>> _instanceTransforms;
+    GfMatrix4d _primTransform{1.0};
 };
 
 PXR_NAMESPACE_CLOSE_SCOPE

@@ -6,10 +6,10 @@
 #include "pxr/base/tf/stringUtils.h"
 #include "pxr/base/gf/vec4f.h"
 #include "pxr/imaging/hd/camera.h"
-#include "pxr/imaging/hd/instancer.h"
 #include "pxr/imaging/hd/tokens.h"
 
 #include "hdHair/hydra/BasisCurves.h"
+#include "hdHair/hydra/Instancer.h"
 #include "hdHair/hydra/Light.h"
 #include "hdHair/hydra/Material.h"
 #include "hdHair/hydra/Mesh.h"
@@ -142,9 +142,7 @@ HdRenderPassSharedPtr HdHairRenderDelegate::CreateRenderPass(HdRenderIndex* inde
 }
 
 HdInstancer* HdHairRenderDelegate::CreateInstancer(HdSceneDelegate* delegate, SdfPath const& id) {
-    // Instanced curves are drawn once, at the prototype; instancing is not
-    // implemented yet (README, "Hydra plugin").
-    return new HdInstancer(delegate, id);
+    return new HdHairInstancer(delegate, id);
 }
 
 void HdHairRenderDelegate::DestroyInstancer(HdInstancer* instancer) { delete instancer; }

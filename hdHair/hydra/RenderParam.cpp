@@ -17,12 +17,44 @@ HdHairRenderParam::HdHairRenderParam() {
 
 HdHairRenderParam::~HdHairRenderParam() = default;
 
-void HdHairRenderParam::SetCurves(HdRprim const* rprim, hdhair::CurvesPrim prim, int refineLevel) {
+std::string HdHairRenderParam::InstancePath(std::string const& path, size_t instance) {
+    return path + "{" + std::to_string(instance) + "}";
+}
+
+void HdHairRenderParam::SetCurves(HdRprim const* rprim, hdhair::CurvesPrim prim, int refineLevel,
+                                  std::optional<std::vector<glm::dmat4>> const& instanceTransforms) {
     std::lock_guard<std::mutex> lock(_mutex);
-    std::string path = prim.path;
-    _rprims[path] = Rprim{rprim, refineLevel};
+    std::string const path = prim.path;
     ++_syncCounts[path];
-    _scene.setCurves(std::move(prim));
+    _RemoveEnginePrims(path);
+    if (!instanceTransforms) {
+        _rprims[path] = Rprim{rprim, refineLevel};
+        _scene.setCurves(std::move(prim));
+        return;
+    }
+    std::vector<std::string>& paths = _instancePaths[path];
+    for (size_t i = 0; i < instanceTransforms->size(); ++i) {
+        hdhair::CurvesPrim instance = prim;
+        instance.path = InstancePath(path, i);
+        instance.worldTransform = (*instanceTransforms)[i];
+        instance.instanceId = int(i);
+        paths.push_back(instance.path);
+        _rprims[instance.path] = Rprim{rprim, refineLevel};
+        _scene.setCurves(std::move(instance));
+    }
+}
+
+void HdHairRenderParam::_RemoveEnginePrims(std::string const& path) {
+    auto instances = _instancePaths.find(path);
+    if (instances != _instancePaths.end()) {
+        for (std::string const& instancePath : instances->second) {
+            _rprims.erase(instancePath);
+            _scene.remove(instancePath);
+        }
+        _instancePaths.erase(instances);
+    }
+    _rprims.erase(path);
+    _scene.remove(path);
 }
 
 void HdHairRenderParam::SetMesh(HdRprim const* rprim, hdhair::MeshPrim prim) {
@@ -41,8 +73,7 @@ void HdHairRenderParam::SetLight(hdhair::LightPrim light) {
 
 void HdHairRenderParam::Remove(std::string const& path) {
     std::lock_guard<std::mutex> lock(_mutex);
-    _rprims.erase(path);
-    _scene.remove(path);
+    _RemoveEnginePrims(path);
 }
 
 hdhair::Scene HdHairRenderParam::Snapshot(TfTokenVector const& renderTags, int* maxRefineLevel) const {

@@ -8,6 +8,8 @@
 #include <map>
 #include <memory>
 #include <mutex>
+#include <optional>
+#include <vector>
 #include <string>
 
 #include "pxr/imaging/hd/renderDelegate.h"
@@ -25,10 +27,17 @@ public:
     ~HdHairRenderParam() override;
 
     // Thread-safe: called from rprim and sprim Sync.
-    void SetCurves(HdRprim const* rprim, hdhair::CurvesPrim prim, int refineLevel);
+    // An instanced prim (`instanceTransforms` set) becomes one engine prim
+    // per instance, named "<path>{i}", with that instance's world transform
+    // and instanceId i; each is prepared on its own (memory and preparation
+    // grow with the instance count; GPU instancing would share them).
+    void SetCurves(HdRprim const* rprim, hdhair::CurvesPrim prim, int refineLevel,
+                   std::optional<std::vector<glm::dmat4>> const& instanceTransforms);
     void SetMesh(HdRprim const* rprim, hdhair::MeshPrim prim);
     void SetLight(hdhair::LightPrim light);
     void Remove(std::string const& path);
+
+    static std::string InstancePath(std::string const& path, size_t instance);
 
     // The prims a render pass draws: rprims whose render tag is among
     // `renderTags` (all when empty), every light; versions intact. Also the
@@ -47,6 +56,9 @@ public:
     std::map<std::string, size_t> GetSyncCounts() const;
 
 private:
+    // Drops the engine prims of an rprim (itself, or its instances). Locked by the caller.
+    void _RemoveEnginePrims(std::string const& path);
+
     struct Rprim {
         HdRprim const* rprim = nullptr;
         int refineLevel = 0;
@@ -54,7 +66,8 @@ private:
 
     mutable std::mutex _mutex;
     hdhair::Scene _scene;
-    std::map<std::string, Rprim> _rprims;
+    std::map<std::string, Rprim> _rprims;                   // by engine prim path
+    std::map<std::string, std::vector<std::string>> _instancePaths;  // instanced rprim -> its engine prims
     std::map<std::string, size_t> _syncCounts;
     std::mutex _rendererMutex;
     std::unique_ptr<hdhair::Renderer> _renderer;

@@ -23,6 +23,7 @@
 #include "pxr/usd/usd/stage.h"
 #include "pxr/usd/usdGeom/basisCurves.h"
 #include "pxr/usd/usdGeom/camera.h"
+#include "pxr/usd/usdGeom/pointInstancer.h"
 #include "pxr/usd/usdGeom/xformable.h"
 #include "pxr/usd/usdLux/distantLight.h"
 #include "pxr/usdImaging/usdImagingGL/engine.h"
@@ -57,9 +58,26 @@ UsdStageRefPtr twoStrandsStage() {
 }
 
 struct Frame {
+    int width = 0;
     std::vector<float> color;  // RGBA, bottom row first
+    std::vector<int> primIds, instanceIds;
     VtDictionary syncCounts;
+
+    float alpha(int x, int y) const { return color[4 * size_t(y * width + x) + 3]; }
+    int instanceId(int x, int y) const { return instanceIds[size_t(y * width + x)]; }
 };
+
+// The Int32 ids a picking host reads (hosts render them beside color).
+std::vector<int> readIds(HdRenderBuffer* buffer) {
+    std::vector<int> ids;
+    if (!buffer) return ids;
+    buffer->Resolve();
+    EXPECT_EQ(buffer->GetFormat(), HdFormatInt32);
+    const int32_t* values = static_cast<const int32_t*>(buffer->Map());
+    ids.assign(values, values + size_t(buffer->GetWidth()) * buffer->GetHeight());
+    buffer->Unmap();
+    return ids;
+}
 
 class Recorder {
 public:
@@ -79,12 +97,15 @@ public:
         } while (!_engine.IsConverged());
         Frame frame;
         HdRenderBuffer* color = _engine.GetAovRenderBuffer(HdAovTokens->color);
+        frame.width = int(color->GetWidth());
         color->Resolve();
         EXPECT_EQ(color->GetFormat(), HdFormatFloat16Vec4);
         const GfHalf* pixels = static_cast<const GfHalf*>(color->Map());
         for (size_t i = 0; i < size_t(color->GetWidth()) * color->GetHeight() * 4; ++i)
             frame.color.push_back(float(pixels[i]));
         color->Unmap();
+        frame.primIds = readIds(_engine.GetAovRenderBuffer(HdAovTokens->primId));
+        frame.instanceIds = readIds(_engine.GetAovRenderBuffer(HdAovTokens->instanceId));
         VtDictionary stats = _engine.GetRenderStats();
         if (stats.count("hdHairSyncCounts")) frame.syncCounts = stats["hdHairSyncCounts"].Get<VtDictionary>();
         return frame;
@@ -181,6 +202,60 @@ TEST_F(HdHairPlugin, EditsResyncOnlyTheTouchedPrimAndChangeTheImage) {
     Frame hidden = recorder.render();
     expectOnlyA(hidden, "visibility");
     EXPECT_LT(coverage(hidden), coverage(translated));
+}
+
+TEST_F(HdHairPlugin, PointInstancerInstancesAreDrawnScaledAndPickable) {
+    UsdStageRefPtr stage = twoStrandsStage();
+    stage->RemovePrim(SdfPath("/A"));
+    stage->RemovePrim(SdfPath("/B"));
+    UsdGeomPointInstancer instancer = UsdGeomPointInstancer::Define(stage, SdfPath("/Instancer"));
+    // The prototype sits at the origin, where nothing may be drawn: only its
+    // instances are (the camera sees x in about [-2.1, 2.1]).
+    UsdGeomBasisCurves strand = UsdGeomBasisCurves::Define(stage, SdfPath("/Instancer/Prototypes/strand"));
+    strand.CreateTypeAttr(VtValue(UsdGeomTokens->linear));
+    strand.CreateCurveVertexCountsAttr(VtValue(VtIntArray{2}));
+    strand.CreatePointsAttr(VtValue(VtVec3fArray{GfVec3f(0, -0.5f, 0), GfVec3f(0, 0.5f, 0)}));
+    strand.CreateWidthsAttr(VtValue(VtFloatArray{0.1f}));
+    instancer.CreatePrototypesRel().AddTarget(strand.GetPath());
+    instancer.CreateProtoIndicesAttr(VtValue(VtIntArray{0, 0}));
+    instancer.CreatePositionsAttr(VtValue(VtVec3fArray{GfVec3f(-1.2f, 0, 0), GfVec3f(1.2f, 0, 0)}));
+    // The second instance is twice as big (widths too) and turned upside down
+    // (a quath orientation, as PointInstancers author them).
+    instancer.CreateScalesAttr(VtValue(VtVec3fArray{GfVec3f(1.0f), GfVec3f(2.0f)}));
+    instancer.CreateOrientationsAttr(VtValue(VtQuathArray{GfQuath(1.0f), GfQuath(0.0f, GfVec3h(0, 0, 1))}));
+
+    Recorder recorder(stage);
+    Frame frame = recorder.render();
+    ASSERT_EQ(frame.instanceIds.size(), frame.color.size() / 4);
+    const int height = int(frame.instanceIds.size()) / frame.width;
+    // Coverage (summed alpha) per half, and the instance ids there.
+    double left = 0.0, right = 0.0, middle = 0.0;
+    for (int y = 0; y < height; ++y) {
+        for (int x = 0; x < frame.width; ++x) {
+            float alpha = frame.alpha(x, y);
+            if (alpha <= 0.0f) continue;
+            EXPECT_EQ(frame.instanceId(x, y), x < frame.width / 2 ? 0 : 1) << "pixel " << x << "," << y;
+            EXPECT_GE(frame.primIds[size_t(y * frame.width + x)], 0) << "pixel " << x << "," << y;
+            if (std::abs(x - frame.width / 2) <= 2) middle += alpha;
+            (x < frame.width / 2 ? left : right) += alpha;
+        }
+    }
+    EXPECT_EQ(middle, 0.0) << "the prototype itself was drawn";
+    ASSERT_GT(left, 1.0);
+    // Scaled 2x: twice as long and, because the scale reaches the widths,
+    // twice as wide on screen: four times the coverage.
+    EXPECT_NEAR(right / left, 4.0, 1.0);
+
+    // Moving the instances re-syncs the prototype and moves the picture.
+    instancer.GetPositionsAttr().Set(VtVec3fArray{GfVec3f(-0.6f, 0, 0), GfVec3f(0.6f, 0, 0)});
+    Frame moved = recorder.render();
+    EXPECT_NE(moved.color, frame.color);
+    // UsdImaging names the prototype rprim after the instancer and prototype.
+    std::string prototype;
+    for (auto const& entry : frame.syncCounts)
+        if (entry.first.rfind("/Instancer/", 0) == 0) prototype = entry.first;
+    ASSERT_FALSE(prototype.empty());
+    EXPECT_GT(syncs(moved, prototype), syncs(frame, prototype)) << prototype;
 }
 
 TEST_F(HdHairPlugin, TenThousandCurvesSyncInParallel) {
