@@ -362,6 +362,35 @@ def composition():
     return texts
 
 
+# ---------------------------------------------------------------------------
+# instancing/: native instancing, one prototype placed three times
+# ---------------------------------------------------------------------------
+
+
+def instancing():
+    """Three instanceable references to one tuft: OpenUSD makes a prototype and
+    Hydra an instancer with three instance transforms (translated, rotated,
+    scaled 2x, whose widths must double); the embedded reader expands them."""
+    texts = {}
+    tuft = u.Layer(doc=DOC, default_prim="Tuft")
+    tuft.add(u.Prim("Xform", "Tuft", metadata=[("kind", '"component"')],
+                    children=[wavy_strands(8, "catmullRom", (0.75, 0.55, 0.2), 1.0)]))
+    texts["instancing/tuft.usda"] = tuft.text()
+
+    def instance(name, **xform):
+        return u.Prim("Xform", name, metadata=[("instanceable", "true"),
+                                               ("prepend references", "@./tuft.usda@")],
+                      attrs=u.xform_attrs(**xform))
+    root = u.Layer(doc=DOC, default_prim="World")
+    root.add(world(instance("left", translate=(-9, 0, 0)),
+                   instance("middle", translate=(0, 1, 0), rotate=(0, 0, 30)),
+                   instance("right", translate=(10, 0, 0), scale=(2, 2, 2)),
+                   key_light()))
+    add_framed_camera(root, "instancing/root.usda", texts, fill=0.85)
+    texts["instancing/root.usda"] = root.text()
+    return texts
+
+
 def main():
     texts = {
         "empty.usda": empty().text(),
@@ -373,9 +402,11 @@ def main():
         "widths_doubled.usda": widths_stage(2).text(),
     }
     texts.update(composition())
+    texts.update(instancing())
 
     for name in sorted(texts):
-        if name in ("composition/hair_asset.usda", "composition/more_hair.usda", "composition/lights.usda"):
+        if name in ("composition/hair_asset.usda", "composition/more_hair.usda", "composition/lights.usda",
+                    "instancing/tuft.usda"):
             u.parse(texts[name], name)  # layers used by root.usda; checked composed there
             continue
         s = u.check_stage(name, texts, need_lights=name != "empty.usda")
@@ -395,6 +426,8 @@ def main():
     assert a1["points"] == a2["points"] and w1["main_cam"] == w2["main_cam"]
     assert all(2 * x == y for x, y in zip(a1["widths"]["value"], a2["widths"]["value"]))
     assert texts["empty.usda"].count("BasisCurves") == 0
+    _, prims = u.compose("instancing/root.usda", texts)
+    assert all("strands" in prims["World"]["children"][n]["children"] for n in ("left", "middle", "right"))
 
     u.write_or_check(HERE, texts, max_bytes=MAX_BYTES)
 
