@@ -133,6 +133,10 @@ VtDictionary HdHairRenderDelegate::GetRenderStats() const {
     VtDictionary syncs;
     for (auto const& [path, count] : _renderParam->GetSyncCounts()) syncs[path] = VtValue(int(count));
     stats["hdHairSyncCounts"] = VtValue(syncs);
+    // The last frame's passes, timings and plan (hdHair/render/RenderStats.h).
+    auto [frameStats, plan] = _renderParam->GetLastFrame();
+    stats["hdHairFrameStats"] = VtValue(frameStats);
+    stats["hdHairPlan"] = VtValue(plan);
     return stats;
 }
 

@@ -105,6 +105,17 @@ hdhair::Renderer& HdHairRenderParam::GetRenderer() {
     return *_renderer;
 }
 
+void HdHairRenderParam::SetLastFrame(std::string statsJson, std::string plan) {
+    std::lock_guard<std::mutex> lock(_mutex);
+    _lastFrameStats = std::move(statsJson);
+    _lastFramePlan = std::move(plan);
+}
+
+std::pair<std::string, std::string> HdHairRenderParam::GetLastFrame() const {
+    std::lock_guard<std::mutex> lock(_mutex);
+    return {_lastFrameStats, _lastFramePlan};
+}
+
 size_t HdHairRenderParam::GetSyncCount(std::string const& path) const {
     std::lock_guard<std::mutex> lock(_mutex);
     auto it = _syncCounts.find(path);

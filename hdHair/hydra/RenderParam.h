@@ -50,6 +50,12 @@ public:
     hdhair::Renderer& GetRenderer();
     hdhair::Diagnostics& GetDiagnostics() { return _diagnostics; }
 
+    // What the last frame did (RenderStats as JSON, and the plan as
+    // --explain prints it), for the delegate's render stats: hosts such as
+    // hdhair-record --reader usd report them.
+    void SetLastFrame(std::string statsJson, std::string plan);
+    std::pair<std::string, std::string> GetLastFrame() const;
+
     // How many times each prim was synced: tests check that an edit re-syncs
     // only the prim it touched.
     size_t GetSyncCount(std::string const& path) const;
@@ -69,6 +75,7 @@ private:
     std::map<std::string, Rprim> _rprims;                   // by engine prim path
     std::map<std::string, std::vector<std::string>> _instancePaths;  // instanced rprim -> its engine prims
     std::map<std::string, size_t> _syncCounts;
+    std::string _lastFrameStats, _lastFramePlan;
     std::mutex _rendererMutex;
     std::unique_ptr<hdhair::Renderer> _renderer;
     hdhair::Diagnostics _diagnostics;

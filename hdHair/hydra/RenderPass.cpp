@@ -86,6 +86,7 @@ void HdHairRenderPass::_Execute(HdRenderPassStateSharedPtr const& renderPassStat
                                                                         window.width, window.height);
         hdhair::RenderResult result = _renderParam->GetRenderer().render(
             scene, camera, settings, _renderParam->GetDiagnostics(), hdhair::RenderOutputs{wantIds});
+        _renderParam->SetLastFrame(result.stats.toJson().dump(), result.plan.describe());
 
         for (HdRenderPassAovBinding const& binding : bindings) {
             auto* buffer = static_cast<HdHairRenderBuffer*>(binding.renderBuffer);

@@ -157,6 +157,14 @@ UsdImagingRecordResult recordWithUsdImaging(const UsdImagingRecordRequest& reque
     }
     if (!engine.IsConverged()) throw std::runtime_error("the HdHair render did not converge");
     result.color = readColor(engine.GetAovRenderBuffer(HdAovTokens->color));
+    VtDictionary stats = engine.GetRenderStats();
+    auto text = [&](char const* key) {
+        auto found = stats.find(key);
+        return found != stats.end() && found->second.IsHolding<std::string>() ? found->second.UncheckedGet<std::string>()
+                                                                                : std::string();
+    };
+    result.frameStatsJson = text("hdHairFrameStats");
+    result.plan = text("hdHairPlan");
     return result;
 }
 

@@ -28,6 +28,10 @@ struct UsdImagingRecordRequest {
 struct UsdImagingRecordResult {
     Image color;                 // RGBA, linear, pre-multiplied (the color AOV)
     std::string camera;          // what was used
+    // The plugin's report of the frame: RenderStats as JSON (passes and
+    // timings, hdHair/render/RenderStats.h) and the plan as --explain prints it.
+    std::string frameStatsJson;
+    std::string plan;
 };
 
 // Throws std::runtime_error with a one-line reason.

@@ -134,15 +134,30 @@ int runThroughUsdImaging(const Options& options, const usda::SceneReadOptions& p
         std::string outputPath =
             std::isfinite(time) ? expandFramePlaceholder(options.outputPath, time) : options.outputPath;
         writeImage(result.color, outputPath);
-        if (options.verbose || options.explain)
-            std::printf("hdhair-record: %s: %dx%d through OpenUSD and the HdHair plugin, camera %s, %.1f ms; wrote %s\n",
+        // The plugin's own report of the frame (its passes and plan), as the
+        // embedded path prints it; the total also covers opening the stage
+        // and Hydra's sync.
+        nlohmann::json frameStats = nlohmann::json::object();
+        if (!result.frameStatsJson.empty()) frameStats = nlohmann::json::parse(result.frameStatsJson, nullptr, false);
+        if (frameStats.is_discarded()) frameStats = nlohmann::json::object();
+        if (options.explain && !result.plan.empty())
+            std::printf("hdhair-record: plan (%s):\n%s", describeTime(time).c_str(), result.plan.c_str());
+        if (options.verbose || options.explain) {
+            std::string passes;
+            for (const nlohmann::json& pass : frameStats.value("passes", nlohmann::json::array()))
+                passes += fmt::format("{}{} {:.1f} ms", passes.empty() ? "" : ", ", pass.value("name", "?"),
+                                      pass.value("milliseconds", 0.0));
+            std::printf("hdhair-record: %s: %dx%d through OpenUSD and the HdHair plugin, camera %s, %.1f ms in all%s%s; "
+                        "wrote %s\n",
                         describeTime(time).c_str(), result.color.width, result.color.height, result.camera.c_str(),
-                        milliseconds, outputPath.c_str());
-        allStats.push_back({{"reader", "usd"},
-                            {"image", {{"width", result.color.width}, {"height", result.color.height}}},
-                            {"camera", result.camera},
-                            {"totalMilliseconds", milliseconds},
-                            {"output", outputPath}});
+                        milliseconds, passes.empty() ? "" : "; plugin passes: ", passes.c_str(), outputPath.c_str());
+        }
+        frameStats["reader"] = "usd";
+        frameStats["camera"] = result.camera;
+        frameStats["image"] = {{"width", result.color.width}, {"height", result.color.height}};
+        frameStats["totalMilliseconds"] = milliseconds;
+        frameStats["output"] = outputPath;
+        allStats.push_back(frameStats);
     }
     if (!options.statsFile.empty()) {
         nlohmann::json stats;

@@ -177,7 +177,24 @@ TEST_F(HdhairRecord, HelpListsUsdrecordOptions) {
     EXPECT_NE(settings.output.find("maxSegmentsPerSpan"), std::string::npos);
 }
 
-#if !HDHAIR_WITH_USD
+#if HDHAIR_WITH_USD
+TEST_F(HdhairRecord, UsdReaderReportsThePluginsPassesAndPlan) {
+    RecordRun run = record("--reader usd --verbose --explain --camera /World/main_cam --imageWidth 120 --stats " +
+                           file("stats.json") + " " + example("straight_strands.usda") + " " + file("out.png"));
+    ASSERT_EQ(run.exitCode, 0) << run.output;
+    EXPECT_NE(run.output.find("through OpenUSD and the HdHair plugin"), std::string::npos) << run.output;
+    EXPECT_NE(run.output.find("plugin passes: "), std::string::npos) << run.output;
+    EXPECT_NE(run.output.find("hdhair-record: plan ("), std::string::npos) << run.output;
+    nlohmann::json stats = nlohmann::json::parse(std::ifstream(file("stats.json")));
+    const nlohmann::json& frame = stats["frames"][0];
+    EXPECT_EQ(frame["reader"], "usd");
+    EXPECT_EQ(frame["curves"], 40);
+    EXPECT_EQ(frame["transparency"], "binSorted");
+    bool strandsTimed = false;
+    for (const auto& pass : frame["passes"]) strandsTimed = strandsTimed || pass["name"] == "strands (binSorted)";
+    EXPECT_TRUE(strandsTimed) << frame.dump(2);
+}
+#else
 TEST_F(HdhairRecord, UsdReaderWithoutOpenUsdIsAOneLineError) {
     RecordRun run = record("--reader usd " + example("straight_strands.usda") + " " + file("o.png"));
     EXPECT_EQ(run.exitCode, 1);
