@@ -5,6 +5,7 @@
 // README ("Hydra plugin", tests).
 
 #include <cmath>
+#include <set>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -256,6 +257,43 @@ TEST_F(HdHairPlugin, PointInstancerInstancesAreDrawnScaledAndPickable) {
         if (entry.first.rfind("/Instancer/", 0) == 0) prototype = entry.first;
     ASSERT_FALSE(prototype.empty());
     EXPECT_GT(syncs(moved, prototype), syncs(frame, prototype)) << prototype;
+}
+
+TEST_F(HdHairPlugin, PrototypesSharingAnInstancerSyncInParallel) {
+    // 64 prototypes of one PointInstancer sync on Hydra's worker threads,
+    // each syncing the shared instancer first (under its lock) and then
+    // reading its transforms: run under ThreadSanitizer (README).
+    UsdStageRefPtr stage = twoStrandsStage();
+    UsdGeomPointInstancer instancer = UsdGeomPointInstancer::Define(stage, SdfPath("/Instancer"));
+    constexpr int kPrototypes = 64, kInstances = 2048;
+    for (int p = 0; p < kPrototypes; ++p) {
+        UsdGeomBasisCurves curves =
+            UsdGeomBasisCurves::Define(stage, SdfPath("/Instancer/Prototypes/p" + std::to_string(p)));
+        curves.CreateTypeAttr(VtValue(UsdGeomTokens->linear));
+        curves.CreateCurveVertexCountsAttr(VtValue(VtIntArray{2}));
+        float tilt = 0.01f * float(p);
+        curves.CreatePointsAttr(VtValue(VtVec3fArray{GfVec3f(0, 0, 0), GfVec3f(tilt, 0.05f, 0)}));
+        curves.CreateWidthsAttr(VtValue(VtFloatArray{0.01f}));
+        instancer.CreatePrototypesRel().AddTarget(curves.GetPath());
+    }
+    VtIntArray protoIndices(kInstances);
+    VtVec3fArray positions(kInstances);
+    for (int i = 0; i < kInstances; ++i) {
+        protoIndices[i] = i % kPrototypes;
+        positions[i] = GfVec3f(-1.8f + 3.6f * float(i % 64) / 63.0f, -1.4f + 2.8f * float(i / 64) / 31.0f, 0.0f);
+    }
+    instancer.CreateProtoIndicesAttr(VtValue(protoIndices));
+    instancer.CreatePositionsAttr(VtValue(positions));
+    Recorder recorder(stage);
+    Frame frame = recorder.render();
+    int prototypes = 0;
+    for (auto const& entry : frame.syncCounts) prototypes += entry.first.rfind("/Instancer/", 0) == 0 ? 1 : 0;
+    EXPECT_EQ(prototypes, kPrototypes);
+    std::set<int> instanceIds(frame.instanceIds.begin(), frame.instanceIds.end());
+    // Each prototype has 32 instances (ids 0 to 31) and empty pixels are -1.
+    EXPECT_EQ(*instanceIds.begin(), -1);
+    EXPECT_EQ(*instanceIds.rbegin(), kInstances / kPrototypes - 1);
+    EXPECT_GT(coverage(frame), 0.05);
 }
 
 TEST_F(HdHairPlugin, TenThousandCurvesSyncInParallel) {
