@@ -47,8 +47,8 @@ HdDirtyBits HdHairBasisCurves::GetInitialDirtyBitsMask() const {
     return HdChangeTracker::Clean | HdChangeTracker::InitRepr | HdChangeTracker::DirtyPoints |
            HdChangeTracker::DirtyTopology | HdChangeTracker::DirtyTransform | HdChangeTracker::DirtyVisibility |
            HdChangeTracker::DirtyWidths | HdChangeTracker::DirtyNormals | HdChangeTracker::DirtyPrimvar |
-           HdChangeTracker::DirtyInstancer | HdChangeTracker::DirtyMaterialId | HdChangeTracker::DirtyDisplayStyle |
-           HdChangeTracker::DirtyExtent | HdChangeTracker::DirtyPrimID;
+           HdChangeTracker::DirtyInstancer | HdChangeTracker::DirtyInstanceIndex | HdChangeTracker::DirtyMaterialId |
+           HdChangeTracker::DirtyDisplayStyle | HdChangeTracker::DirtyExtent | HdChangeTracker::DirtyPrimID;
 }
 
 HdDirtyBits HdHairBasisCurves::_PropagateDirtyBits(HdDirtyBits bits) const {
