@@ -18,6 +18,7 @@
 #include "hdHair/curves/CurveTopology.h"
 #include "hdHair/curves/PreparedCurves.h"
 #include "hdHair/curves/PrimvarResolution.h"
+#include "hdHair/curves/StrandColorSource.h"
 
 namespace hdhair {
 
@@ -179,7 +180,8 @@ void growBoundsBySpan(const StrandControlPoint* c, glm::vec3& lo, glm::vec3& hi)
 }  // namespace
 
 PreparedCurves prepareCurves(const CurvesPrim& prim, Diagnostics& diagnostics,
-                             const std::vector<ShadingPrimvarRequest>& shadingPrimvars) {
+                             const std::vector<ShadingPrimvarRequest>& shadingPrimvars,
+                             const StrandColorSource* colors) {
     PreparedCurves result;
     result.path = prim.path;
     constexpr float kHuge = std::numeric_limits<float>::max();
@@ -201,9 +203,16 @@ PreparedCurves prepareCurves(const CurvesPrim& prim, Diagnostics& diagnostics,
 
     ResolvedPrimvar widths = resolvePrimvar(prim, topology, "widths", kFallbackWidth, diagnostics);
     clampNegativeWidths(widths, prim.path, diagnostics);
-    const ResolvedPrimvar colors = resolvePrimvar(prim, topology, "displayColor", kFallbackDisplayColor, diagnostics);
-    const ResolvedPrimvar opacities =
-        resolvePrimvar(prim, topology, opacityPrimvarName(prim), kFallbackDisplayOpacity, diagnostics);
+    const StrandColorSource ownColors = colors ? StrandColorSource() : strandColorSource(prim, nullptr, diagnostics);
+    const StrandColorSource& colorSource = colors ? *colors : ownColors;
+    auto resolveChannel = [&](const StrandColorSource::Channel& channel) {
+        return channel.constant.empty()
+                   ? resolvePrimvar(prim, topology, channel.primvar, channel.fallback, diagnostics)
+                   : constantPrimvar(channel.constant);
+    };
+    const ResolvedPrimvar colorValues = resolveChannel(colorSource.color);
+    result.colorAuthored = !colorSource.color.constant.empty() || prim.findPrimvar(colorSource.color.primvar);
+    const ResolvedPrimvar opacities = resolveChannel(colorSource.opacity);
     std::vector<ResolvedPrimvar> shading;  // parallel to result.shadingPrimvars
     for (const ShadingPrimvarRequest& request : shadingPrimvars) {
         if (!prim.findPrimvar(request.name)) continue;
@@ -259,15 +268,15 @@ PreparedCurves prepareCurves(const CurvesPrim& prim, Diagnostics& diagnostics,
                 result.segmentCurve[segment] = static_cast<uint32_t>(i);
                 StrandControlPoint* controls = &result.controlPoints[4 * segment];
                 const SpanStencil stencil = catmullRomStencil(topology.kind, n, s);
-                float positions[12], widthValues[4], colorValues[12], opacityValues[4];
+                float positions[12], widthValues[4], spanColors[12], opacityValues[4];
                 applyStencil(stencil, worldPoints.data(), 3, positions);
                 primvarSpanControls(widths, topology, stencil, i, s, widthValues);
-                primvarSpanControls(colors, topology, stencil, i, s, colorValues);
+                primvarSpanControls(colorValues, topology, stencil, i, s, spanColors);
                 primvarSpanControls(opacities, topology, stencil, i, s, opacityValues);
                 for (int r = 0; r < 4; ++r) {
                     controls[r].position = glm::vec3(positions[3 * r], positions[3 * r + 1], positions[3 * r + 2]);
                     controls[r].width = widthValues[r] * widthScale;
-                    controls[r].color = glm::vec3(colorValues[3 * r], colorValues[3 * r + 1], colorValues[3 * r + 2]);
+                    controls[r].color = glm::vec3(spanColors[3 * r], spanColors[3 * r + 1], spanColors[3 * r + 2]);
                     controls[r].opacity = opacityValues[r];
                 }
                 for (size_t k = 0; k < shading.size(); ++k) {

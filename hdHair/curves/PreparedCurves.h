@@ -21,6 +21,7 @@ namespace hdhair {
 
 class Diagnostics;
 struct CurvesPrim;
+struct StrandColorSource;
 
 struct StrandControlPoint {
     glm::vec3 position;  // world space
@@ -60,6 +61,9 @@ struct PreparedCurves {
     uint32_t curveCount = 0;                        // curves kept (after dropping bad ones)
     glm::vec3 boundsMin{0.0f}, boundsMax{0.0f};     // world space, widths included; min > max when empty
     std::vector<PreparedShadingPrimvar> shadingPrimvars;  // the requested ones that are authored
+    // The colours are authored (by the prim's primvar or a bound material),
+    // not the fallback grey: Marschner then takes absorption from them.
+    bool colorAuthored = false;
 
     const PreparedShadingPrimvar* findShadingPrimvar(const std::string& name) const {
         for (const PreparedShadingPrimvar& primvar : shadingPrimvars)
@@ -76,10 +80,13 @@ std::string opacityPrimvarName(const CurvesPrim& prim);
 
 // Validates, resolves every primvar (hdHair/curves/PrimvarResolution.h),
 // changes basis to Catmull-Rom and transforms to world space, carrying the
-// `shadingPrimvars` the prim authors. Never throws for bad data: each repair
+// `shadingPrimvars` the prim authors. Colours and opacities come from
+// `colors` (hdHair/curves/StrandColorSource.h; nullptr: displayColor and
+// displayOpacity). Never throws for bad data: each repair
 // is reported to `diagnostics`, naming the prim and the attribute.
 // Thread-safe for distinct prims (Hydra syncs prims in parallel).
 PreparedCurves prepareCurves(const CurvesPrim& prim, Diagnostics& diagnostics,
-                             const std::vector<ShadingPrimvarRequest>& shadingPrimvars = {});
+                             const std::vector<ShadingPrimvarRequest>& shadingPrimvars = {},
+                             const StrandColorSource* colors = nullptr);
 
 }  // namespace hdhair

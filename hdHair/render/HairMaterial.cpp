@@ -56,8 +56,8 @@ bool parseModel(const std::string& token, ShadingModel* model) {
 // the mean of its control-point values) or one control point.
 class HairParameterSource {
 public:
-    HairParameterSource(const CurvesPrim& prim, const PreparedCurves& prepared, std::optional<size_t> point)
-        : prim_(prim), prepared_(prepared), point_(point) {}
+    HairParameterSource(const PreparedCurves& prepared, std::optional<size_t> point)
+        : prepared_(prepared), point_(point) {}
 
     bool authored(const std::string& name) const { return prepared_.findShadingPrimvar(name) != nullptr; }
     bool varies(const std::string& name) const {
@@ -73,8 +73,8 @@ public:
         return value ? std::optional<glm::vec3>(glm::vec3(*value)) : std::nullopt;
     }
 
-    // displayColor, when the prim authors it (hair colour as absorption's source).
-    bool colorAuthored() const { return prim_.findPrimvar("displayColor") != nullptr; }
+    // The strand colour, when authored (hair colour as absorption's source).
+    bool colorAuthored() const { return prepared_.colorAuthored; }
     bool colorVaries() const {
         const std::vector<StrandControlPoint>& points = prepared_.controlPoints;
         return std::any_of(points.begin(), points.end(),
@@ -108,7 +108,6 @@ private:
         return glm::vec4(sum / double(count));
     }
 
-    const CurvesPrim& prim_;
     const PreparedCurves& prepared_;
     std::optional<size_t> point_;
 };
@@ -203,7 +202,7 @@ HairMaterial hairMaterialFor(const CurvesPrim& prim, const PreparedCurves& prepa
         material.marschner.eta = kDefaultEta;
         material.marschner.sigmaA = marschnerSigmaAFromMelanin(kDefaultMelanin, 0.0f);
     }
-    const HairParameterSource wholePrim(prim, prepared, std::nullopt);
+    const HairParameterSource wholePrim(prepared, std::nullopt);
     applyHairParameters(wholePrim, material.model, material.kajiyaKay, material.marschner);
     material.varies = variationOf(wholePrim, material.model);
     const std::string azimuthal = settings.getToken("marschner:azimuthal");
@@ -221,8 +220,7 @@ std::string hairMaterialSettingsKey(const RenderSettings& settings) {
                        settings.getToken("marschner:azimuthal"));
 }
 
-std::vector<glm::vec4> hairParameterPoints(const HairMaterial& material, const CurvesPrim& prim,
-                                           const PreparedCurves& prepared) {
+std::vector<glm::vec4> hairParameterPoints(const HairMaterial& material, const PreparedCurves& prepared) {
     std::vector<glm::vec4> points;
     if (!material.perPoint()) return points;
     const size_t count = prepared.controlPoints.size();
@@ -230,7 +228,7 @@ std::vector<glm::vec4> hairParameterPoints(const HairMaterial& material, const C
     for (size_t k = 0; k < count; ++k) {
         KajiyaKayParameters kajiyaKay = material.kajiyaKay;
         MarschnerParameters marschner = material.marschner;
-        applyHairParameters(HairParameterSource(prim, prepared, k), material.model, kajiyaKay, marschner);
+        applyHairParameters(HairParameterSource(prepared, k), material.model, kajiyaKay, marschner);
         if (material.model == ShadingModel::KajiyaKay) {
             points[2 * k] = glm::vec4(kajiyaKay.diffuse, kajiyaKay.specular, kajiyaKay.shininess, 0.0f);
         } else if (material.model == ShadingModel::Marschner) {

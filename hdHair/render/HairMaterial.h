@@ -83,7 +83,6 @@ std::string hairMaterialSettingsKey(const RenderSettings& settings);
 // become σ_a at the control points and σ_a is interpolated: exact at the
 // authored vertices, close between them; absorption and the other
 // parameters interpolate exactly as authored.
-std::vector<glm::vec4> hairParameterPoints(const HairMaterial& material, const CurvesPrim& prim,
-                                           const PreparedCurves& prepared);
+std::vector<glm::vec4> hairParameterPoints(const HairMaterial& material, const PreparedCurves& prepared);
 
 }  // namespace hdhair

@@ -128,17 +128,27 @@ SceneBounds Renderer::prepare(const Scene& scene, Diagnostics& diagnostics) {
         it = scene.curves().count(it->first) ? std::next(it) : curves_.erase(it);
     // Prepare changed prims in parallel: curve preparation is CPU work
     // without GL, thread-safe across prims.
-    std::vector<std::pair<const CurvesPrim*, CachedCurves*>> changed;
+    struct Change {
+        const CurvesPrim* prim;
+        const MaterialPrim* material;
+        CachedCurves* cached;
+    };
+    std::vector<Change> changed;
     for (const auto& [path, entry] : scene.curves()) {
         CachedCurves& cached = curves_[path];
-        if (cached.prepared && cached.version == entry.version) continue;
+        const SceneEntry<MaterialPrim>* material = scene.findMaterial(entry.prim->materialBinding);
+        const uint64_t materialVersion = material ? material->version : 0;
+        if (cached.prepared && cached.version == entry.version && cached.colorMaterialVersion == materialVersion)
+            continue;
         cached.version = entry.version;
-        changed.emplace_back(entry.prim.get(), &cached);
+        cached.colorMaterialVersion = materialVersion;
+        changed.push_back({entry.prim.get(), material ? material->prim.get() : nullptr, &cached});
     }
     tbb::parallel_for(size_t(0), changed.size(), [&](size_t i) {
+        const StrandColorSource colors = strandColorSource(*changed[i].prim, changed[i].material, diagnostics);
         auto prepared = std::make_shared<PreparedCurves>(
-            prepareCurves(*changed[i].first, diagnostics, hairParameterPrimvars()));
-        CachedCurves& cached = *changed[i].second;
+            prepareCurves(*changed[i].prim, diagnostics, hairParameterPrimvars(), &colors));
+        CachedCurves& cached = *changed[i].cached;
         cached.minSpanWidth = std::numeric_limits<float>::max();
         cached.fullyOpaque = true;
         for (size_t c = 0; c < prepared->controlPoints.size(); ++c) {
@@ -282,7 +292,7 @@ RenderResult Renderer::render(const Scene& scene, const CameraView& camera, cons
         if (!cached.material || cached.materialSettings != materialSettings) {
             cached.material = hairMaterialFor(*entry.prim, *cached.prepared, settings, diagnostics);
             cached.materialSettings = materialSettings;
-            cached.parameterPoints = hairParameterPoints(*cached.material, *entry.prim, *cached.prepared);
+            cached.parameterPoints = hairParameterPoints(*cached.material, *cached.prepared);
         }
         const HairMaterial& material = *cached.material;
         summary.perPointPrims += material.perPoint() ? 1 : 0;
@@ -292,6 +302,7 @@ RenderResult Renderer::render(const Scene& scene, const CameraView& camera, cons
         int materialIndex = int(found - materials.begin());
         visible.push_back({entry.prim->primId, entry.prim->instanceId, &cached, materialIndex});
         geometryKey.push_back(cached.version);
+        geometryKey.push_back(cached.colorMaterialVersion);
         geometryKey.push_back(uint64_t(materialIndex));
         summary.anyLit = summary.anyLit || material.model != ShadingModel::Flat;
         if (summary.shadingModels.find(toString(material.model)) == std::string::npos)

@@ -16,6 +16,7 @@
 #include <glm/vec3.hpp>
 
 #include "hdHair/curves/PreparedCurves.h"
+#include "hdHair/curves/StrandColorSource.h"
 #include "hdHair/gl/GlContext.h"
 #include "hdHair/render/HairMaterial.h"
 #include "hdHair/image/Image.h"
@@ -80,6 +81,9 @@ public:
 private:
     struct CachedCurves {
         uint64_t version = 0;
+        // The bound material's version (0 when none): its colour and opacity
+        // are baked into the prepared control points.
+        uint64_t colorMaterialVersion = 0;
         std::shared_ptr<const PreparedCurves> prepared;
         float minSpanWidth = 0.0f;  // thinnest width at any span end
         bool fullyOpaque = true;    // every control point's opacity is exactly 1

@@ -52,6 +52,9 @@ struct CurvesPrim {
     // primvars:hdHair:shadingModel (HdHairAPI): "kajiyaKay", "marschner" or
     // "flat"; empty means the shadingModel render setting.
     std::string shadingModel;
+    // The bound material's path (UsdShadeMaterialBindingAPI: the preview
+    // purpose first, then all purposes, nearest ancestor first); "" when none.
+    std::string materialBinding;
 
     const Primvar* findPrimvar(const std::string& name) const {
         auto it = primvars.find(name);

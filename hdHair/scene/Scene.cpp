@@ -38,10 +38,11 @@ void Scene::setCurves(CurvesPrim prim) { set(curves_, std::move(prim)); }
 void Scene::setMesh(MeshPrim prim) { set(meshes_, std::move(prim)); }
 void Scene::setCamera(CameraPrim prim) { set(cameras_, std::move(prim)); }
 void Scene::setLight(LightPrim prim) { set(lights_, std::move(prim)); }
+void Scene::setMaterial(MaterialPrim prim) { set(materials_, std::move(prim)); }
 
 bool Scene::remove(const std::string& path) {
-    size_t erased = curves_.erase(path) + meshes_.erase(path) + cameras_.erase(path) +
-                    lights_.erase(path);
+    size_t erased = curves_.erase(path) + meshes_.erase(path) + cameras_.erase(path) + lights_.erase(path) +
+                    materials_.erase(path);
     if (erased) version_ = nextVersion();
     return erased > 0;
 }
@@ -51,6 +52,7 @@ void Scene::clear() {
     meshes_.clear();
     cameras_.clear();
     lights_.clear();
+    materials_.clear();
     version_ = nextVersion();
 }
 
@@ -64,6 +66,7 @@ Scene Scene::subset(const std::function<bool(const std::string& path)>& keep) co
     copy(meshes_, result.meshes_);
     copy(cameras_, result.cameras_);
     copy(lights_, result.lights_);
+    copy(materials_, result.materials_);
     result.info_ = info_;
     result.version_ = version_;
     return result;
@@ -72,6 +75,11 @@ Scene Scene::subset(const std::function<bool(const std::string& path)>& keep) co
 const CameraPrim* Scene::findCamera(const std::string& path) const {
     auto it = cameras_.find(path);
     return it == cameras_.end() ? nullptr : it->second.prim.get();
+}
+
+const SceneEntry<MaterialPrim>* Scene::findMaterial(const std::string& path) const {
+    auto it = materials_.find(path);
+    return it == materials_.end() ? nullptr : &it->second;
 }
 
 const CurvesPrim* Scene::findCurves(const std::string& path) const {

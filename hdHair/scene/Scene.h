@@ -15,6 +15,7 @@
 #include "hdHair/scene/CameraPrim.h"
 #include "hdHair/scene/CurvesPrim.h"
 #include "hdHair/scene/LightPrim.h"
+#include "hdHair/scene/MaterialPrim.h"
 #include "hdHair/scene/MeshPrim.h"
 
 namespace hdhair {
@@ -48,6 +49,7 @@ public:
     void setMesh(MeshPrim prim);
     void setCamera(CameraPrim prim);
     void setLight(LightPrim prim);
+    void setMaterial(MaterialPrim prim);
     // Removes the prim at path, whatever its kind. Returns false if there was none.
     bool remove(const std::string& path);
     void clear();
@@ -59,9 +61,12 @@ public:
     const Entries<MeshPrim>& meshes() const { return meshes_; }
     const Entries<CameraPrim>& cameras() const { return cameras_; }
     const Entries<LightPrim>& lights() const { return lights_; }
+    const Entries<MaterialPrim>& materials() const { return materials_; }
 
     const CameraPrim* findCamera(const std::string& path) const;
     const CurvesPrim* findCurves(const std::string& path) const;
+    // The material at `path` with its version; nullptr for "" or a path with none.
+    const SceneEntry<MaterialPrim>* findMaterial(const std::string& path) const;
 
     StageInfo& info() { return info_; }
     const StageInfo& info() const { return info_; }
@@ -77,6 +82,7 @@ private:
     Entries<MeshPrim> meshes_;
     Entries<CameraPrim> cameras_;
     Entries<LightPrim> lights_;
+    Entries<MaterialPrim> materials_;
     StageInfo info_;
     uint64_t version_ = 0;
 };

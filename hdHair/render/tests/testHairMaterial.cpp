@@ -84,7 +84,7 @@ TEST(HairMaterial, PerCurveMelaninVariesAbsorptionAndGoesAnalytic) {
     EXPECT_EQ(r.material.perPointPrim, "/hair");
     EXPECT_TRUE(diagnostics.warnings().empty());
 
-    std::vector<glm::vec4> points = hairParameterPoints(r.material, prim, r.prepared);
+    std::vector<glm::vec4> points = hairParameterPoints(r.material, r.prepared);
     ASSERT_EQ(points.size(), 2 * r.prepared.controlPoints.size());
     ASSERT_EQ(r.prepared.segmentCount(), 2u);
     for (size_t k = 0; k < 8; ++k) {
@@ -104,7 +104,7 @@ TEST(HairMaterial, VaryingLongitudinalParametersKeepTheTables) {
     Resolved r = resolve(prim, diagnostics);
     EXPECT_EQ(r.material.varies, unsigned(kLongitudinalVaries));
     EXPECT_TRUE(r.material.usesTables()) << "tables do not depend on the longitudinal terms";
-    std::vector<glm::vec4> points = hairParameterPoints(r.material, prim, r.prepared);
+    std::vector<glm::vec4> points = hairParameterPoints(r.material, r.prepared);
     // A linear span's vertex values become Catmull-Rom controls (2a-b, a, b, 2b-a).
     const float degree = kMarschnerDegrees;
     EXPECT_NEAR(points[2 * 1 + 1].x, -10.0f * degree, 1e-6f);
@@ -135,7 +135,7 @@ TEST(HairMaterial, KajiyaKayWeightsPerCurve) {
     Resolved r = resolve(prim, diagnostics);
     EXPECT_EQ(r.material.varies, unsigned(kKajiyaKayVaries));
     EXPECT_FALSE(r.material.analyticAzimuthal);
-    std::vector<glm::vec4> points = hairParameterPoints(r.material, prim, r.prepared);
+    std::vector<glm::vec4> points = hairParameterPoints(r.material, r.prepared);
     EXPECT_EQ(points[0], glm::vec4(1.0f, 0.0f, 60.0f, 0.0f)) << "settings' Kd and p, the curve's Ks";
     EXPECT_EQ(points[2 * 4], glm::vec4(1.0f, 1.0f, 60.0f, 0.0f));
 }
@@ -179,7 +179,7 @@ TEST(HairMaterial, AnUnusablePrimvarIsReportedAndFallsBackToTheSchemaDefault) {
     }
     EXPECT_TRUE(namesEta && namesMelanin);
     // The non-finite melanin became the default 0.3 on the second curve only.
-    std::vector<glm::vec4> points = hairParameterPoints(r.material, prim, r.prepared);
+    std::vector<glm::vec4> points = hairParameterPoints(r.material, r.prepared);
     EXPECT_EQ(glm::vec3(points[2 * 4]), marschnerSigmaAFromMelanin(0.3f));
     EXPECT_EQ(glm::vec3(points[0]), marschnerSigmaAFromMelanin(0.2f));
 }

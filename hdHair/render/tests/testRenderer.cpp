@@ -100,6 +100,43 @@ TEST(Renderer, IdOutputsNameTheInstanceInEveryTransparencyMode) {
     }
 }
 
+TEST(Renderer, AMaterialEditRecoloursItsPrimsWithoutTouchingThem) {
+    Scene scene;
+    CurvesPrim prim = horizontalStrands("/a", 1, {0.0f});
+    prim.materialBinding = "/Looks/hair";
+    scene.setCurves(prim);
+    MaterialPrim material;
+    material.path = "/Looks/hair";
+    material.surfaceShaderId = "UsdPreviewSurface";
+    material.diffuseColor.value = {1.0f, 0.0f, 0.0f};
+    scene.setMaterial(material);
+    Renderer renderer(gl::GlBackend::Egl);
+    Diagnostics diagnostics;
+    RenderSettings flat;
+    flat.set("shadingModel", "flat");
+    CameraView camera = squareCamera(32);
+    auto centre = [&](const RenderResult& result) {
+        const float* pixel = &result.color.pixels[(size_t(pixelRow(camera, 0.0f)) * 32 + 16) * 4];
+        return glm::vec3(pixel[0], pixel[1], pixel[2]);
+    };
+    glm::vec3 red = centre(renderer.render(scene, camera, flat, diagnostics));
+    EXPECT_GT(red.r, 0.5f);
+    EXPECT_LT(red.g, 0.01f);
+    const uint64_t primVersion = scene.curves().at("/a").version;
+    material.diffuseColor.value = {0.0f, 1.0f, 0.0f};
+    scene.setMaterial(material);
+    glm::vec3 green = centre(renderer.render(scene, camera, flat, diagnostics));
+    EXPECT_EQ(scene.curves().at("/a").version, primVersion);
+    EXPECT_LT(green.r, 0.01f);
+    EXPECT_GT(green.g, 0.5f);
+    // Unbinding (the material removed) brings back the fallback grey.
+    scene.remove("/Looks/hair");
+    glm::vec3 grey = centre(renderer.render(scene, camera, flat, diagnostics));
+    EXPECT_NEAR(grey.r, grey.g, 1e-3f);
+    EXPECT_GT(grey.r, 0.1f);
+    EXPECT_TRUE(diagnostics.warnings().empty());
+}
+
 TEST(Renderer, ElementIdsSurviveDrawBatching) {
     // Many curves in one prim are drawn in several batches; gl_PrimitiveID
     // restarts in each, so the batch's first segment must be added back.

@@ -70,3 +70,21 @@ TEST(Scene, SubsetKeepsVersions) {
     EXPECT_EQ(onlyB.curves().at("/b").version, scene.curves().at("/b").version);
     EXPECT_EQ(onlyB.curves().at("/b").prim, scene.curves().at("/b").prim);
 }
+
+TEST(Scene, MaterialsAreFoundByPathWithTheirVersions) {
+    Scene scene;
+    EXPECT_EQ(scene.findMaterial(""), nullptr);
+    MaterialPrim material;
+    material.path = "/Looks/hair";
+    material.surfaceShaderId = "UsdPreviewSurface";
+    scene.setMaterial(material);
+    const SceneEntry<MaterialPrim>* found = scene.findMaterial("/Looks/hair");
+    ASSERT_NE(found, nullptr);
+    const uint64_t first = found->version;
+    material.diffuseColor.value = {1.0f, 0.0f, 0.0f};
+    scene.setMaterial(material);
+    EXPECT_GT(scene.findMaterial("/Looks/hair")->version, first);
+    EXPECT_EQ(scene.subset([](const std::string&) { return true; }).materials().size(), 1u);
+    EXPECT_TRUE(scene.remove("/Looks/hair"));
+    EXPECT_EQ(scene.findMaterial("/Looks/hair"), nullptr);
+}
