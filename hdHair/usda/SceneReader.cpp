@@ -1,12 +1,14 @@
 #include "hdHair/usda/SceneReader.h"
 
 #include <cmath>
+#include <map>
 #include <optional>
 #include <set>
 #include <unordered_set>
 #include <utility>
 #include <vector>
 
+#include "hdHair/usda/MaterialBinding.h"
 #include "hdHair/usda/XformOps.h"
 
 namespace hdhair::usda {
@@ -36,6 +38,8 @@ struct Inherited {
     glm::dmat4 world{1.0};
     bool visible = true;
     std::optional<std::string> purpose;  // set once an ancestor authors purpose
+    std::string materialBinding;         // the nearest direct binding's target
+    const Prim* bindingPrim = nullptr;   // the prim that authored it, for messages
 };
 
 // Gprim types hdHair does not draw; reported once each so that a stage that
@@ -63,6 +67,9 @@ private:
     void readMesh(const Prim& prim, const Inherited& state);
     void readCamera(const Prim& prim, const Inherited& state);
     void readLight(const Prim& prim, const Inherited& state, LightType type);
+    // The bound material's path after reading it into the scene (once per
+    // material); "" with a warning when the target is not a Material.
+    std::string useMaterial(const Inherited& state);
 
     // The value of `name` at the read time; nullopt when the prim has no such
     // attribute or it has no (unblocked) value then.
@@ -107,6 +114,7 @@ private:
     SceneReadOptions options_;
     std::unordered_set<const Prim*> traversed_;
     std::set<std::string> reportedTypes_;
+    std::map<std::string, bool> materials_;  // binding targets seen: is it a usable Material
 };
 
 std::string Reader::locationOf(const Prim& prim, const std::string& name) const {
@@ -319,6 +327,7 @@ void Reader::readCurves(const Prim& prim, const Inherited& state) {
     }
     curves.curveVertexCounts = readIntArray(prim, "curveVertexCounts");
     curves.points = readVec3Array(prim, "points");
+    curves.materialBinding = useMaterial(state);
     curves.primvars = readPrimvars(prim, true);
     // The one token primvar hdHair reads (HdHairAPI, constant only).
     if (std::optional<Value> model = valueOf(prim, "primvars:hdHair:shadingModel")) {
@@ -328,6 +337,29 @@ void Reader::readCurves(const Prim& prim, const Inherited& state) {
             warn(prim, "primvars:hdHair:shadingModel", "expected one token (kajiyaKay, marschner or flat); ignored");
     }
     scene_.setCurves(std::move(curves));
+}
+
+std::string Reader::useMaterial(const Inherited& state) {
+    if (state.materialBinding.empty()) return std::string();
+    auto known = materials_.find(state.materialBinding);
+    if (known == materials_.end()) {
+        const Prim* material = stage_.findPrim(state.materialBinding);
+        const bool usable = material && material->typeName == "Material";
+        const std::string where = state.bindingPrim->location.toString();
+        if (!usable) {
+            diagnostics_.warn(where, state.bindingPrim->path + ".material:binding: " + state.materialBinding +
+                                         (material ? " is a " + (material->typeName.empty() ? std::string("typeless prim")
+                                                                                           : material->typeName)
+                                                   : std::string(" does not exist")) +
+                                         ", not a Material; the prims below keep their own colours");
+        } else {
+            std::string problem;
+            scene_.setMaterial(readMaterial(stage_, *material, time_, &problem));
+            if (!problem.empty()) diagnostics_.warn(material->location.toString(), problem);
+        }
+        known = materials_.emplace(state.materialBinding, usable).first;
+    }
+    return known->second ? state.materialBinding : std::string();
 }
 
 void Reader::readMesh(const Prim& prim, const Inherited& state) {
@@ -433,6 +465,10 @@ void Reader::walk(const Prim& prim, const Inherited& parent) {
         } else {
             warn(prim, "visibility", "expected token, found " + visibility->typeName + "; ignored");
         }
+    }
+    if (std::optional<std::string> binding = directMaterialBinding(prim)) {
+        state.materialBinding = *binding;
+        state.bindingPrim = &prim;
     }
     std::string purpose = "default";
     if (parent.purpose) {

@@ -819,3 +819,160 @@ def SphereLight "bulb"
     EXPECT_FLOAT_EQ(r->scene.lights().at("/bulb").prim->intensity, 1.0f);
     EXPECT_FLOAT_EQ(r->scene.lights().at("/bulb").prim->exposure, 0.0f);
 }
+
+TEST(SceneReader, MaterialBindingsAndPreviewSurfaceInputs) {
+    // As usdcat writes UsdShade: an all-purpose binding on an ancestor, a
+    // preview binding that wins over it, interface inputs and a primvar reader.
+    auto r = read(R"(
+def Xform "World" (
+    prepend apiSchemas = ["MaterialBindingAPI"]
+)
+{
+    rel material:binding = </World/Looks/red>
+
+    def BasisCurves "inherits"
+    {
+        int[] curveVertexCounts = [2]
+        point3f[] points = [(0, 0, 0), (1, 0, 0)]
+    }
+
+    def BasisCurves "preview" (
+        prepend apiSchemas = ["MaterialBindingAPI"]
+    )
+    {
+        int[] curveVertexCounts = [2]
+        point3f[] points = [(0, 0, 0), (1, 0, 0)]
+        rel material:binding = </World/Looks/red>
+        rel material:binding:preview = </World/Looks/fromPrimvar>
+    }
+
+    def BasisCurves "broken" (
+        prepend apiSchemas = ["MaterialBindingAPI"]
+    )
+    {
+        int[] curveVertexCounts = [2]
+        point3f[] points = [(0, 0, 0), (1, 0, 0)]
+        rel material:binding = </World/Looks>
+    }
+
+    def Scope "Looks"
+    {
+        def Material "red"
+        {
+            color3f inputs:hairColor = (0.8, 0.1, 0.05)
+            token outputs:surface.connect = </World/Looks/red/Surface.outputs:surface>
+
+            def Shader "Surface"
+            {
+                uniform token info:id = "UsdPreviewSurface"
+                color3f inputs:diffuseColor.connect = </World/Looks/red.inputs:hairColor>
+                float inputs:opacity = 0.5
+                token outputs:surface
+            }
+        }
+
+        def Material "fromPrimvar"
+        {
+            token outputs:surface.connect = </World/Looks/fromPrimvar/Surface.outputs:surface>
+
+            def Shader "Surface"
+            {
+                uniform token info:id = "UsdPreviewSurface"
+                color3f inputs:diffuseColor.connect = </World/Looks/fromPrimvar/Reader.outputs:result>
+                token outputs:surface
+            }
+
+            def Shader "Reader"
+            {
+                uniform token info:id = "UsdPrimvarReader_float3"
+                float3 inputs:fallback = (0, 0, 1)
+                string inputs:varname = "hairColor"
+                float3 outputs:result
+            }
+        }
+    }
+}
+)");
+    const CurvesPrim* inherits = r->scene.findCurves("/World/inherits");
+    ASSERT_NE(inherits, nullptr);
+    EXPECT_EQ(inherits->materialBinding, "/World/Looks/red");
+    EXPECT_EQ(r->scene.findCurves("/World/preview")->materialBinding, "/World/Looks/fromPrimvar");
+    EXPECT_EQ(r->scene.findCurves("/World/broken")->materialBinding, "");
+    EXPECT_TRUE(hasWarning(r->diagnostics, {"/World/broken.material:binding: /World/Looks is a Scope, not a Material"}));
+
+    const auto* red = r->scene.findMaterial("/World/Looks/red");
+    ASSERT_NE(red, nullptr);
+    EXPECT_TRUE(red->prim->isPreviewSurface());
+    EXPECT_EQ(red->prim->diffuseColor.source, MaterialInput::Source::Value);
+    EXPECT_EQ(red->prim->diffuseColor.value, (std::vector<float>{0.8f, 0.1f, 0.05f}));
+    EXPECT_EQ(red->prim->opacity.value, std::vector<float>{0.5f});
+
+    const auto* fromPrimvar = r->scene.findMaterial("/World/Looks/fromPrimvar");
+    ASSERT_NE(fromPrimvar, nullptr);
+    EXPECT_EQ(fromPrimvar->prim->diffuseColor.source, MaterialInput::Source::Primvar);
+    EXPECT_EQ(fromPrimvar->prim->diffuseColor.primvar, "hairColor");
+    EXPECT_EQ(fromPrimvar->prim->diffuseColor.value, (std::vector<float>{0.0f, 0.0f, 1.0f}));
+    EXPECT_EQ(fromPrimvar->prim->opacity.value, std::vector<float>{1.0f}) << "UsdPreviewSurface's default";
+    EXPECT_EQ(r->diagnostics.warningCount(), 1u);
+}
+
+TEST(SceneReader, MaterialsWithTexturesOrOtherShadersAreReadForWhatTheyAre) {
+    auto r = read(R"(
+def BasisCurves "hair" (
+    prepend apiSchemas = ["MaterialBindingAPI"]
+)
+{
+    int[] curveVertexCounts = [2]
+    point3f[] points = [(0, 0, 0), (1, 0, 0)]
+    rel material:binding = </textured>
+}
+
+def BasisCurves "other" (
+    prepend apiSchemas = ["MaterialBindingAPI"]
+)
+{
+    int[] curveVertexCounts = [2]
+    point3f[] points = [(0, 0, 0), (1, 0, 0)]
+    rel material:binding = </marschner>
+}
+
+def Material "textured"
+{
+    token outputs:surface.connect = </textured/Surface.outputs:surface>
+
+    def Shader "Surface"
+    {
+        uniform token info:id = "UsdPreviewSurface"
+        color3f inputs:diffuseColor.connect = </textured/Texture.outputs:rgb>
+        token outputs:surface
+    }
+
+    def Shader "Texture"
+    {
+        uniform token info:id = "UsdUVTexture"
+        asset inputs:file = @hair.png@
+        float3 outputs:rgb
+    }
+}
+
+def Material "marschner"
+{
+    token outputs:ri:surface.connect = </marschner/Hair.outputs:out>
+
+    def Shader "Hair"
+    {
+        uniform token info:id = "PxrMarschnerHair"
+        token outputs:out
+    }
+}
+)");
+    const auto* textured = r->scene.findMaterial("/textured");
+    ASSERT_NE(textured, nullptr);
+    EXPECT_EQ(textured->prim->diffuseColor.source, MaterialInput::Source::Unsupported);
+    EXPECT_EQ(textured->prim->diffuseColor.connectedTo, "UsdUVTexture");
+    const auto* other = r->scene.findMaterial("/marschner");
+    ASSERT_NE(other, nullptr);
+    EXPECT_EQ(other->prim->surfaceShaderId, "") << "no universal surface";
+    EXPECT_FALSE(other->prim->isPreviewSurface());
+    EXPECT_TRUE(r->diagnostics.warnings().empty());
+}
