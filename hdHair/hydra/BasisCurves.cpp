@@ -81,7 +81,10 @@ void HdHairBasisCurves::Sync(HdSceneDelegate* sceneDelegate, HdRenderParam* rend
     if (HdChangeTracker::IsDisplayStyleDirty(bits, id)) _refineLevel = GetDisplayStyle(sceneDelegate).refineLevel;
     if (HdChangeTracker::IsTopologyDirty(bits, id)) _SyncTopology(sceneDelegate);
     if (HdChangeTracker::IsAnyPrimvarDirty(bits, id)) _SyncPrimvars(sceneDelegate, bits);
-    if (bits & HdChangeTracker::DirtyMaterialId) SetMaterialId(sceneDelegate->GetMaterialId(id));
+    if (bits & HdChangeTracker::DirtyMaterialId) {
+        SetMaterialId(sceneDelegate->GetMaterialId(id));
+        _curves.materialBinding = GetMaterialId().GetString();
+    }
 
     param->SetCurves(this, _curves, _refineLevel, _instanceTransforms);
     *dirtyBits &= ~HdChangeTracker::AllSceneDirtyBits;

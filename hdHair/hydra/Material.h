@@ -1,8 +1,11 @@
 #pragma once
-// HdHairMaterial: accepted so that hosts populate materials and bindings, and
-// so a later shading issue can read hair parameters from them. hdHair shades
-// with displayColor and its render settings for now: every material, bound
-// or not, means "built-in hair shading".
+// HdHairMaterial: a material sprim. hdHair shades hair with its own models;
+// from a material it reads what Storm would show on curves, a
+// UsdPreviewSurface's diffuseColor and opacity (values or primvar readers),
+// into the engine's scene, where the renderer applies it to every prim bound
+// to it (hdHair/curves/StrandColorSource.h). Editing a material re-colours
+// its prims without re-syncing them. Other surface shaders leave the prims'
+// own colours in place.
 
 #include "pxr/imaging/hd/material.h"
 
@@ -14,7 +17,8 @@ public:
     ~HdHairMaterial() override = default;
 
     HdDirtyBits GetInitialDirtyBitsMask() const override { return AllDirty; }
-    void Sync(HdSceneDelegate*, HdRenderParam*, HdDirtyBits* dirtyBits) override { *dirtyBits = Clean; }
+    void Sync(HdSceneDelegate* sceneDelegate, HdRenderParam* renderParam, HdDirtyBits* dirtyBits) override;
+    void Finalize(HdRenderParam* renderParam) override;
 };
 
 PXR_NAMESPACE_CLOSE_SCOPE

@@ -71,6 +71,12 @@ void HdHairRenderParam::SetLight(hdhair::LightPrim light) {
     _scene.setLight(std::move(light));
 }
 
+void HdHairRenderParam::SetMaterial(hdhair::MaterialPrim material) {
+    std::lock_guard<std::mutex> lock(_mutex);
+    ++_syncCounts[material.path];
+    _scene.setMaterial(std::move(material));
+}
+
 void HdHairRenderParam::Remove(std::string const& path) {
     std::lock_guard<std::mutex> lock(_mutex);
     _RemoveEnginePrims(path);

@@ -35,6 +35,7 @@ public:
                    std::optional<std::vector<glm::dmat4>> const& instanceTransforms);
     void SetMesh(HdRprim const* rprim, hdhair::MeshPrim prim);
     void SetLight(hdhair::LightPrim light);
+    void SetMaterial(hdhair::MaterialPrim material);
     void Remove(std::string const& path);
 
     static std::string InstancePath(std::string const& path, size_t instance);

@@ -27,6 +27,9 @@
 #include "pxr/usd/usdGeom/pointInstancer.h"
 #include "pxr/usd/usdGeom/xformable.h"
 #include "pxr/usd/usdLux/distantLight.h"
+#include "pxr/usd/usdShade/material.h"
+#include "pxr/usd/usdShade/materialBindingAPI.h"
+#include "pxr/usd/usdShade/shader.h"
 #include "pxr/usdImaging/usdImagingGL/engine.h"
 
 PXR_NAMESPACE_USING_DIRECTIVE
@@ -203,6 +206,43 @@ TEST_F(HdHairPlugin, EditsResyncOnlyTheTouchedPrimAndChangeTheImage) {
     Frame hidden = recorder.render();
     expectOnlyA(hidden, "visibility");
     EXPECT_LT(coverage(hidden), coverage(translated));
+}
+
+TEST_F(HdHairPlugin, AMaterialEditRecoloursBoundCurvesWithoutResyncingThem) {
+    UsdStageRefPtr stage = twoStrandsStage();
+    UsdShadeMaterial material = UsdShadeMaterial::Define(stage, SdfPath("/Looks/hair"));
+    UsdShadeShader surface = UsdShadeShader::Define(stage, SdfPath("/Looks/hair/Surface"));
+    surface.CreateIdAttr(VtValue(TfToken("UsdPreviewSurface")));
+    UsdShadeInput diffuse = surface.CreateInput(TfToken("diffuseColor"), SdfValueTypeNames->Color3f);
+    diffuse.Set(GfVec3f(1.0f, 0.0f, 0.0f));
+    material.CreateSurfaceOutput().ConnectToSource(surface.ConnectableAPI(), TfToken("surface"));
+    for (char const* path : {"/A", "/B"})
+        UsdShadeMaterialBindingAPI::Apply(stage->GetPrimAtPath(SdfPath(path))).Bind(material);
+
+    // The mean colour of covered pixels (un-premultiplied).
+    auto meanColor = [](Frame const& frame) {
+        GfVec3d sum(0.0);
+        double alpha = 0.0;
+        for (size_t i = 0; i < frame.color.size(); i += 4) {
+            sum += GfVec3d(frame.color[i], frame.color[i + 1], frame.color[i + 2]);
+            alpha += frame.color[i + 3];
+        }
+        return alpha > 0.0 ? sum / alpha : sum;
+    };
+    Recorder recorder(stage);
+    Frame red = recorder.render();
+    GfVec3d redMean = meanColor(red);
+    // Kajiya-Kay's white specular highlight dilutes the hue: 2.5x margins.
+    EXPECT_GT(redMean[0], 2.5 * redMean[1]) << redMean;
+    EXPECT_GT(redMean[0], 2.5 * redMean[2]) << redMean;
+
+    diffuse.Set(GfVec3f(0.0f, 0.0f, 1.0f));
+    Frame blue = recorder.render();
+    GfVec3d blueMean = meanColor(blue);
+    EXPECT_GT(blueMean[2], 2.5 * blueMean[0]) << blueMean;
+    EXPECT_GT(blueMean[2], 2.5 * blueMean[1]) << blueMean;
+    EXPECT_EQ(syncs(blue, "/A"), syncs(red, "/A")) << "the curves were re-synced";
+    EXPECT_GT(syncs(blue, "/Looks/hair"), syncs(red, "/Looks/hair"));
 }
 
 TEST_F(HdHairPlugin, PointInstancerInstancesAreDrawnScaledAndPickable) {
