@@ -93,12 +93,16 @@ def render_value(type_name, v):
 
 
 class Attr:
+    """An attribute: a value, time samples, a connection (`connect`, a path), or
+    none of them (a declaration, as UsdShade writes outputs)."""
+
     def __init__(self, type_name, name, value=None, uniform=False, interpolation=None,
-                 samples=None, metadata=None):
+                 samples=None, metadata=None, connect=None):
         self.type_name = type_name
         self.name = name
         self.value = value
         self.uniform = uniform
+        self.connect = connect
         self.samples = samples  # {time: value}
         self.metadata = list(metadata or [])  # [(key, rendered value)]
         if interpolation is not None:
@@ -107,8 +111,12 @@ class Attr:
     def lines(self, ind):
         head = ind + ("uniform " if self.uniform else "") + self.type_name + " " + self.name
         out = []
+        if self.value is None and self.samples is None and self.connect is None:
+            out.append(head)
         if self.value is not None:
             out.append(head + " = " + render_value(self.type_name, self.value))
+        if self.connect is not None:
+            out.append(head + ".connect = <%s>" % self.connect)
         if self.samples is not None:
             out.append(head + ".timeSamples = {")
             for t in sorted(self.samples):
@@ -120,6 +128,17 @@ class Attr:
                 out.append(ind + "    %s = %s" % (key, val))
             out.append(ind + ")")
         return out
+
+
+class Rel(Attr):
+    """A relationship with one target, e.g. material:binding."""
+
+    def __init__(self, name, target):
+        super().__init__("rel", name)
+        self.target = target
+
+    def lines(self, ind):
+        return [ind + "rel %s = <%s>" % (self.name, self.target)]
 
 
 class Prim:
@@ -450,6 +469,14 @@ class Parser:
         if type_tok[0] != "ident":
             self.fail("attribute type expected")
         type_name = type_tok[1]
+        if type_name == "rel":
+            name = self.next()[1]
+            self.expect("=")
+            target = self.next()
+            if target[0] != "path":
+                self.fail("relationship target expected")
+            prim.setdefault("rels", {})[name] = target[1][1:-1]
+            return
         if self.peek()[1] == "[":
             self.expect("[")
             self.expect("]")
@@ -458,6 +485,15 @@ class Parser:
         if base not in TUPLE_SIZES and base not in STRING_TYPES:
             self.fail("unknown attribute type " + type_name)
         name = self.next()[1]
+        if name.endswith(".connect"):
+            self.expect("=")
+            target = self.next()
+            if target[0] != "path":
+                self.fail("connection target expected")
+            attr = prim["attrs"].setdefault(name[:-len(".connect")], {
+                "type": type_name, "uniform": uniform, "value": None, "samples": None, "meta": {}})
+            attr["connect"] = target[1][1:-1]
+            return
         samples = name.endswith(".timeSamples")
         if samples:
             name = name[:-len(".timeSamples")]
@@ -465,6 +501,8 @@ class Parser:
                                                "samples": None, "meta": {}})
         if attr["type"] != type_name:
             self.fail("attribute %s declared with two types" % name)
+        if self.peek()[1] != "=":
+            return  # declared without a value
         self.expect("=")
         value = self.parse_value()
         if samples:

@@ -363,6 +363,74 @@ def composition():
 
 
 # ---------------------------------------------------------------------------
+# materials.usda: UsdPreviewSurface bindings, read the way Storm shows them
+# ---------------------------------------------------------------------------
+
+
+def preview_material(name, diffuse=None, opacity=None, interface=None, reader=None):
+    """A Material whose universal surface is a UsdPreviewSurface. `diffuse` is a
+    value; `interface` a value on the Material's inputs:hairColor that the
+    shader connects to; `reader` the primvar a UsdPrimvarReader_float3 reads."""
+    base = "/World/Looks/" + name
+    shader = [u.Attr("token", "info:id", "UsdPreviewSurface", uniform=True), u.Attr("token", "outputs:surface")]
+    if diffuse is not None:
+        shader.append(u.Attr("color3f", "inputs:diffuseColor", diffuse))
+    if interface is not None:
+        shader.append(u.Attr("color3f", "inputs:diffuseColor", connect=base + ".inputs:hairColor"))
+    if reader is not None:
+        shader.append(u.Attr("color3f", "inputs:diffuseColor", connect=base + "/Reader.outputs:result"))
+    if opacity is not None:
+        shader.append(u.Attr("float", "inputs:opacity", opacity))
+    children = [u.Prim("Shader", "Surface", attrs=shader)]
+    if reader is not None:
+        children.append(u.Prim("Shader", "Reader", attrs=[
+            u.Attr("token", "info:id", "UsdPrimvarReader_float3", uniform=True),
+            u.Attr("float3", "inputs:fallback", (0, 0, 0)),
+            u.Attr("string", "inputs:varname", reader),
+            u.Attr("float3", "outputs:result")]))
+    attrs = [u.Attr("token", "outputs:surface", connect=base + "/Surface.outputs:surface")]
+    if interface is not None:
+        attrs.append(u.Attr("color3f", "inputs:hairColor", interface))
+    return u.Prim("Material", name, attrs=attrs, children=children)
+
+
+def bound(prim, material):
+    prim.metadata.append(("prepend apiSchemas", '["MaterialBindingAPI"]'))
+    prim.attrs.append(u.Rel("material:binding", "/World/Looks/" + material))
+    return prim
+
+
+def materials():
+    """Four prims of wavy strands with a green displayColor, left to right: a
+    UsdPreviewSurface with an auburn diffuseColor and opacity 0.7; one whose
+    diffuseColor reads displayColor through a primvar reader (green); one
+    bound through its parent to a blonde colour held on the Material's
+    interface input; and one with no material (green)."""
+    green = (0.2, 0.7, 0.25)
+
+    def strands(name, x, basis):
+        prim = wavy_strands(6, basis, green, x)
+        prim.name = name
+        return u.Prim("Xform", name + "_xform", attrs=u.xform_attrs(translate=(x, 0, 0)), children=[prim])
+
+    left = strands("auburn", -12, "catmullRom")
+    bound(left.children[0], "auburn")
+    reader = strands("from_display_color", -4, "bspline")
+    bound(reader.children[0], "from_display_color")
+    group = bound(u.Prim("Xform", "blonde_group", attrs=u.xform_attrs(translate=(4, 0, 0)),
+                         children=[wavy_strands(6, "catmullRom", green, 4.0)]), "blonde")
+    unbound = strands("unbound", 12, "bspline")
+    looks = u.Prim("Scope", "Looks", children=[
+        preview_material("auburn", diffuse=(0.45, 0.16, 0.07), opacity=0.7),
+        preview_material("from_display_color", reader="displayColor"),
+        preview_material("blonde", interface=(0.85, 0.7, 0.4)),
+    ])
+    layer = u.Layer(doc=DOC, default_prim="World")
+    layer.add(world(left, reader, group, unbound, looks, key_light()))
+    return add_framed_camera(layer, "materials.usda", {}, fill=0.9)
+
+
+# ---------------------------------------------------------------------------
 # instancing/: native instancing, one prototype placed three times
 # ---------------------------------------------------------------------------
 
@@ -397,6 +465,7 @@ def main():
         "bases.usda": bases().text(),
         "interpolations.usda": interpolations().text(),
         "hair_parameters.usda": hair_parameters().text(),
+        "materials.usda": materials().text(),
         "xforms.usda": xforms().text(),
         "widths.usda": widths_stage(1).text(),
         "widths_doubled.usda": widths_stage(2).text(),
@@ -426,6 +495,8 @@ def main():
     assert a1["points"] == a2["points"] and w1["main_cam"] == w2["main_cam"]
     assert all(2 * x == y for x, y in zip(a1["widths"]["value"], a2["widths"]["value"]))
     assert texts["empty.usda"].count("BasisCurves") == 0
+    looks = u.parse(texts["materials.usda"], "materials.usda")["prims"]["World"]["children"]["Looks"]
+    assert set(looks["children"]) == {"auburn", "from_display_color", "blonde"}
     _, prims = u.compose("instancing/root.usda", texts)
     assert all("strands" in prims["World"]["children"][n]["children"] for n in ("left", "middle", "right"))
 

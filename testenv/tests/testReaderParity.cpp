@@ -42,6 +42,7 @@ const Stage kStages[] = {
     {"xforms", "testenv/stages/xforms.usda", "/World/main_cam"},
     {"widths", "testenv/stages/widths.usda", "/World/main_cam"},
     {"composition", "testenv/stages/composition/root.usda", "/World/main_cam"},
+    {"materials", "testenv/stages/materials.usda", "/World/main_cam"},
     {"instancing", "testenv/stages/instancing/root.usda", "/World/main_cam"},
 };
 

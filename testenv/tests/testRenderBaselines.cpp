@@ -46,6 +46,7 @@ const BaselineCase kCases[] = {
     {"xforms_time1", "testenv/stages/xforms.usda", "/World/main_cam", 256, 1.0},
     {"xforms_time10", "testenv/stages/xforms.usda", "/World/main_cam", 256, 10.0},
     {"composition", "testenv/stages/composition/root.usda", "/World/main_cam", 256, 0.0},
+    {"materials", "testenv/stages/materials.usda", "/World/main_cam", 256, 0.0},
     {"instancing", "testenv/stages/instancing/root.usda", "/World/main_cam", 256, 0.0},
     {"framing_camera", "examples/wavy_strands.usda", "", 256, 0.0},
 };
