@@ -299,6 +299,42 @@ TEST_F(HdHairPlugin, PointInstancerInstancesAreDrawnScaledAndPickable) {
     EXPECT_GT(syncs(moved, prototype), syncs(frame, prototype)) << prototype;
 }
 
+TEST_F(HdHairPlugin, NestedInstancersComposeTheirTransforms) {
+    // An outer PointInstancer places two copies of an inner one, which places
+    // two strands: four strands, one in each quadrant, instance ids 0 to 3.
+    UsdStageRefPtr stage = twoStrandsStage();
+    stage->RemovePrim(SdfPath("/A"));
+    stage->RemovePrim(SdfPath("/B"));
+    UsdGeomPointInstancer outer = UsdGeomPointInstancer::Define(stage, SdfPath("/Outer"));
+    UsdGeomPointInstancer inner = UsdGeomPointInstancer::Define(stage, SdfPath("/Outer/Prototypes/inner"));
+    UsdGeomBasisCurves strand = UsdGeomBasisCurves::Define(stage, SdfPath("/Outer/Prototypes/inner/Prototypes/s"));
+    strand.CreateTypeAttr(VtValue(UsdGeomTokens->linear));
+    strand.CreateCurveVertexCountsAttr(VtValue(VtIntArray{2}));
+    strand.CreatePointsAttr(VtValue(VtVec3fArray{GfVec3f(0, -0.4f, 0), GfVec3f(0, 0.4f, 0)}));
+    strand.CreateWidthsAttr(VtValue(VtFloatArray{0.15f}));
+    inner.CreatePrototypesRel().AddTarget(strand.GetPath());
+    inner.CreateProtoIndicesAttr(VtValue(VtIntArray{0, 0}));
+    inner.CreatePositionsAttr(VtValue(VtVec3fArray{GfVec3f(-1.0f, 0, 0), GfVec3f(1.0f, 0, 0)}));
+    outer.CreatePrototypesRel().AddTarget(inner.GetPath());
+    outer.CreateProtoIndicesAttr(VtValue(VtIntArray{0, 0}));
+    outer.CreatePositionsAttr(VtValue(VtVec3fArray{GfVec3f(0, -0.8f, 0), GfVec3f(0, 0.8f, 0)}));
+
+    Recorder recorder(stage);
+    Frame frame = recorder.render();
+    const int height = int(frame.instanceIds.size()) / frame.width;
+    double quadrant[2][2] = {{0.0, 0.0}, {0.0, 0.0}};
+    std::set<int> ids;
+    for (int y = 0; y < height; ++y)
+        for (int x = 0; x < frame.width; ++x)
+            if (frame.alpha(x, y) > 0.0f) {
+                quadrant[y < height / 2][x < frame.width / 2] += frame.alpha(x, y);
+                ids.insert(frame.instanceId(x, y));
+            }
+    for (auto const& row : quadrant)
+        for (double covered : row) EXPECT_GT(covered, 1.0);
+    EXPECT_EQ(ids, (std::set<int>{0, 1, 2, 3}));
+}
+
 TEST_F(HdHairPlugin, PrototypesSharingAnInstancerSyncInParallel) {
     // 64 prototypes of one PointInstancer sync on Hydra's worker threads,
     // each syncing the shared instancer first (under its lock) and then
