@@ -25,6 +25,19 @@ set(HDHAIR_WITH_USD ON)
 # A monolithic OpenUSD build exports one library, usd_ms; a per-library
 # build exports each (imported targets without a namespace).
 if(TARGET usd_ms)
+  # OpenUSD 24.08 exports usd_ms without include directories, nor the
+  # Python headers its own headers need when it was built with Python (the
+  # per-library targets carry both): add them.
+  get_target_property(_hdhair_pxr_includes usd_ms INTERFACE_INCLUDE_DIRECTORIES)
+  if(NOT _hdhair_pxr_includes)
+    set(_hdhair_pxr_includes ${PXR_INCLUDE_DIRS})
+    file(READ "${PXR_INCLUDE_DIRS}/pxr/pxr.h" _hdhair_pxr_h)
+    if(_hdhair_pxr_h MATCHES "#if 1[ \t\r\n]+#define PXR_PYTHON_SUPPORT_ENABLED")
+      find_package(Python3 REQUIRED COMPONENTS Development)
+      list(APPEND _hdhair_pxr_includes ${Python3_INCLUDE_DIRS})
+    endif()
+    set_target_properties(usd_ms PROPERTIES INTERFACE_INCLUDE_DIRECTORIES "${_hdhair_pxr_includes}")
+  endif()
   set(HDHAIR_PXR_IMAGING usd_ms)
   set(HDHAIR_PXR_USDIMAGING usd_ms)
   set(HDHAIR_PXR_USDLUX usd_ms)
