@@ -7,6 +7,7 @@
 #include <cmath>
 #include <set>
 #include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -43,21 +44,44 @@ protected:
     static void SetUpTestSuite() { PlugRegistry::GetInstance().RegisterPlugins(HDHAIR_PLUGIN_RESOURCES); }
 };
 
-// Two BasisCurves prims side by side, a camera looking at them and a light.
-UsdStageRefPtr twoStrandsStage() {
+// A camera at z = 10 looking down -Z (it sees x in about [-2.1, 2.1]) and a
+// light, nothing else.
+UsdStageRefPtr cameraAndLightStage() {
     UsdStageRefPtr stage = UsdStage::CreateInMemory();
-    for (int i = 0; i < 2; ++i) {
-        UsdGeomBasisCurves curves = UsdGeomBasisCurves::Define(stage, SdfPath(i == 0 ? "/A" : "/B"));
-        curves.CreateTypeAttr(VtValue(UsdGeomTokens->linear));
-        curves.CreateCurveVertexCountsAttr(VtValue(VtIntArray{2}));
-        float x = i == 0 ? -1.0f : 1.0f;
-        curves.CreatePointsAttr(VtValue(VtVec3fArray{GfVec3f(x, -1, 0), GfVec3f(x, 1, 0)}));
-        curves.CreateWidthsAttr(VtValue(VtFloatArray{0.2f}));
-    }
     UsdGeomCamera camera = UsdGeomCamera::Define(stage, SdfPath("/Camera"));
     camera.AddTranslateOp().Set(GfVec3d(0, 0, 10));
     // UsdLux's DistantLight intensity falls back to 50000 (the Sun): author 1.
     UsdLuxDistantLight::Define(stage, SdfPath("/Light")).CreateIntensityAttr(VtValue(1.0f));
+    return stage;
+}
+
+// One linear strand from `from` to `to` of constant width.
+UsdGeomBasisCurves defineStrand(UsdStageRefPtr const& stage, std::string const& path, GfVec3f from, GfVec3f to,
+                                float width) {
+    UsdGeomBasisCurves curves = UsdGeomBasisCurves::Define(stage, SdfPath(path));
+    curves.CreateTypeAttr(VtValue(UsdGeomTokens->linear));
+    curves.CreateCurveVertexCountsAttr(VtValue(VtIntArray{2}));
+    curves.CreatePointsAttr(VtValue(VtVec3fArray{from, to}));
+    curves.CreateWidthsAttr(VtValue(VtFloatArray{width}));
+    return curves;
+}
+
+// A PointInstancer placing instance i of prototypes[protoIndices[i]] at positions[i].
+UsdGeomPointInstancer defineInstancer(UsdStageRefPtr const& stage, std::string const& path,
+                                      std::vector<SdfPath> const& prototypes, VtIntArray const& protoIndices,
+                                      VtVec3fArray const& positions) {
+    UsdGeomPointInstancer instancer = UsdGeomPointInstancer::Define(stage, SdfPath(path));
+    for (SdfPath const& prototype : prototypes) instancer.CreatePrototypesRel().AddTarget(prototype);
+    instancer.CreateProtoIndicesAttr(VtValue(protoIndices));
+    instancer.CreatePositionsAttr(VtValue(positions));
+    return instancer;
+}
+
+// Two BasisCurves prims side by side, /A and /B, with the camera and light.
+UsdStageRefPtr twoStrandsStage() {
+    UsdStageRefPtr stage = cameraAndLightStage();
+    defineStrand(stage, "/A", GfVec3f(-1, -1, 0), GfVec3f(-1, 1, 0), 0.2f);
+    defineStrand(stage, "/B", GfVec3f(1, -1, 0), GfVec3f(1, 1, 0), 0.2f);
     return stage;
 }
 
@@ -246,20 +270,13 @@ TEST_F(HdHairPlugin, AMaterialEditRecoloursBoundCurvesWithoutResyncingThem) {
 }
 
 TEST_F(HdHairPlugin, PointInstancerInstancesAreDrawnScaledAndPickable) {
-    UsdStageRefPtr stage = twoStrandsStage();
-    stage->RemovePrim(SdfPath("/A"));
-    stage->RemovePrim(SdfPath("/B"));
-    UsdGeomPointInstancer instancer = UsdGeomPointInstancer::Define(stage, SdfPath("/Instancer"));
+    UsdStageRefPtr stage = cameraAndLightStage();
     // The prototype sits at the origin, where nothing may be drawn: only its
-    // instances are (the camera sees x in about [-2.1, 2.1]).
-    UsdGeomBasisCurves strand = UsdGeomBasisCurves::Define(stage, SdfPath("/Instancer/Prototypes/strand"));
-    strand.CreateTypeAttr(VtValue(UsdGeomTokens->linear));
-    strand.CreateCurveVertexCountsAttr(VtValue(VtIntArray{2}));
-    strand.CreatePointsAttr(VtValue(VtVec3fArray{GfVec3f(0, -0.5f, 0), GfVec3f(0, 0.5f, 0)}));
-    strand.CreateWidthsAttr(VtValue(VtFloatArray{0.1f}));
-    instancer.CreatePrototypesRel().AddTarget(strand.GetPath());
-    instancer.CreateProtoIndicesAttr(VtValue(VtIntArray{0, 0}));
-    instancer.CreatePositionsAttr(VtValue(VtVec3fArray{GfVec3f(-1.2f, 0, 0), GfVec3f(1.2f, 0, 0)}));
+    // instances are.
+    UsdGeomBasisCurves strand =
+        defineStrand(stage, "/Instancer/Prototypes/strand", GfVec3f(0, -0.5f, 0), GfVec3f(0, 0.5f, 0), 0.1f);
+    UsdGeomPointInstancer instancer = defineInstancer(stage, "/Instancer", {strand.GetPath()}, {0, 0},
+                                                      {GfVec3f(-1.2f, 0, 0), GfVec3f(1.2f, 0, 0)});
     // The second instance is twice as big (widths too) and turned upside down
     // (a quath orientation, as PointInstancers author them).
     instancer.CreateScalesAttr(VtValue(VtVec3fArray{GfVec3f(1.0f), GfVec3f(2.0f)}));
@@ -302,22 +319,12 @@ TEST_F(HdHairPlugin, PointInstancerInstancesAreDrawnScaledAndPickable) {
 TEST_F(HdHairPlugin, NestedInstancersComposeTheirTransforms) {
     // An outer PointInstancer places two copies of an inner one, which places
     // two strands: four strands, one in each quadrant, instance ids 0 to 3.
-    UsdStageRefPtr stage = twoStrandsStage();
-    stage->RemovePrim(SdfPath("/A"));
-    stage->RemovePrim(SdfPath("/B"));
-    UsdGeomPointInstancer outer = UsdGeomPointInstancer::Define(stage, SdfPath("/Outer"));
-    UsdGeomPointInstancer inner = UsdGeomPointInstancer::Define(stage, SdfPath("/Outer/Prototypes/inner"));
-    UsdGeomBasisCurves strand = UsdGeomBasisCurves::Define(stage, SdfPath("/Outer/Prototypes/inner/Prototypes/s"));
-    strand.CreateTypeAttr(VtValue(UsdGeomTokens->linear));
-    strand.CreateCurveVertexCountsAttr(VtValue(VtIntArray{2}));
-    strand.CreatePointsAttr(VtValue(VtVec3fArray{GfVec3f(0, -0.4f, 0), GfVec3f(0, 0.4f, 0)}));
-    strand.CreateWidthsAttr(VtValue(VtFloatArray{0.15f}));
-    inner.CreatePrototypesRel().AddTarget(strand.GetPath());
-    inner.CreateProtoIndicesAttr(VtValue(VtIntArray{0, 0}));
-    inner.CreatePositionsAttr(VtValue(VtVec3fArray{GfVec3f(-1.0f, 0, 0), GfVec3f(1.0f, 0, 0)}));
-    outer.CreatePrototypesRel().AddTarget(inner.GetPath());
-    outer.CreateProtoIndicesAttr(VtValue(VtIntArray{0, 0}));
-    outer.CreatePositionsAttr(VtValue(VtVec3fArray{GfVec3f(0, -0.8f, 0), GfVec3f(0, 0.8f, 0)}));
+    UsdStageRefPtr stage = cameraAndLightStage();
+    UsdGeomBasisCurves strand = defineStrand(stage, "/Outer/Prototypes/inner/Prototypes/s", GfVec3f(0, -0.4f, 0),
+                                             GfVec3f(0, 0.4f, 0), 0.15f);
+    UsdGeomPointInstancer inner = defineInstancer(stage, "/Outer/Prototypes/inner", {strand.GetPath()}, {0, 0},
+                                                  {GfVec3f(-1.0f, 0, 0), GfVec3f(1.0f, 0, 0)});
+    defineInstancer(stage, "/Outer", {inner.GetPath()}, {0, 0}, {GfVec3f(0, -0.8f, 0), GfVec3f(0, 0.8f, 0)});
 
     Recorder recorder(stage);
     Frame frame = recorder.render();
@@ -339,32 +346,25 @@ TEST_F(HdHairPlugin, PrototypesSharingAnInstancerSyncInParallel) {
     // 64 prototypes of one PointInstancer sync on Hydra's worker threads,
     // each syncing the shared instancer first (under its lock) and then
     // reading its transforms: run under ThreadSanitizer (README).
-    UsdStageRefPtr stage = twoStrandsStage();
-    UsdGeomPointInstancer instancer = UsdGeomPointInstancer::Define(stage, SdfPath("/Instancer"));
+    UsdStageRefPtr stage = cameraAndLightStage();
     constexpr int kPrototypes = 64, kInstances = 2048;
-    for (int p = 0; p < kPrototypes; ++p) {
-        UsdGeomBasisCurves curves =
-            UsdGeomBasisCurves::Define(stage, SdfPath("/Instancer/Prototypes/p" + std::to_string(p)));
-        curves.CreateTypeAttr(VtValue(UsdGeomTokens->linear));
-        curves.CreateCurveVertexCountsAttr(VtValue(VtIntArray{2}));
-        float tilt = 0.01f * float(p);
-        curves.CreatePointsAttr(VtValue(VtVec3fArray{GfVec3f(0, 0, 0), GfVec3f(tilt, 0.05f, 0)}));
-        curves.CreateWidthsAttr(VtValue(VtFloatArray{0.01f}));
-        instancer.CreatePrototypesRel().AddTarget(curves.GetPath());
-    }
+    std::vector<SdfPath> prototypes;
+    for (int p = 0; p < kPrototypes; ++p)
+        prototypes.push_back(defineStrand(stage, "/Instancer/Prototypes/p" + std::to_string(p), GfVec3f(0.0f),
+                                          GfVec3f(0.01f * float(p), 0.05f, 0.0f), 0.01f)
+                                 .GetPath());
     VtIntArray protoIndices(kInstances);
     VtVec3fArray positions(kInstances);
     for (int i = 0; i < kInstances; ++i) {
         protoIndices[i] = i % kPrototypes;
         positions[i] = GfVec3f(-1.8f + 3.6f * float(i % 64) / 63.0f, -1.4f + 2.8f * float(i / 64) / 31.0f, 0.0f);
     }
-    instancer.CreateProtoIndicesAttr(VtValue(protoIndices));
-    instancer.CreatePositionsAttr(VtValue(positions));
+    defineInstancer(stage, "/Instancer", prototypes, protoIndices, positions);
     Recorder recorder(stage);
     Frame frame = recorder.render();
-    int prototypes = 0;
-    for (auto const& entry : frame.syncCounts) prototypes += entry.first.rfind("/Instancer/", 0) == 0 ? 1 : 0;
-    EXPECT_EQ(prototypes, kPrototypes);
+    int synced = 0;
+    for (auto const& entry : frame.syncCounts) synced += entry.first.rfind("/Instancer/", 0) == 0 ? 1 : 0;
+    EXPECT_EQ(synced, kPrototypes);
     std::set<int> instanceIds(frame.instanceIds.begin(), frame.instanceIds.end());
     // Each prototype has 32 instances (ids 0 to 31) and empty pixels are -1.
     EXPECT_EQ(*instanceIds.begin(), -1);
@@ -375,13 +375,8 @@ TEST_F(HdHairPlugin, PrototypesSharingAnInstancerSyncInParallel) {
 TEST_F(HdHairPlugin, TenThousandCurvesSyncInParallel) {
     UsdStageRefPtr stage = twoStrandsStage();
     for (int i = 0; i < 10000; ++i) {
-        UsdGeomBasisCurves curves =
-            UsdGeomBasisCurves::Define(stage, SdfPath("/Many/c" + std::to_string(i)));
-        curves.CreateTypeAttr(VtValue(UsdGeomTokens->linear));
-        curves.CreateCurveVertexCountsAttr(VtValue(VtIntArray{2}));
         float x = -4.0f + 8.0f * float(i % 100) / 99.0f, y = -3.0f + 6.0f * float(i / 100) / 99.0f;
-        curves.CreatePointsAttr(VtValue(VtVec3fArray{GfVec3f(x, y, 0), GfVec3f(x + 0.05f, y + 0.05f, 0)}));
-        curves.CreateWidthsAttr(VtValue(VtFloatArray{0.02f}));
+        defineStrand(stage, "/Many/c" + std::to_string(i), GfVec3f(x, y, 0), GfVec3f(x + 0.05f, y + 0.05f, 0), 0.02f);
     }
     Recorder recorder(stage);
     Frame frame = recorder.render();
