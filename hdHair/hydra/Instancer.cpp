@@ -1,6 +1,8 @@
 #include "hdHair/hydra/Instancer.h"
 
 #include <cmath>
+#include <iterator>
+#include <set>
 
 #include "pxr/base/gf/matrix4f.h"
 #include "pxr/base/gf/quatd.h"
@@ -71,12 +73,17 @@ void HdHairInstancer::Sync(HdSceneDelegate* sceneDelegate, HdRenderParam*, HdDir
     if (!HdChangeTracker::IsAnyPrimvarDirty(*dirtyBits, id)) return;
     // Instance-rate primvars other than transforms (per-instance colours)
     // are not read: hdHair's strands take their primvars from the prototype.
+    std::set<TfToken> present;
     for (HdPrimvarDescriptor const& descriptor :
          sceneDelegate->GetPrimvarDescriptors(id, HdInterpolationInstance)) {
-        if (!isTransformPrimvar(descriptor.name) || !HdChangeTracker::IsPrimvarDirty(*dirtyBits, id, descriptor.name))
-            continue;
-        _transformPrimvars[descriptor.name] = sceneDelegate->Get(id, descriptor.name);
+        if (!isTransformPrimvar(descriptor.name)) continue;
+        present.insert(descriptor.name);
+        if (HdChangeTracker::IsPrimvarDirty(*dirtyBits, id, descriptor.name))
+            _transformPrimvars[descriptor.name] = sceneDelegate->Get(id, descriptor.name);
     }
+    // A transform primvar no longer authored (scales removed, say) stops applying.
+    for (auto it = _transformPrimvars.begin(); it != _transformPrimvars.end();)
+        it = present.count(it->first) ? std::next(it) : _transformPrimvars.erase(it);
 }
 
 std::vector<GfMatrix4d> HdHairInstancer::_ComputeLocalTransforms(SdfPath const& prototypeId) const {

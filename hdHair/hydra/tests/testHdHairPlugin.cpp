@@ -314,6 +314,16 @@ TEST_F(HdHairPlugin, PointInstancerInstancesAreDrawnScaledAndPickable) {
         if (entry.first.rfind("/Instancer/", 0) == 0) prototype = entry.first;
     ASSERT_FALSE(prototype.empty());
     EXPECT_GT(syncs(moved, prototype), syncs(frame, prototype)) << prototype;
+
+    // Without scales both instances are the same size again.
+    auto halves = [](Frame const& f) {
+        double sums[2] = {0.0, 0.0};
+        for (size_t i = 0; i < f.color.size() / 4; ++i) sums[int(i % size_t(f.width)) >= f.width / 2] += f.color[4 * i + 3];
+        return std::make_pair(sums[0], sums[1]);
+    };
+    instancer.GetScalesAttr().Block();
+    auto [unscaledLeft, unscaledRight] = halves(recorder.render());
+    EXPECT_NEAR(unscaledRight / unscaledLeft, 1.0, 0.2);
 }
 
 TEST_F(HdHairPlugin, NestedInstancersComposeTheirTransforms) {
