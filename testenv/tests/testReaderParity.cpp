@@ -18,33 +18,16 @@
 
 #include <gtest/gtest.h>
 
+#include "TestStages.h"
+
 #include "hdHair/image/ImageComparison.h"
 #include "hdHair/image/ImageWriter.h"
 
 using namespace hdhair;
+using hdhair::testenv::TestStage;
 namespace fs = std::filesystem;
 
 namespace {
-
-struct Stage {
-    const char* name;
-    const char* path;
-    const char* camera;
-};
-
-const Stage kStages[] = {
-    {"straight_strands", "examples/straight_strands.usda", "/World/main_cam"},
-    {"wavy_strands", "examples/wavy_strands.usda", "/World/main_cam"},
-    {"dense_clump", "examples/dense_clump.usda", "/World/main_cam"},
-    {"bases", "testenv/stages/bases.usda", "/World/main_cam"},
-    {"interpolations", "testenv/stages/interpolations.usda", "/World/main_cam"},
-    {"hair_parameters", "testenv/stages/hair_parameters.usda", "/World/main_cam"},
-    {"xforms", "testenv/stages/xforms.usda", "/World/main_cam"},
-    {"widths", "testenv/stages/widths.usda", "/World/main_cam"},
-    {"composition", "testenv/stages/composition/root.usda", "/World/main_cam"},
-    {"materials", "testenv/stages/materials.usda", "/World/main_cam"},
-    {"instancing", "testenv/stages/instancing/root.usda", "/World/main_cam"},
-};
 
 int run(const std::string& command, std::string* output) {
     FILE* pipe = ::popen((command + " 2>&1").c_str(), "r");
@@ -68,12 +51,12 @@ void expectAlike(const std::string& a, const std::string& b) {
         << a << " vs " << b << ": " << describe(difference, tolerance) << ", mean " << difference.meanDifference;
 }
 
-class Parity : public ::testing::TestWithParam<Stage> {};
+class Parity : public ::testing::TestWithParam<TestStage> {};
 
 }  // namespace
 
 TEST_P(Parity, UsdAndEmbeddedReadersAgree) {
-    const Stage& stage = GetParam();
+    const TestStage& stage = GetParam();
     std::string common = std::string(" --camera ") + stage.camera + " --imageWidth 240 " + HDHAIR_SOURCE_DIR "/" +
                          stage.path + " ";
     std::string usd = outputPath(std::string(stage.name) + ".usd.exr");
@@ -85,7 +68,7 @@ TEST_P(Parity, UsdAndEmbeddedReadersAgree) {
 }
 
 TEST_P(Parity, UsdrecordWithHdHairMatchesHdhairRecord) {
-    const Stage& stage = GetParam();
+    const TestStage& stage = GetParam();
     std::string usdrecord = std::string(HDHAIR_PXR_BIN) + "/usdrecord";
     if (!fs::exists(usdrecord)) GTEST_SKIP() << "no usdrecord in " << HDHAIR_PXR_BIN;
     std::string ours = outputPath(std::string(stage.name) + ".hdhair-record.exr");
@@ -107,5 +90,6 @@ TEST_P(Parity, UsdrecordWithHdHairMatchesHdhairRecord) {
     expectAlike(ours, theirs);
 }
 
-INSTANTIATE_TEST_SUITE_P(Stages, Parity, ::testing::ValuesIn(kStages),
-                         [](const ::testing::TestParamInfo<Stage>& stage) { return std::string(stage.param.name); });
+// Every example and testenv stage (TestStages.h).
+INSTANTIATE_TEST_SUITE_P(Stages, Parity, ::testing::ValuesIn(hdhair::testenv::testStages()),
+                         [](const ::testing::TestParamInfo<TestStage>& stage) { return std::string(stage.param.name); });

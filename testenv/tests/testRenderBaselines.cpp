@@ -12,10 +12,14 @@
 
 #include <cstdlib>
 #include <filesystem>
+#include <set>
+#include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 
 #include "StageRendering.h"
+#include "TestStages.h"
 #include "hdHair/image/ImageComparison.h"
 #include "hdHair/image/ImageWriter.h"
 #include "hdHair/render/CameraView.h"
@@ -29,27 +33,27 @@ namespace fs = std::filesystem;
 namespace {
 
 struct BaselineCase {
-    const char* name;
-    const char* stage;
-    const char* camera;
+    std::string name;
+    std::string stage;
+    std::string camera;
     int width;
     double time;
 };
 
-const BaselineCase kCases[] = {
-    {"straight_strands", "examples/straight_strands.usda", "/World/main_cam", 320, 0.0},
-    {"wavy_strands", "examples/wavy_strands.usda", "/World/main_cam", 320, 0.0},
-    {"dense_clump", "examples/dense_clump.usda", "/World/main_cam", 320, 0.0},
-    {"bases", "testenv/stages/bases.usda", "/World/main_cam", 320, 0.0},
-    {"interpolations", "testenv/stages/interpolations.usda", "/World/main_cam", 256, 0.0},
-    {"hair_parameters", "testenv/stages/hair_parameters.usda", "/World/main_cam", 256, 0.0},
-    {"xforms_time1", "testenv/stages/xforms.usda", "/World/main_cam", 256, 1.0},
-    {"xforms_time10", "testenv/stages/xforms.usda", "/World/main_cam", 256, 10.0},
-    {"composition", "testenv/stages/composition/root.usda", "/World/main_cam", 256, 0.0},
-    {"materials", "testenv/stages/materials.usda", "/World/main_cam", 256, 0.0},
-    {"instancing", "testenv/stages/instancing/root.usda", "/World/main_cam", 256, 0.0},
-    {"framing_camera", "examples/wavy_strands.usda", "", 256, 0.0},
-};
+// One case per baseline time of every stage that has baselines
+// (TestStages.h), and the framing camera (no --camera) on an example.
+std::vector<BaselineCase> baselineCases() {
+    std::vector<BaselineCase> cases;
+    for (const TestStage& stage : testStages()) {
+        for (double time : stage.baselineTimes) {
+            std::string name = stage.name;
+            if (stage.baselineTimes.size() > 1) name += "_time" + std::to_string(static_cast<int>(time));
+            cases.push_back({name, stage.path, stage.camera, stage.baselineWidth, time});
+        }
+    }
+    cases.push_back({"framing_camera", "examples/wavy_strands.usda", "", 256, 0.0});
+    return cases;
+}
 
 class Baseline : public ::testing::TestWithParam<BaselineCase> {};
 
@@ -62,9 +66,9 @@ TEST_P(Baseline, MatchesCheckedInImage) {
 
     fs::path outputDirectory = fs::path(HDHAIR_BINARY_DIR) / "testenv-output";
     fs::create_directories(outputDirectory);
-    fs::path actualPath = outputDirectory / (std::string(c.name) + ".png");
+    fs::path actualPath = outputDirectory / (c.name + ".png");
     writeImage(render.result.color, actualPath.string());
-    fs::path baselinePath = fs::path(sourcePath("testenv/baselines")) / (std::string(c.name) + ".png");
+    fs::path baselinePath = fs::path(sourcePath("testenv/baselines")) / (c.name + ".png");
 
     const char* update = std::getenv("HDHAIR_UPDATE_BASELINES");
     if (update && std::string(update) == "1") {
@@ -82,8 +86,27 @@ TEST_P(Baseline, MatchesCheckedInImage) {
     if (!HasFailure()) fs::remove(actualPath);
 }
 
-INSTANTIATE_TEST_SUITE_P(Stages, Baseline, ::testing::ValuesIn(kCases),
-                         [](const ::testing::TestParamInfo<BaselineCase>& stage) { return std::string(stage.param.name); });
+INSTANTIATE_TEST_SUITE_P(Stages, Baseline, ::testing::ValuesIn(baselineCases()),
+                         [](const ::testing::TestParamInfo<BaselineCase>& stage) { return stage.param.name; });
+
+// Every stage file is in TestStages.h, so the parity test covers it and the
+// baseline test renders it (or says why not, with baselineWidth 0). Layers
+// that only serve a root stage (composition/, instancing/) are not stages.
+TEST(Stages, EveryStageFileIsListed) {
+    std::set<std::string> listed;
+    for (const TestStage& stage : testStages()) listed.insert(stage.path);
+    std::vector<std::string> files;
+    for (const char* directory : {"examples", "testenv/stages"})
+        for (const auto& entry : fs::directory_iterator(sourcePath(directory)))
+            if (entry.path().extension() == ".usda")
+                files.push_back(std::string(directory) + "/" + entry.path().filename().string());
+    for (const auto& entry : fs::directory_iterator(sourcePath("testenv/stages")))
+        if (entry.is_directory() && fs::exists(entry.path() / "root.usda"))
+            files.push_back("testenv/stages/" + entry.path().filename().string() + "/root.usda");
+    ASSERT_GE(files.size(), testStages().size());
+    for (const std::string& file : files) EXPECT_TRUE(listed.count(file)) << file << " is not in TestStages.h";
+    for (const std::string& path : listed) EXPECT_TRUE(fs::exists(sourcePath(path))) << path << " does not exist";
+}
 
 TEST(Rendering, EmptyStageRendersBackgroundOnly) {
     StageRender render = renderStage({"testenv/stages/empty.usda", "/World/main_cam", 128, 0.0, {}});
