@@ -13,12 +13,14 @@
 #include "hdHair/render/CameraView.h"
 #include "hdHair/render/HairMaterial.h"
 #include "hdHair/scene/Scene.h"
+#include "hdHair/scene/tests/AuthoredPrimvar.h"
 #include "hdHair/shading/KajiyaKay.h"
 #include "hdHair/shading/Marschner.h"
 #include "hdHair/shading/MarschnerTables.h"
 #include "hdHair/shading/ShadingLight.h"
 
 using namespace hdhair;
+using hdhair::test::authoredPrimvar;
 using namespace hdhair::testenv;
 
 namespace {
@@ -90,14 +92,6 @@ glm::vec3 centrePixel(const Scene& scene, const RenderSettings& settings) {
 }
 
 glm::vec3 centrePixel(const Scene& scene, const std::string& model) { return centrePixel(scene, withModel(model)); }
-
-Primvar varying(const std::string& name, Interpolation interpolation, int tupleSize, std::vector<float> values) {
-    Primvar primvar = constant(name, std::move(values));
-    primvar.tupleSize = tupleSize;
-    primvar.interpolation = interpolation;
-    primvar.interpolationAuthored = true;
-    return primvar;
-}
 
 const glm::dvec3 kLightDirections[] = {
     {0.0, 0.6, 1.0},    // in front, above
@@ -195,7 +189,7 @@ void expectPerCurveMatchesPerPrim(const std::string& model, const std::string& n
     twoCurves.shadingModel = model;
     twoCurves.curveVertexCounts = {2, 2};
     twoCurves.points = {{-2.0f, 0.4f, 0.0f}, {2.0f, 0.4f, 0.0f}, {-2.0f, -0.4f, 0.0f}, {2.0f, -0.4f, 0.0f}};
-    twoCurves.primvars[name] = varying(name, Interpolation::Uniform, 1, perCurve);
+    twoCurves.primvars[name] = authoredPrimvar(name, Interpolation::Uniform, 1, perCurve);
     Scene perCurveScene;
     perCurveScene.setCurves(twoCurves);
     Scene perPrimScene;
@@ -250,7 +244,7 @@ TEST(ShadingModels, PerVertexAbsorptionIsInterpolatedAlongTheStrand) {
     perVertex.curveVertexCounts = {3};
     perVertex.points = {{-2.0f, 0.0f, 0.0f}, {0.0f, 0.0f, 0.0f}, {2.0f, 0.0f, 0.0f}};
     perVertex.primvars["hdHair:absorption"] =
-        varying("hdHair:absorption", Interpolation::Vertex, 3, {a0.x, a0.y, a0.z, a1.x, a1.y, a1.z, a2.x, a2.y, a2.z});
+        authoredPrimvar("hdHair:absorption", Interpolation::Vertex, 3, {a0.x, a0.y, a0.z, a1.x, a1.y, a1.z, a2.x, a2.y, a2.z});
     glm::vec3 mixed = a0 + u * (a1 - a0);
     CurvesPrim uniform = strand("/hair", 0.0f, {0.5f, 0.5f, 0.5f});
     uniform.shadingModel = "marschner";

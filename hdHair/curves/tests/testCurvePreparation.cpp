@@ -18,22 +18,14 @@
 #include "hdHair/curves/PreparedCurves.h"
 #include "hdHair/curves/ReferenceCurveEvaluator.h"
 #include "hdHair/curves/tests/RandomCurves.h"
+#include "hdHair/scene/tests/AuthoredPrimvar.h"
 
 using namespace hdhair;
 
 namespace {
 
+using test::authoredPrimvar;
 using test::randomPrim;
-
-Primvar makePrimvar(const std::string& name, int tupleSize, Interpolation interpolation, std::vector<float> values) {
-    Primvar primvar;
-    primvar.name = name;
-    primvar.tupleSize = tupleSize;
-    primvar.interpolation = interpolation;
-    primvar.interpolationAuthored = true;
-    primvar.values = std::move(values);
-    return primvar;
-}
 
 std::vector<float> randomValues(size_t count, float lo, float hi, unsigned seed) {
     std::mt19937 rng(seed);
@@ -91,7 +83,7 @@ TEST(PrepareCurves, FourControlPointsPerSegment) {
 TEST(PrepareCurves, ANonFinitePointDropsItsCurve) {
     CurvesPrim prim = randomPrim(CurveType::Cubic, CurveBasis::CatmullRom, CurveWrap::Nonperiodic, {4, 5, 6}, 2);
     prim.points[6].y = std::numeric_limits<float>::quiet_NaN();  // curve 1, its 3rd point
-    prim.primvars["widths"] = makePrimvar("widths", 1, Interpolation::Uniform, {0.1f, 0.2f, 0.3f});
+    prim.primvars["widths"] = authoredPrimvar("widths", Interpolation::Uniform, 1, {0.1f, 0.2f, 0.3f});
     Diagnostics diagnostics;
     const PreparedCurves prepared = prepareCurves(prim, diagnostics);
     EXPECT_EQ(prepared.curveCount, 2u);
@@ -107,7 +99,7 @@ TEST(PrepareCurves, ANonFinitePointDropsItsCurve) {
 
 TEST(PrepareCurves, InvisibleCurvesAreSkippedWithoutShiftingTheOthers) {
     CurvesPrim prim = randomPrim(CurveType::Cubic, CurveBasis::CatmullRom, CurveWrap::Nonperiodic, {4, 5, 6}, 2);
-    prim.primvars["widths"] = makePrimvar("widths", 1, Interpolation::Uniform, {0.1f, 0.2f, 0.3f});
+    prim.primvars["widths"] = authoredPrimvar("widths", Interpolation::Uniform, 1, {0.1f, 0.2f, 0.3f});
     // A hidden curve with a broken point: hidden, so not worth a warning.
     prim.points[6].y = std::numeric_limits<float>::quiet_NaN();
     prim.invisibleCurves = {1, 7, -1};  // out-of-range indices hide nothing
@@ -136,7 +128,7 @@ TEST(PrepareCurves, ManyBadCurvesAreSummarised) {
 
 TEST(PrepareCurves, WidthsScaleWithTheTransform) {
     CurvesPrim prim = randomPrim(CurveType::Cubic, CurveBasis::Bezier, CurveWrap::Nonperiodic, {4}, 4);
-    prim.primvars["widths"] = makePrimvar("widths", 1, Interpolation::Constant, {0.1f});
+    prim.primvars["widths"] = authoredPrimvar("widths", Interpolation::Constant, 1, {0.1f});
     Diagnostics diagnostics;
     const PreparedCurves unscaled = prepareCurves(prim, diagnostics);
 
@@ -162,7 +154,7 @@ TEST(PrepareCurves, BoundsContainEveryCurveAndItsWidth) {
     for (CurveBasis basis : {CurveBasis::Bezier, CurveBasis::Bspline, CurveBasis::CatmullRom}) {
         CurvesPrim prim = randomPrim(CurveType::Cubic, basis, CurveWrap::Nonperiodic, {7, 10, 13}, 5);
         prim.primvars["widths"] =
-            makePrimvar("widths", 1, Interpolation::Vertex, randomValues(prim.points.size(), 0.0f, 0.3f, 6));
+            authoredPrimvar("widths", Interpolation::Vertex, 1, randomValues(prim.points.size(), 0.0f, 0.3f, 6));
         prim.worldTransform = glm::rotate(glm::dmat4(1.0), 0.7, glm::dvec3(1.0, 1.0, 0.0));
         Diagnostics diagnostics;
         const PreparedCurves prepared = prepareCurves(prim, diagnostics);
@@ -209,9 +201,9 @@ TEST(PrepareCurves, VertexPrimvarsMatchTheReferenceEvaluator) {
                 basis == CurveBasis::Bezier ? std::vector<int>{7, 6} : std::vector<int>{5, 6};
             CurvesPrim prim = randomPrim(CurveType::Cubic, basis, wrap, counts, 8);
             const size_t n = prim.points.size();
-            prim.primvars["widths"] = makePrimvar("widths", 1, Interpolation::Vertex, randomValues(n, 0.1f, 0.5f, 9));
+            prim.primvars["widths"] = authoredPrimvar("widths", Interpolation::Vertex, 1, randomValues(n, 0.1f, 0.5f, 9));
             prim.primvars["displayColor"] =
-                makePrimvar("displayColor", 3, Interpolation::Vertex, randomValues(3 * n, 0.0f, 1.0f, 10));
+                authoredPrimvar("displayColor", Interpolation::Vertex, 3, randomValues(3 * n, 0.0f, 1.0f, 10));
             prim.worldTransform = glm::scale(glm::dmat4(1.0), glm::dvec3(2.0));
             Diagnostics diagnostics;
             const PreparedCurves prepared = prepareCurves(prim, diagnostics);
@@ -249,9 +241,9 @@ TEST(PrepareCurves, VertexPrimvarsMatchTheReferenceEvaluator) {
 TEST(PrepareCurves, VaryingPrimvarsInterpolateLinearlyBetweenSpanEnds) {
     // Bezier, 3 spans: 4 varying values, one per span end.
     CurvesPrim prim = randomPrim(CurveType::Cubic, CurveBasis::Bezier, CurveWrap::Nonperiodic, {10}, 11);
-    prim.primvars["widths"] = makePrimvar("widths", 1, Interpolation::Varying, {0.1f, 0.4f, 0.2f, 0.3f});
+    prim.primvars["widths"] = authoredPrimvar("widths", Interpolation::Varying, 1, {0.1f, 0.4f, 0.2f, 0.3f});
     prim.primvars["displayOpacity"] =
-        makePrimvar("displayOpacity", 1, Interpolation::Varying, {1.0f, 0.0f, 0.5f, 1.0f});
+        authoredPrimvar("displayOpacity", Interpolation::Varying, 1, {1.0f, 0.0f, 0.5f, 1.0f});
     Diagnostics diagnostics;
     const PreparedCurves prepared = prepareCurves(prim, diagnostics);
     EXPECT_EQ(diagnostics.warningCount(), 0u);
@@ -270,7 +262,7 @@ TEST(PrepareCurves, VaryingPrimvarsInterpolateLinearlyBetweenSpanEnds) {
 TEST(PrepareCurves, PeriodicVaryingWrapsAndPinnedVaryingHoldsAtTheEnds) {
     CurvesPrim periodic = randomPrim(CurveType::Cubic, CurveBasis::Bspline, CurveWrap::Periodic, {4}, 12);
     periodic.primvars["displayColor"] =
-        makePrimvar("displayColor", 3, Interpolation::Varying, {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1});
+        authoredPrimvar("displayColor", Interpolation::Varying, 3, {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1});
     Diagnostics diagnostics;
     const PreparedCurves closed = prepareCurves(periodic, diagnostics);
     ASSERT_EQ(closed.segmentCount(), 4u);
@@ -280,7 +272,7 @@ TEST(PrepareCurves, PeriodicVaryingWrapsAndPinnedVaryingHoldsAtTheEnds) {
 
     // Pinned catmullRom, n = 5: 4 spans; 3 varying values (nonperiodic size).
     CurvesPrim pinned = randomPrim(CurveType::Cubic, CurveBasis::CatmullRom, CurveWrap::Pinned, {5}, 13);
-    pinned.primvars["widths"] = makePrimvar("widths", 1, Interpolation::Varying, {0.1f, 0.2f, 0.3f});
+    pinned.primvars["widths"] = authoredPrimvar("widths", Interpolation::Varying, 1, {0.1f, 0.2f, 0.3f});
     const PreparedCurves open = prepareCurves(pinned, diagnostics);
     ASSERT_EQ(open.segmentCount(), 4u);
     EXPECT_NEAR(evaluate(segment(open, 0), 0.5f).width, 0.1f, 1e-6f);
@@ -291,9 +283,9 @@ TEST(PrepareCurves, PeriodicVaryingWrapsAndPinnedVaryingHoldsAtTheEnds) {
 
 TEST(PrepareCurves, UniformAndConstantPrimvarsAreHeldAlongTheSpan) {
     CurvesPrim prim = randomPrim(CurveType::Cubic, CurveBasis::Bspline, CurveWrap::Nonperiodic, {4, 5}, 14);
-    prim.primvars["displayColor"] = makePrimvar("displayColor", 3, Interpolation::Uniform, {1, 0, 0, 0, 0, 1});
-    prim.primvars["displayOpacity"] = makePrimvar("displayOpacity", 1, Interpolation::Constant, {0.25f});
-    prim.primvars["opacity"] = makePrimvar("opacity", 1, Interpolation::Constant, {0.0f});  // not displayOpacity
+    prim.primvars["displayColor"] = authoredPrimvar("displayColor", Interpolation::Uniform, 3, {1, 0, 0, 0, 0, 1});
+    prim.primvars["displayOpacity"] = authoredPrimvar("displayOpacity", Interpolation::Constant, 1, {0.25f});
+    prim.primvars["opacity"] = authoredPrimvar("opacity", Interpolation::Constant, 1, {0.0f});  // not displayOpacity
     Diagnostics diagnostics;
     const PreparedCurves prepared = prepareCurves(prim, diagnostics);
     ASSERT_EQ(prepared.segmentCount(), 3u);
@@ -320,7 +312,7 @@ TEST(PrepareCurves, UnauthoredColourIsGrey) {
 
 TEST(PrepareCurves, NegativeWidthsAreClampedToZero) {
     CurvesPrim prim = randomPrim(CurveType::Linear, CurveBasis::Bezier, CurveWrap::Nonperiodic, {3}, 16);
-    prim.primvars["widths"] = makePrimvar("widths", 1, Interpolation::Vertex, {0.2f, -0.1f, -0.3f});
+    prim.primvars["widths"] = authoredPrimvar("widths", Interpolation::Vertex, 1, {0.2f, -0.1f, -0.3f});
     Diagnostics diagnostics;
     const PreparedCurves prepared = prepareCurves(prim, diagnostics);
     EXPECT_NEAR(evaluate(segment(prepared, 0), 0.0f).width, 0.2f, 1e-6f);
@@ -380,7 +372,7 @@ TEST(PrepareCurves, CountsThatDoNotMatchThePointsKeepOnlyCompleteCurves) {
 
 TEST(PrepareCurves, WrongPrimvarsAreReportedAndReplaced) {
     CurvesPrim prim = randomPrim(CurveType::Cubic, CurveBasis::Bezier, CurveWrap::Nonperiodic, {4, 4, 4}, 19);
-    prim.primvars["displayColor"] = makePrimvar("displayColor", 3, Interpolation::Vertex, std::vector<float>(21, 1.0f));
+    prim.primvars["displayColor"] = authoredPrimvar("displayColor", Interpolation::Vertex, 3, std::vector<float>(21, 1.0f));
     Diagnostics diagnostics;
     const PreparedCurves prepared = prepareCurves(prim, diagnostics);
     EXPECT_EQ(prepared.segmentCount(), 3u);
@@ -455,9 +447,9 @@ TEST(CurvePreparation, RequestedShadingPrimvarsTravelWithTheControlPointsLikeCol
             CurvesPrim prim = randomPrim(CurveType::Cubic, basis, wrap, counts, 11);
             const size_t vertices = prim.points.size();
             std::vector<float> tint = randomValues(3 * vertices, 0.0f, 1.0f, 5);
-            prim.primvars["displayColor"] = makePrimvar("displayColor", 3, Interpolation::Vertex, tint);
-            prim.primvars["hdHair:tint"] = makePrimvar("hdHair:tint", 3, Interpolation::Vertex, tint);
-            prim.primvars["hdHair:constant"] = makePrimvar("hdHair:constant", 1, Interpolation::Uniform, {2.0f, 2.0f});
+            prim.primvars["displayColor"] = authoredPrimvar("displayColor", Interpolation::Vertex, 3, tint);
+            prim.primvars["hdHair:tint"] = authoredPrimvar("hdHair:tint", Interpolation::Vertex, 3, tint);
+            prim.primvars["hdHair:constant"] = authoredPrimvar("hdHair:constant", Interpolation::Uniform, 1, {2.0f, 2.0f});
             Diagnostics diagnostics;
             const PreparedCurves prepared = prepareCurves(prim, diagnostics, requests);
             ASSERT_EQ(prepared.shadingPrimvars.size(), 2u) << "only authored primvars are carried";

@@ -8,8 +8,10 @@
 #include "hdHair/curves/StrandColorSource.h"
 #include "hdHair/scene/CurvesPrim.h"
 #include "hdHair/scene/MaterialPrim.h"
+#include "hdHair/scene/tests/AuthoredPrimvar.h"
 
 using namespace hdhair;
+using hdhair::test::authoredPrimvar;
 
 namespace {
 
@@ -21,17 +23,8 @@ CurvesPrim twoCurves() {
     prim.type = CurveType::Linear;
     prim.curveVertexCounts = {2, 2};
     prim.points = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}};
-    auto uniform = [](const char* name, std::vector<float> values) {
-        Primvar primvar;
-        primvar.name = name;
-        primvar.tupleSize = 3;
-        primvar.interpolation = Interpolation::Uniform;
-        primvar.interpolationAuthored = true;
-        primvar.values = std::move(values);
-        return primvar;
-    };
-    prim.primvars["displayColor"] = uniform("displayColor", {1, 0, 0, 0, 1, 0});
-    prim.primvars["hairColor"] = uniform("hairColor", {0, 0, 1, 1, 1, 1});
+    prim.primvars["displayColor"] = authoredPrimvar("displayColor", Interpolation::Uniform, 3, {1, 0, 0, 0, 1, 0});
+    prim.primvars["hairColor"] = authoredPrimvar("hairColor", Interpolation::Uniform, 3, {0, 0, 1, 1, 1, 1});
     prim.materialBinding = "/Looks/hair";
     return prim;
 }

@@ -11,20 +11,12 @@
 #include "hdHair/render/HairMaterial.h"
 #include "hdHair/render/RenderSettings.h"
 #include "hdHair/scene/CurvesPrim.h"
+#include "hdHair/scene/tests/AuthoredPrimvar.h"
 
 using namespace hdhair;
+using hdhair::test::authoredPrimvar;
 
 namespace {
-
-Primvar primvar(const std::string& name, Interpolation interpolation, int tupleSize, std::vector<float> values) {
-    Primvar p;
-    p.name = name;
-    p.interpolation = interpolation;
-    p.interpolationAuthored = true;
-    p.tupleSize = tupleSize;
-    p.values = std::move(values);
-    return p;
-}
 
 // Two linear curves of two vertices each: one segment a curve.
 CurvesPrim twoStrands(const std::string& model) {
@@ -55,7 +47,7 @@ Resolved resolve(const CurvesPrim& prim, Diagnostics& diagnostics, const std::st
 
 TEST(HairMaterial, ConstantParametersMakeASharedTabledMaterial) {
     CurvesPrim prim = twoStrands("marschner");
-    prim.primvars["hdHair:melanin"] = primvar("hdHair:melanin", Interpolation::Constant, 1, {0.6f});
+    prim.primvars["hdHair:melanin"] = authoredPrimvar("hdHair:melanin", Interpolation::Constant, 1, {0.6f});
     Diagnostics diagnostics;
     Resolved r = resolve(prim, diagnostics);
     EXPECT_FALSE(r.material.perPoint());
@@ -67,7 +59,7 @@ TEST(HairMaterial, ConstantParametersMakeASharedTabledMaterial) {
 
 TEST(HairMaterial, PerCurveValuesThatAreAllEqualCountAsConstant) {
     CurvesPrim prim = twoStrands("marschner");
-    prim.primvars["hdHair:eta"] = primvar("hdHair:eta", Interpolation::Uniform, 1, {1.6f, 1.6f});
+    prim.primvars["hdHair:eta"] = authoredPrimvar("hdHair:eta", Interpolation::Uniform, 1, {1.6f, 1.6f});
     Diagnostics diagnostics;
     Resolved r = resolve(prim, diagnostics);
     EXPECT_FALSE(r.material.perPoint());
@@ -76,7 +68,7 @@ TEST(HairMaterial, PerCurveValuesThatAreAllEqualCountAsConstant) {
 
 TEST(HairMaterial, PerCurveMelaninVariesAbsorptionAndGoesAnalytic) {
     CurvesPrim prim = twoStrands("marschner");
-    prim.primvars["hdHair:melanin"] = primvar("hdHair:melanin", Interpolation::Uniform, 1, {0.1f, 0.9f});
+    prim.primvars["hdHair:melanin"] = authoredPrimvar("hdHair:melanin", Interpolation::Uniform, 1, {0.1f, 0.9f});
     Diagnostics diagnostics;
     Resolved r = resolve(prim, diagnostics);
     EXPECT_EQ(r.material.varies, unsigned(kAbsorptionVaries));
@@ -99,7 +91,7 @@ TEST(HairMaterial, PerCurveMelaninVariesAbsorptionAndGoesAnalytic) {
 TEST(HairMaterial, VaryingLongitudinalParametersKeepTheTables) {
     CurvesPrim prim = twoStrands("marschner");
     prim.primvars["hdHair:longitudinalShift"] =
-        primvar("hdHair:longitudinalShift", Interpolation::Vertex, 1, {-10.0f, -5.0f, -10.0f, -5.0f});
+        authoredPrimvar("hdHair:longitudinalShift", Interpolation::Vertex, 1, {-10.0f, -5.0f, -10.0f, -5.0f});
     Diagnostics diagnostics;
     Resolved r = resolve(prim, diagnostics);
     EXPECT_EQ(r.material.varies, unsigned(kLongitudinalVaries));
@@ -115,11 +107,11 @@ TEST(HairMaterial, VaryingLongitudinalParametersKeepTheTables) {
 TEST(HairMaterial, PerVertexColourVariesAbsorptionOnlyForMarschner) {
     CurvesPrim prim = twoStrands("marschner");
     prim.primvars["displayColor"] =
-        primvar("displayColor", Interpolation::Vertex, 3, {0.8f, 0.6f, 0.4f, 0.8f, 0.6f, 0.4f, 0.2f, 0.1f, 0.05f,
+        authoredPrimvar("displayColor", Interpolation::Vertex, 3, {0.8f, 0.6f, 0.4f, 0.8f, 0.6f, 0.4f, 0.2f, 0.1f, 0.05f,
                                                            0.2f, 0.1f, 0.05f});
     Diagnostics diagnostics;
     EXPECT_EQ(resolve(prim, diagnostics).material.varies, unsigned(kAbsorptionVaries));
-    prim.primvars["hdHair:melanin"] = primvar("hdHair:melanin", Interpolation::Constant, 1, {0.5f});
+    prim.primvars["hdHair:melanin"] = authoredPrimvar("hdHair:melanin", Interpolation::Constant, 1, {0.5f});
     EXPECT_EQ(resolve(prim, diagnostics).material.varies, unsigned(kNothingVaries)) << "melanin takes precedence";
     prim.shadingModel = "kajiyaKay";
     prim.primvars.erase("hdHair:melanin");
@@ -130,7 +122,7 @@ TEST(HairMaterial, PerVertexColourVariesAbsorptionOnlyForMarschner) {
 TEST(HairMaterial, KajiyaKayWeightsPerCurve) {
     CurvesPrim prim = twoStrands("kajiyaKay");
     prim.primvars["hdHair:kajiyaKay:specular"] =
-        primvar("hdHair:kajiyaKay:specular", Interpolation::Uniform, 1, {0.0f, 1.0f});
+        authoredPrimvar("hdHair:kajiyaKay:specular", Interpolation::Uniform, 1, {0.0f, 1.0f});
     Diagnostics diagnostics;
     Resolved r = resolve(prim, diagnostics);
     EXPECT_EQ(r.material.varies, unsigned(kKajiyaKayVaries));
@@ -143,8 +135,8 @@ TEST(HairMaterial, KajiyaKayWeightsPerCurve) {
 TEST(HairMaterial, ForcedTablesUseTheMeanAbsorption) {
     CurvesPrim prim = twoStrands("marschner");
     prim.primvars["hdHair:absorption"] =
-        primvar("hdHair:absorption", Interpolation::Uniform, 3, {0.2f, 0.4f, 0.6f, 1.0f, 1.2f, 1.4f});
-    prim.primvars["hdHair:longitudinalWidth"] = primvar("hdHair:longitudinalWidth", Interpolation::Uniform, 1, {5, 9});
+        authoredPrimvar("hdHair:absorption", Interpolation::Uniform, 3, {0.2f, 0.4f, 0.6f, 1.0f, 1.2f, 1.4f});
+    prim.primvars["hdHair:longitudinalWidth"] = authoredPrimvar("hdHair:longitudinalWidth", Interpolation::Uniform, 1, {5, 9});
     Diagnostics diagnostics;
     Resolved r = resolve(prim, diagnostics, "tables");
     EXPECT_EQ(r.material.varies, unsigned(kLongitudinalVaries)) << "what tables cannot vary is held at its mean";
@@ -166,8 +158,8 @@ TEST(HairMaterial, TheAnalyticSettingRoutesEveryMarschnerPrim) {
 
 TEST(HairMaterial, AnUnusablePrimvarIsReportedAndFallsBackToTheSchemaDefault) {
     CurvesPrim prim = twoStrands("marschner");
-    prim.primvars["hdHair:eta"] = primvar("hdHair:eta", Interpolation::Vertex, 1, {1.4f, 1.5f, 1.6f});  // needs 4
-    prim.primvars["hdHair:melanin"] = primvar("hdHair:melanin", Interpolation::Uniform, 1, {0.2f, std::nanf("")});
+    prim.primvars["hdHair:eta"] = authoredPrimvar("hdHair:eta", Interpolation::Vertex, 1, {1.4f, 1.5f, 1.6f});  // needs 4
+    prim.primvars["hdHair:melanin"] = authoredPrimvar("hdHair:melanin", Interpolation::Uniform, 1, {0.2f, std::nanf("")});
     Diagnostics diagnostics;
     Resolved r = resolve(prim, diagnostics);
     EXPECT_FLOAT_EQ(r.material.marschner.eta, 1.55f);
