@@ -52,6 +52,14 @@ float finite(const std::string& name, float value, const std::string& what, uint
     return value;
 }
 
+// Three finite floats at byte `at`: point `point`'s position or colour.
+Float3 finiteVec3(const std::vector<uint8_t>& bytes, uint64_t at, const std::string& name, const std::string& what,
+                     uint64_t point) {
+    return {finite(name, readValue<float>(bytes, at), what, point),
+            finite(name, readValue<float>(bytes, at + 4), what, point),
+            finite(name, readValue<float>(bytes, at + 8), what, point)};
+}
+
 }  // namespace
 
 HairStrands parseYukselHair(const std::vector<uint8_t>& bytes, const std::string& name) {
@@ -96,10 +104,7 @@ HairStrands parseYukselHair(const std::vector<uint8_t>& bytes, const std::string
     const uint64_t pointsAt = cursor.take("points", pointCount, 12);
     out.points.resize(pointCount);
     for (uint64_t i = 0; i < pointCount; ++i) {
-        const uint64_t at = pointsAt + i * 12;
-        out.points[i] = {finite(name, readValue<float>(bytes, at), "position", i),
-                         finite(name, readValue<float>(bytes, at + 4), "position", i),
-                         finite(name, readValue<float>(bytes, at + 8), "position", i)};
+        out.points[i] = finiteVec3(bytes, pointsAt + i * 12, name, "position", i);
     }
     if (arrays & kThicknessBit) {
         const uint64_t at = cursor.take("thicknesses", pointCount, 4);
@@ -124,10 +129,7 @@ HairStrands parseYukselHair(const std::vector<uint8_t>& bytes, const std::string
         const uint64_t at = cursor.take("colors", pointCount, 12);
         out.colors.resize(pointCount);
         for (uint64_t i = 0; i < pointCount; ++i) {
-            const uint64_t p = at + i * 12;
-            out.colors[i] = {finite(name, readValue<float>(bytes, p), "color", i),
-                             finite(name, readValue<float>(bytes, p + 4), "color", i),
-                             finite(name, readValue<float>(bytes, p + 8), "color", i)};
+            out.colors[i] = finiteVec3(bytes, at + i * 12, name, "color", i);
         }
     } else if (std::isfinite(defaultColor.x) && std::isfinite(defaultColor.y) && std::isfinite(defaultColor.z) &&
                !(defaultColor == Float3{})) {
