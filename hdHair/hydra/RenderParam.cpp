@@ -23,8 +23,20 @@ std::string HdHairRenderParam::InstancePath(std::string const& path, size_t inst
 
 void HdHairRenderParam::SetCurves(HdRprim const* rprim, hdhair::CurvesPrim prim, int refineLevel,
                                   std::optional<std::vector<glm::dmat4>> const& instanceTransforms) {
-    std::lock_guard<std::mutex> lock(_mutex);
     std::string const path = prim.path;
+    // The instances' copies are made before locking: prims sync in
+    // parallel, and a large groom's points take a while to copy.
+    std::vector<hdhair::CurvesPrim> instances;
+    if (instanceTransforms) {
+        instances.reserve(instanceTransforms->size());
+        for (size_t i = 0; i < instanceTransforms->size(); ++i) {
+            hdhair::CurvesPrim& instance = instances.emplace_back(prim);
+            instance.path = InstancePath(path, i);
+            instance.worldTransform = (*instanceTransforms)[i];
+            instance.instanceId = int(i);
+        }
+    }
+    std::lock_guard<std::mutex> lock(_mutex);
     ++_syncCounts[path];
     _RemoveEnginePrims(path);
     if (!instanceTransforms) {
@@ -33,11 +45,7 @@ void HdHairRenderParam::SetCurves(HdRprim const* rprim, hdhair::CurvesPrim prim,
         return;
     }
     std::vector<std::string>& paths = _instancePaths[path];
-    for (size_t i = 0; i < instanceTransforms->size(); ++i) {
-        hdhair::CurvesPrim instance = prim;
-        instance.path = InstancePath(path, i);
-        instance.worldTransform = (*instanceTransforms)[i];
-        instance.instanceId = int(i);
+    for (hdhair::CurvesPrim& instance : instances) {
         paths.push_back(instance.path);
         _rprims[instance.path] = Rprim{rprim, refineLevel};
         _scene.setCurves(std::move(instance));
