@@ -5,6 +5,8 @@
 //
 // For each stage (examples/dense_clump.usda when none is given), rendered
 // through its first camera (or a framing camera):
+//   ParseLayer/5 MB                     the embedded reader on a 5 MB layer of curves
+//   ComposeStage/<n> prims              composing n small sibling prims (counts: testUsdaReader)
 //   PrepareCurves/<stage>               CPU curve preparation
 //   BinSort/<stage>                     the CPU bin sort of the frame's segments
 //   RenderFrame/<stage>/<complexity>    a frame per --complexity level
@@ -39,6 +41,8 @@
 #include "hdHair/render/Renderer.h"
 #include "hdHair/scene/Scene.h"
 #include "hdHair/usda/SceneReader.h"
+#include "hdHair/usda/Stage.h"
+#include "hdHair/usda/tests/SyntheticLayers.h"
 
 namespace {
 
@@ -194,6 +198,28 @@ void printTable(const BenchStage& stage, const std::vector<Configuration>& confi
     }
 }
 
+// The embedded reader: parsing a large layer, and composition per prim (its
+// growth is tested by counting work in testUsdaReader; the seconds are here).
+void registerReaderBenchmarks() {
+    benchmark::RegisterBenchmark("ParseLayer/5 MB", [](benchmark::State& state) {
+        const std::string text = usda::syntheticCurvesLayer(5u * 1024u * 1024u).text;
+        for (auto _ : state) benchmark::DoNotOptimize(usda::Stage::openFromString(text, "bench.usda").get());
+        state.SetBytesProcessed(int64_t(state.iterations()) * int64_t(text.size()));
+    })->Unit(benchmark::kMillisecond);
+    for (int prims : {2500, 20000}) {
+        benchmark::RegisterBenchmark(fmt::format("ComposeStage/{} prims", prims).c_str(),
+                                     [prims](benchmark::State& state) {
+                                         const std::string text = usda::siblingPrimsLayer(prims);
+                                         for (auto _ : state)
+                                             benchmark::DoNotOptimize(
+                                                 usda::Stage::openFromString(text, "bench.usda").get());
+                                         state.counters["prims/s"] = benchmark::Counter(
+                                             double(prims), benchmark::Counter::kIsIterationInvariantRate);
+                                     })
+            ->Unit(benchmark::kMillisecond);
+    }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -246,6 +272,7 @@ int main(int argc, char** argv) {
     bool transparencyTable = table == "all" || table == "transparency";
     bool shadingTable = table == "all" || table == "shading";
     std::vector<ShadingConfiguration> shadings = shadingConfigurations();
+    registerReaderBenchmarks();
     for (const auto& stagePointer : stages) {
         BenchStage* stage = stagePointer.get();
         benchmark::RegisterBenchmark(("PrepareCurves/" + stage->name).c_str(), [stage](benchmark::State& state) {

@@ -12,6 +12,7 @@
 // key). Layer offsets are parsed but not applied; inherits and specializes
 // are kept as metadata but not composed.
 
+#include <cstdint>
 #include <map>
 #include <memory>
 #include <optional>
@@ -91,6 +92,15 @@ struct LayerInfo {
     std::map<std::string, Value> metadata;      // every layer metadatum as authored (incl. the above)
 };
 
+// How much work composing a stage took, counted rather than timed so that
+// tests can check how it grows with the stage (a machine's load changes
+// seconds, never these counts).
+struct CompositionWork {
+    uint64_t indexNodes = 0;   // prim index nodes expanded (one per prim and arc)
+    uint64_t specLookups = 0;  // steps down a layer's namespace to find a prim spec
+    uint64_t opinions = 0;     // prim specs gathered as opinions
+};
+
 class Stage {
 public:
     // Reads and composes a stage. Throws hdhair::InputError with
@@ -116,8 +126,11 @@ public:
     // of an inactive prim are not composed at all.
     std::vector<const Prim*> traverse() const;
 
+    const CompositionWork& compositionWork() const { return compositionWork_; }
+
 private:
     LayerInfo info_;
+    CompositionWork compositionWork_;
     std::string rootLayerPath_;
     std::unique_ptr<Prim> pseudoRoot_;
     friend class StageComposer;

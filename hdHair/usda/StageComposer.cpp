@@ -217,6 +217,8 @@ public:
         return pseudoRoot;
     }
 
+    const CompositionWork& work() const { return work_; }
+
 private:
     void collectSubLayers(const Layer& layer, std::vector<const Layer*>& out, std::vector<const Layer*>& chain) {
         if (std::find(out.begin(), out.end(), &layer) != out.end()) return;  // already in the stack
@@ -234,11 +236,12 @@ private:
         chain.pop_back();
     }
 
-    static void fillSpecs(Node& node) {
+    void fillSpecs(Node& node) {
         node.specs.clear();
         for (const Layer* layer : node.stack->layers) {
             const PrimSpec* spec = &layer->pseudoRoot;
             for (const Step& step : node.site) {
+                ++work_.specLookups;
                 spec = step.isVariant ? spec->variant(step.first, step.second) : spec->child(step.first);
                 if (!spec) break;
             }
@@ -337,6 +340,7 @@ private:
     // Fills the node's specs for its site and adds the arcs they author
     // (variants, references, payloads), recursively.
     void expand(Node& node, std::vector<const Node*>& chain, int depth, const Node& indexRoot) {
+        ++work_.indexNodes;
         if (++nodeCount_ > kMaxIndexNodes) {
             throw InputError(node.stack->root->identifier + ": composition of <" + primPathOf(node.site) +
                              "> reaches more than " + std::to_string(kMaxIndexNodes) + " layer sites");
@@ -394,11 +398,12 @@ private:
     }
 
     // Strength order: a node, then its arcs' subtrees in order.
-    static void collectOpinions(const Node& node, Mappings mappings, std::deque<Mappings>& storage,
-                                std::vector<Opinion>& out) {
+    void collectOpinions(const Node& node, Mappings mappings, std::deque<Mappings>& storage,
+                         std::vector<Opinion>& out) {
         mappings.insert(mappings.begin(), {node.mapSource, node.mapTarget});
         storage.push_back(mappings);
         const Mappings* stored = &storage.back();
+        work_.opinions += node.specs.size();
         for (const PrimSpec* spec : node.specs) out.push_back(Opinion{spec, stored});
         for (const Node& child : node.children) collectOpinions(child, mappings, storage, out);
     }
@@ -549,6 +554,7 @@ private:
     std::map<std::string, std::unique_ptr<Layer>> layers_;
     std::map<const Layer*, std::unique_ptr<LayerStack>> stacks_;
     size_t nodeCount_ = 0;
+    CompositionWork work_;
 };
 
 }  // namespace
@@ -564,6 +570,7 @@ std::unique_ptr<Stage> StageComposer::openFile(const std::string& path) {
     stage->pseudoRoot_ = composer.composeStage(root);
     stage->info_ = root.info;
     stage->rootLayerPath_ = absolute;
+    stage->compositionWork_ = composer.work();
     return stage;
 }
 
@@ -577,6 +584,7 @@ std::unique_ptr<Stage> StageComposer::openText(const std::string& text, const st
     stage->pseudoRoot_ = composer.composeStage(root);
     stage->info_ = root.info;
     stage->rootLayerPath_ = identifier;
+    stage->compositionWork_ = composer.work();
     return stage;
 }
 
