@@ -9,7 +9,23 @@ if(HDHAIR_HYDRA STREQUAL "OFF")
   message(STATUS "hdHair: Hydra plugin off (HDHAIR_HYDRA=OFF)")
   return()
 endif()
-find_package(pxr CONFIG QUIET)
+# pxrConfig.cmake re-finds the Python OpenUSD was built with (an exact
+# version) but only hints its interpreter, so FindPython3 can still take the
+# headers of another Python first on PATH (pyenv, a virtualenv) and fail.
+# Search under the recorded interpreter's prefix unless told otherwise.
+if(NOT DEFINED Python3_ROOT_DIR)
+  find_file(_hdhair_pxr_config pxrConfig.cmake
+            PATHS ${pxr_DIR} $ENV{pxr_DIR} ${PXR_ROOT} $ENV{PXR_ROOT} ${CMAKE_PREFIX_PATH} NO_DEFAULT_PATH)
+  if(_hdhair_pxr_config)
+    file(STRINGS "${_hdhair_pxr_config}" _hdhair_pxr_python REGEX "set\\(Python3_EXECUTABLE \\[\\[.+\\]\\]\\)")
+    if(_hdhair_pxr_python MATCHES "\\[\\[(.+)/bin/[^/]+\\]\\]")
+      set(Python3_ROOT_DIR "${CMAKE_MATCH_1}")
+      message(STATUS "hdHair: OpenUSD was built with ${CMAKE_MATCH_1}'s Python; looking for its headers there")
+    endif()
+  endif()
+  unset(_hdhair_pxr_config CACHE)
+endif()
+find_package(pxr CONFIG QUIET PATHS ${PXR_ROOT} $ENV{PXR_ROOT})
 if(NOT pxr_FOUND)
   if(HDHAIR_HYDRA STREQUAL "ON")
     message(FATAL_ERROR "hdHair: HDHAIR_HYDRA=ON but OpenUSD was not found. Point CMake at an OpenUSD "
