@@ -1,16 +1,24 @@
-# hdhair_add_test(NAME SOURCES file... [LIBRARIES target...] [DEFINITIONS def...] [TIMEOUT seconds])
+# hdhair_add_test(NAME SOURCES file... [LIBRARIES target...] [DEFINITIONS def...] [TIMEOUT seconds]
+#                 [ENVIRONMENT VAR=value...])
 # A GoogleTest executable, linked with GTest's main and hdHair's warnings,
 # whose tests CTest discovers when it runs them (so a test binary that cannot
 # start shows up as a failure, not as a build error).
 function(hdhair_add_test name)
-  cmake_parse_arguments(TEST "" "TIMEOUT" "SOURCES;LIBRARIES;DEFINITIONS" ${ARGN})
+  cmake_parse_arguments(TEST "" "TIMEOUT" "SOURCES;LIBRARIES;DEFINITIONS;ENVIRONMENT" ${ARGN})
   add_executable(${name} ${TEST_SOURCES})
   target_link_libraries(${name} PRIVATE ${TEST_LIBRARIES} GTest::gtest_main hdhair_warnings)
   if(TEST_DEFINITIONS)
     target_compile_definitions(${name} PRIVATE ${TEST_DEFINITIONS})
   endif()
+  set(properties)
   if(TEST_TIMEOUT)
-    gtest_discover_tests(${name} DISCOVERY_MODE PRE_TEST PROPERTIES TIMEOUT ${TEST_TIMEOUT})
+    list(APPEND properties TIMEOUT ${TEST_TIMEOUT})
+  endif()
+  if(TEST_ENVIRONMENT)
+    list(APPEND properties ENVIRONMENT "${TEST_ENVIRONMENT}")
+  endif()
+  if(properties)
+    gtest_discover_tests(${name} DISCOVERY_MODE PRE_TEST PROPERTIES ${properties})
   else()
     gtest_discover_tests(${name} DISCOVERY_MODE PRE_TEST)
   endif()

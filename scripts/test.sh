@@ -1,9 +1,51 @@
 #!/usr/bin/env bash
-# The README's second command: installs what is missing, builds if needed and
-# runs the whole test suite with CTest. .ci/run calls this.
+# The README's second command: installs what is missing, builds, and runs the
+# whole test suite with CTest. .ci/run calls this. Extra arguments go to ctest
+# (e.g. -R Baseline).
+#
+# With an OpenUSD (scripts/find-openusd.sh: $PXR_ROOT, else ../shared/openusd)
+# it builds twice: build/ with the Hydra plugin, whose tests (plugin, usdrecord,
+# usdview, OpenUSD's own curve stages) run with everything else, and
+# build-engine/ without OpenUSD, as users without it get hdHair. Without an
+# OpenUSD, build/ alone, without the plugin.
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 bash "$root/scripts/install-dependencies.sh"
-bash "$root/scripts/build.sh"
-cd "$root/build"
-ctest --output-on-failure --parallel "$(nproc)" --timeout 600 "$@"
+openusd="$(bash "$root/scripts/find-openusd.sh")"
+
+passed=0
+failed=0
+status=0
+# Runs CTest in a build folder and adds its counts to the totals.
+run_suite() {
+  local label="$1" dir="$2"
+  shift 2
+  echo "hdHair: running the tests $label ($dir)"
+  local log="$dir/Testing/hdhair-ctest.log"
+  mkdir -p "$dir/Testing"
+  local rc=0
+  (cd "$dir" && ctest --output-on-failure --parallel "$(nproc)" --timeout 600 "$@") 2>&1 | tee "$log" || rc=$?
+  [[ $rc -eq 0 ]] || status=$rc
+  local line
+  line="$(grep -E '^[0-9]+% tests passed, [0-9]+ tests? failed out of [0-9]+' "$log" | tail -n 1 || true)"
+  if [[ "$line" =~ ([0-9]+)\ tests?\ failed\ out\ of\ ([0-9]+) ]]; then
+    failed=$((failed + BASH_REMATCH[1]))
+    passed=$((passed + BASH_REMATCH[2] - BASH_REMATCH[1]))
+  elif [[ $rc -ne 0 ]]; then
+    failed=$((failed + 1))  # ctest itself failed (no tests found, a build step)
+  fi
+}
+
+start=$SECONDS
+if [[ -n "$openusd" ]]; then
+  bash "$root/scripts/build.sh" --openusd "$openusd"
+  bash "$root/scripts/build.sh" --build-dir "$root/build-engine" --no-openusd
+  run_suite "with the Hydra plugin (OpenUSD at $openusd)" "$root/build" "$@"
+  run_suite "without OpenUSD" "$root/build-engine" "$@"
+else
+  bash "$root/scripts/build.sh" --no-openusd
+  run_suite "without OpenUSD (no plugin)" "$root/build" "$@"
+fi
+echo "hdHair: built and tested in $((SECONDS - start)) s"
+echo "tests: $passed passed, $failed failed"
+exit $status

@@ -1,8 +1,6 @@
 // hdhair-record as a user meets it: exit codes, one-line reasons, outputs,
 // frames and --stats. Each test runs the real binary.
 
-#include <sys/wait.h>
-
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -11,6 +9,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "CommandRun.h"
 #include "hdHair/image/ImageWriter.h"
 
 using namespace hdhair;
@@ -18,25 +17,13 @@ namespace fs = std::filesystem;
 
 namespace {
 
-struct RecordRun {
-    int exitCode = -1;
-    std::string output;  // stdout and stderr together
-};
+using RecordRun = hdhair::testenv::CommandRun;
 
 // These tests exercise the embedded reader's messages and stats, so they ask
 // for it (builds with OpenUSD default to --reader usd), unless a test picks one.
 RecordRun record(const std::string& arguments, const std::string& environment = "") {
     std::string reader = arguments.find("--reader") == std::string::npos ? "--reader embedded " : "";
-    std::string command = environment + " " HDHAIR_RECORD " " + reader + arguments + " 2>&1";
-    RecordRun run;
-    FILE* pipe = ::popen(command.c_str(), "r");
-    if (!pipe) return run;
-    char buffer[4096];
-    size_t read;
-    while ((read = std::fread(buffer, 1, sizeof buffer, pipe)) > 0) run.output.append(buffer, read);
-    int status = ::pclose(pipe);
-    run.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    return run;
+    return hdhair::testenv::runCommand(environment + " " HDHAIR_RECORD " " + reader + arguments);
 }
 
 std::string example(const std::string& name) { return std::string(HDHAIR_SOURCE_DIR) + "/examples/" + name; }
