@@ -9,6 +9,7 @@
 #include "pxr/imaging/hd/tokens.h"
 
 #include "hdHair/hydra/CompositeOver.h"
+#include "hdHair/hydra/DebugCodes.h"
 #include "hdHair/hydra/HydraCamera.h"
 #include "hdHair/hydra/RenderBuffer.h"
 #include "hdHair/hydra/RenderDelegate.h"
@@ -87,6 +88,11 @@ void HdHairRenderPass::_Execute(HdRenderPassStateSharedPtr const& renderPassStat
         hdhair::RenderResult result = _renderParam->GetRenderer().render(
             scene, camera, settings, _renderParam->GetDiagnostics(), hdhair::RenderOutputs{wantIds});
         _renderParam->SetLastFrame(result.stats.toJson().dump(), result.plan.describe());
+        TF_DEBUG(HDHAIR_FRAMES)
+            .Msg("hdHair: rendered a frame: %dx%d, %llu curves, %llu segments, %s, %.1f ms\n", camera.imageWidth,
+                 camera.imageHeight, static_cast<unsigned long long>(result.stats.curves),
+                 static_cast<unsigned long long>(result.stats.segments), result.stats.transparency.c_str(),
+                 result.stats.totalMilliseconds);
 
         for (HdRenderPassAovBinding const& binding : bindings) {
             auto* buffer = static_cast<HdHairRenderBuffer*>(binding.renderBuffer);
