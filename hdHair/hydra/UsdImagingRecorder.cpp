@@ -90,7 +90,8 @@ UsdImagingRecordResult recordWithUsdImaging(const UsdImagingRecordRequest& reque
     parameters.gpuEnabled = false;  // as usdrecord --disableGpu: hdHair renders in its own context
     UsdImagingGLEngine engine(parameters);
     if (!engine.SetRendererPlugin(TfToken("HdHairRendererPlugin")))
-        throw std::runtime_error("the HdHair renderer plugin is not available (is PXR_PLUGINPATH_NAME set?)");
+        throw std::runtime_error("the HdHair renderer plugin is not available: not in '" + request.pluginPath +
+                                 "' nor on PXR_PLUGINPATH_NAME (set HDHAIR_PLUGIN_RESOURCES to its resources folder)");
     for (const std::string& assignment : request.settings) {
         RenderSettings check;
         check.setFromAssignment(assignment);  // throws the same one-line reasons as the embedded path

@@ -55,6 +55,19 @@ struct Options {
     std::vector<std::string> settings;
 };
 
+#if HDHAIR_WITH_USD
+// The plugin's plugInfo.json folder: $HDHAIR_PLUGIN_RESOURCES when set, else
+// where the build and install trees both put it beside this executable
+// (bin/hdhair-record and plugin/usd/hdHair/resources).
+std::string hydraPluginResources() {
+    if (const char* path = std::getenv("HDHAIR_PLUGIN_RESOURCES")) return path;
+    std::error_code error;
+    std::filesystem::path executable = std::filesystem::read_symlink("/proc/self/exe", error);
+    if (error) return std::string();
+    return (executable.parent_path().parent_path() / "plugin" / "usd" / "hdHair" / "resources").string();
+}
+#endif
+
 std::string describeTime(double time) {
     if (std::isnan(time)) return "default time";
     if (std::isinf(time)) return "earliest time";
@@ -126,8 +139,7 @@ int runThroughUsdImaging(const Options& options, const usda::SceneReadOptions& p
         RenderSettings settings;
         for (const std::string& assignment : options.settings) settings.setFromAssignment(assignment);
         request.framing = settings.getToken("framing");
-        const char* pluginPath = std::getenv("HDHAIR_PLUGIN_RESOURCES");
-        request.pluginPath = pluginPath ? pluginPath : HDHAIR_PLUGIN_RESOURCES;
+        request.pluginPath = hydraPluginResources();
         Clock::time_point start = Clock::now();
         hydra::UsdImagingRecordResult result = hydra::recordWithUsdImaging(request);
         double milliseconds = millisecondsSince(start);
