@@ -4,6 +4,7 @@
 // one through OpenUSD and the embedded reader, and a test checks that no
 // stage file is missing here. Add a new stage to this list only.
 
+#include <ostream>
 #include <string>
 #include <vector>
 
@@ -19,6 +20,9 @@ struct TestStage {
     int baselineWidth;
     std::vector<double> baselineTimes;
 };
+
+// GoogleTest prints a parameter in test listings: by name, not as bytes.
+inline void PrintTo(const TestStage& stage, std::ostream* os) { *os << stage.name; }
 
 inline const std::vector<TestStage>& testStages() {
     static const std::vector<TestStage> stages = {
