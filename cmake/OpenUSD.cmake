@@ -64,5 +64,8 @@ else()
 endif()
 get_filename_component(HDHAIR_PXR_LIBRARY_DIR "${PXR_INCLUDE_DIRS}/../lib" ABSOLUTE)
 get_filename_component(HDHAIR_PXR_BIN "${PXR_INCLUDE_DIRS}/../bin" ABSOLUTE)
+# OpenUSD's Python modules, which its tools (usdrecord, usdcat) import: tests
+# that run them put this on PYTHONPATH themselves.
+get_filename_component(HDHAIR_PXR_PYTHONPATH "${PXR_INCLUDE_DIRS}/../lib/python" ABSOLUTE)
 # Where the plugin's plugInfo.json lands in the build tree.
 set(HDHAIR_PLUGIN_RESOURCES ${CMAKE_BINARY_DIR}/plugin/usd/hdHair/resources)

@@ -1,15 +1,14 @@
 // hdhair-record as a user meets it: exit codes, one-line reasons, outputs,
 // frames and --stats. Each test runs the real binary.
 
-#include <sys/wait.h>
-
-#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <string>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
+
+#include "Commands.h"
 
 #include "hdHair/image/ImageWriter.h"
 
@@ -27,15 +26,8 @@ struct RecordRun {
 // for it (builds with OpenUSD default to --reader usd), unless a test picks one.
 RecordRun record(const std::string& arguments, const std::string& environment = "") {
     std::string reader = arguments.find("--reader") == std::string::npos ? "--reader embedded " : "";
-    std::string command = environment + " " HDHAIR_RECORD " " + reader + arguments + " 2>&1";
     RecordRun run;
-    FILE* pipe = ::popen(command.c_str(), "r");
-    if (!pipe) return run;
-    char buffer[4096];
-    size_t read;
-    while ((read = std::fread(buffer, 1, sizeof buffer, pipe)) > 0) run.output.append(buffer, read);
-    int status = ::pclose(pipe);
-    run.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    run.exitCode = hdhair::testenv::runCommand(environment + " " HDHAIR_RECORD " " + reader + arguments, &run.output);
     return run;
 }
 
