@@ -126,6 +126,15 @@ SceneBounds Renderer::prepare(const Scene& scene, Diagnostics& diagnostics) {
     Clock::time_point start = Clock::now();
     for (auto it = curves_.begin(); it != curves_.end();)
         it = scene.curves().count(it->first) ? std::next(it) : curves_.erase(it);
+    // Meshes count for framing but are not drawn: say so once per mesh, the
+    // first time it is visible, whichever reader brought it.
+    for (auto it = reportedMeshes_.begin(); it != reportedMeshes_.end();)
+        it = scene.meshes().count(*it) ? std::next(it) : reportedMeshes_.erase(it);
+    for (const auto& [path, entry] : scene.meshes()) {
+        if (entry.prim->visible && reportedMeshes_.insert(path).second)
+            diagnostics.warn(path, "mesh not drawn: hdHair draws curves only (meshes as occluders are not "
+                                   "implemented yet)");
+    }
     // Prepare changed prims in parallel: curve preparation is CPU work
     // without GL, thread-safe across prims.
     struct Change {
