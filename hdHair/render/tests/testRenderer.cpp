@@ -178,6 +178,24 @@ TEST(Renderer, NoIdImagesUnlessAskedFor) {
     EXPECT_TRUE(result.elementIds.empty());
 }
 
+TEST(Renderer, AnInstancedPrimsRepairsAreReportedOnceNotPerInstance) {
+    // Three instances of a prim whose widths have the wrong count: the
+    // repair is the same for each, so only the first instance reports it.
+    Scene scene;
+    for (int instance = 0; instance < 3; ++instance) {
+        CurvesPrim prim = horizontalStrands("/proto{" + std::to_string(instance) + "}", 5, {0.5f});
+        prim.instanceId = instance;
+        prim.primvars["widths"].interpolation = Interpolation::Vertex;
+        prim.primvars["widths"].values = {0.2f, 0.2f, 0.2f};  // 3 values for 2 vertices
+        scene.setCurves(prim);
+    }
+    Renderer renderer(gl::GlBackend::Egl);
+    Diagnostics diagnostics;
+    renderer.render(scene, squareCamera(32), RenderSettings{}, diagnostics);
+    ASSERT_EQ(diagnostics.warningCount(), 1u);
+    EXPECT_EQ(diagnostics.warnings()[0].where, "/proto{0}.widths");
+}
+
 TEST(Renderer, AVisibleMeshIsReportedAsNotDrawnOnce) {
     Scene scene;
     scene.setCurves(horizontalStrands("/a", 1, {0.0f}));
