@@ -64,9 +64,10 @@ else()
 endif()
 get_filename_component(HDHAIR_PXR_LIBRARY_DIR "${PXR_INCLUDE_DIRS}/../lib" ABSOLUTE)
 get_filename_component(HDHAIR_PXR_BIN "${PXR_INCLUDE_DIRS}/../bin" ABSOLUTE)
-# What tests that run OpenUSD's own tools (usdrecord, usdview: Python
-# scripts) need in their environment, so that ctest works without the caller
-# setting PYTHONPATH.
+# OpenUSD's Python modules, which its tools (usdrecord, usdview: Python
+# scripts) import. C++ tests put them on the commands they run; Python tests
+# get HDHAIR_PXR_TEST_ENVIRONMENT from CTest. Either way ctest works without
+# the caller setting PYTHONPATH.
 get_filename_component(HDHAIR_PXR_PYTHONPATH "${PXR_INCLUDE_DIRS}/../lib/python" ABSOLUTE)
 set(HDHAIR_PXR_TEST_ENVIRONMENT "PYTHONPATH=${HDHAIR_PXR_PYTHONPATH}")
 # Where the plugin's plugInfo.json lands in the build tree.

@@ -114,6 +114,31 @@ void reportCurveChecks(const CurvesPrim& prim, const CurveTopology& topology, co
                  });
 }
 
+// Primvars that change how Storm draws curves but that hdHair reads and does
+// not honour. Each one is a warning: a groom moved from Storm to hdHair must
+// not change its look without saying why. (pointSizeScale is not here: it
+// only scales Storm's points drawing of curves, which hdHair does not have;
+// its curves ignore it in Storm too.)
+void reportPrimvarsNotHonoured(const CurvesPrim& prim, Diagnostics& diagnostics) {
+    auto anyNonZero = [](const Primvar& primvar) {
+        return std::any_of(primvar.values.begin(), primvar.values.end(), [](float v) { return v != 0.0f; });
+    };
+    auto where = [&](const char* primvarName) { return prim.path + "." + attributeName(primvarName); };
+    if (prim.findPrimvar("normals")) {
+        diagnostics.warn(where("normals"),
+                         "not used: hdHair draws camera-facing strands, not ribbons oriented by normals");
+    }
+    if (const Primvar* screenSpace = prim.findPrimvar("screenSpaceWidths"); screenSpace && anyNonZero(*screenSpace)) {
+        diagnostics.warn(where("screenSpaceWidths"),
+                         "not supported: widths are drawn as object-space diameters, not pixels");
+    }
+    if (const Primvar* minimum = prim.findPrimvar("minScreenSpaceWidths"); minimum && anyNonZero(*minimum)) {
+        diagnostics.warn(where("minScreenSpaceWidths"),
+                         "not supported: strands thinner than the minPixelWidth setting (default 1 pixel) are "
+                         "drawn that wide, with their coverage as alpha");
+    }
+}
+
 // Authored negative widths have no meaning (a diameter); clamp them to 0.
 void clampNegativeWidths(ResolvedPrimvar& widths, const std::string& primPath, Diagnostics& diagnostics) {
     size_t clamped = 0;
@@ -200,6 +225,7 @@ PreparedCurves prepareCurves(const CurvesPrim& prim, Diagnostics& diagnostics,
         if (hidden >= 0 && static_cast<size_t>(hidden) < curveCount)
             checks[static_cast<size_t>(hidden)].status = CurveStatus::Invisible;
     reportCurveChecks(prim, topology, checks, diagnostics);
+    reportPrimvarsNotHonoured(prim, diagnostics);
 
     ResolvedPrimvar widths = resolvePrimvar(prim, topology, "widths", kFallbackWidth, diagnostics);
     clampNegativeWidths(widths, prim.path, diagnostics);

@@ -95,6 +95,14 @@ double minProjectedWidthPixels(const CameraView& camera, const PreparedCurves& c
     return double(minSpanWidth) * pixelsPerUnit(camera) / farthest;
 }
 
+// The instances of an instanced prim are copies of its first instance but for
+// the transform (HdHairRenderParam::SetCurves), so whatever their data needs
+// repaired is the first instance's again: only the first reports it, and a
+// PointInstancer of 10,000 strands warns once, not 10,000 times.
+Diagnostics& reportingFor(const CurvesPrim& prim, Diagnostics& diagnostics, Diagnostics& repeated) {
+    return prim.instanceId == 0 ? diagnostics : repeated;
+}
+
 }  // namespace
 
 Renderer::Renderer(gl::GlBackend backend) : glThread_(std::make_unique<gl::GlRenderThread>(backend)) {
@@ -126,6 +134,15 @@ SceneBounds Renderer::prepare(const Scene& scene, Diagnostics& diagnostics) {
     Clock::time_point start = Clock::now();
     for (auto it = curves_.begin(); it != curves_.end();)
         it = scene.curves().count(it->first) ? std::next(it) : curves_.erase(it);
+    // Meshes count for framing but are not drawn: say so once per mesh, the
+    // first time it is visible, whichever reader brought it.
+    for (auto it = reportedMeshes_.begin(); it != reportedMeshes_.end();)
+        it = scene.meshes().count(*it) ? std::next(it) : reportedMeshes_.erase(it);
+    for (const auto& [path, entry] : scene.meshes()) {
+        if (entry.prim->visible && reportedMeshes_.insert(path).second)
+            diagnostics.warn(path, "mesh not drawn: hdHair draws curves only (meshes as occluders are not "
+                                   "implemented yet)");
+    }
     // Prepare changed prims in parallel: curve preparation is CPU work
     // without GL, thread-safe across prims.
     struct Change {
@@ -144,10 +161,12 @@ SceneBounds Renderer::prepare(const Scene& scene, Diagnostics& diagnostics) {
         cached.colorMaterialVersion = materialVersion;
         changed.push_back({entry.prim.get(), material ? material->prim.get() : nullptr, &cached});
     }
+    Diagnostics repeated;  // later instances' repairs (reportingFor)
     tbb::parallel_for(size_t(0), changed.size(), [&](size_t i) {
-        const StrandColorSource colors = strandColorSource(*changed[i].prim, changed[i].material, diagnostics);
+        Diagnostics& report = reportingFor(*changed[i].prim, diagnostics, repeated);
+        const StrandColorSource colors = strandColorSource(*changed[i].prim, changed[i].material, report);
         auto prepared = std::make_shared<PreparedCurves>(
-            prepareCurves(*changed[i].prim, diagnostics, hairParameterPrimvars(), &colors));
+            prepareCurves(*changed[i].prim, report, hairParameterPrimvars(), &colors));
         CachedCurves& cached = *changed[i].cached;
         cached.minSpanWidth = std::numeric_limits<float>::max();
         cached.fullyOpaque = true;
@@ -279,6 +298,7 @@ RenderResult Renderer::render(const Scene& scene, const CameraView& camera, cons
     pendingPrepareMilliseconds_ = 0.0;
 
     std::vector<VisiblePrim> visible;
+    Diagnostics repeated;  // later instances' material warnings (reportingFor)
     const std::string materialSettings = hairMaterialSettingsKey(settings);
     std::vector<uint64_t> geometryKey;  // versions, then material indices
     std::vector<HairMaterial> materials;
@@ -290,7 +310,8 @@ RenderResult Renderer::render(const Scene& scene, const CameraView& camera, cons
         CachedCurves& cached = curves_.at(path);
         if (!entry.prim->visible || cached.prepared->empty()) continue;
         if (!cached.material || cached.materialSettings != materialSettings) {
-            cached.material = hairMaterialFor(*entry.prim, *cached.prepared, settings, diagnostics);
+            cached.material = hairMaterialFor(*entry.prim, *cached.prepared, settings,
+                                              reportingFor(*entry.prim, diagnostics, repeated));
             cached.materialSettings = materialSettings;
             cached.parameterPoints = hairParameterPoints(*cached.material, *cached.prepared);
         }

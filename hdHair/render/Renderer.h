@@ -10,6 +10,7 @@
 #include <map>
 #include <memory>
 #include <optional>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -129,6 +130,7 @@ private:
     std::vector<StrandControlPoint> controlPoints_; // CPU copy, for sorting
     int maxSamples_ = 0;
     std::map<std::string, CachedCurves> curves_;
+    std::set<std::string> reportedMeshes_;  // meshes already warned about as not drawn
     // Preparation time since the last render (framing may prepare first).
     double pendingPrepareMilliseconds_ = 0.0;
 };

@@ -1,7 +1,6 @@
 // hdhair-record as a user meets it: exit codes, one-line reasons, outputs,
 // frames and --stats. Each test runs the real binary.
 
-#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -9,7 +8,8 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include "CommandRun.h"
+#include "Commands.h"
+
 #include "hdHair/image/ImageWriter.h"
 
 using namespace hdhair;
@@ -17,13 +17,18 @@ namespace fs = std::filesystem;
 
 namespace {
 
-using RecordRun = hdhair::testenv::CommandRun;
+struct RecordRun {
+    int exitCode = -1;
+    std::string output;  // stdout and stderr together
+};
 
 // These tests exercise the embedded reader's messages and stats, so they ask
 // for it (builds with OpenUSD default to --reader usd), unless a test picks one.
 RecordRun record(const std::string& arguments, const std::string& environment = "") {
     std::string reader = arguments.find("--reader") == std::string::npos ? "--reader embedded " : "";
-    return hdhair::testenv::runCommand(environment + " " HDHAIR_RECORD " " + reader + arguments);
+    RecordRun run;
+    run.exitCode = hdhair::testenv::runCommand(environment + " " HDHAIR_RECORD " " + reader + arguments, &run.output);
+    return run;
 }
 
 std::string example(const std::string& name) { return std::string(HDHAIR_SOURCE_DIR) + "/examples/" + name; }

@@ -323,6 +323,33 @@ TEST(PrepareCurves, NegativeWidthsAreClampedToZero) {
     EXPECT_EQ(diagnostics.warnings()[0].message, "2 negative widths; clamped to 0");
 }
 
+TEST(PrepareCurves, StormPrimvarsHdHairDoesNotHonourAreReported) {
+    // OpenUSD's moreCurves.usda and curvesWithScreenSpaceWidths.usda author
+    // these; Storm changes what it draws for each, hdHair does not.
+    CurvesPrim prim = randomPrim(CurveType::Linear, CurveBasis::Bezier, CurveWrap::Nonperiodic, {3}, 18);
+    prim.primvars["normals"] = authoredPrimvar("normals", Interpolation::Varying, 3, std::vector<float>(9, 1.0f));
+    prim.primvars["screenSpaceWidths"] = authoredPrimvar("screenSpaceWidths", Interpolation::Constant, 1, {1.0f});
+    prim.primvars["minScreenSpaceWidths"] = authoredPrimvar("minScreenSpaceWidths", Interpolation::Constant, 1, {10.0f});
+    Diagnostics diagnostics;
+    prepareCurves(prim, diagnostics);
+    ASSERT_EQ(diagnostics.warningCount(), 3u);
+    EXPECT_TRUE(containsMessage(diagnostics, "/World/hair.normals",
+                                "not used: hdHair draws camera-facing strands, not ribbons oriented by normals"));
+    EXPECT_TRUE(containsMessage(diagnostics, "/World/hair.primvars:screenSpaceWidths",
+                                "not supported: widths are drawn as object-space diameters, not pixels"));
+    EXPECT_TRUE(containsMessage(diagnostics, "/World/hair.primvars:minScreenSpaceWidths",
+                                "not supported: strands thinner than the minPixelWidth setting (default 1 pixel) are "
+                                "drawn that wide, with their coverage as alpha"));
+
+    // Authored as off, the screen-space primvars change nothing in Storm either.
+    prim.primvars.erase("normals");
+    prim.primvars["screenSpaceWidths"].values = {0.0f};
+    prim.primvars["minScreenSpaceWidths"].values = {0.0f};
+    Diagnostics off;
+    prepareCurves(prim, off);
+    EXPECT_EQ(off.warningCount(), 0u);
+}
+
 TEST(PrepareCurves, UnderLengthCurvesAreDrawnAsStormDoes) {
     // bunnyCurves.usda's bezier counts 8, 9 and 5; and a 1-vertex curve.
     CurvesPrim prim = randomPrim(CurveType::Cubic, CurveBasis::Bezier, CurveWrap::Nonperiodic, {8, 9, 5, 1, 4}, 17);

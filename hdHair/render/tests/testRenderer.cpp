@@ -177,3 +177,44 @@ TEST(Renderer, NoIdImagesUnlessAskedFor) {
     EXPECT_TRUE(result.primIds.empty());
     EXPECT_TRUE(result.elementIds.empty());
 }
+
+TEST(Renderer, AnInstancedPrimsRepairsAreReportedOnceNotPerInstance) {
+    // Three instances of a prim whose widths have the wrong count: the
+    // repair is the same for each, so only the first instance reports it.
+    Scene scene;
+    for (int instance = 0; instance < 3; ++instance) {
+        CurvesPrim prim = horizontalStrands("/proto{" + std::to_string(instance) + "}", 5, {0.5f});
+        prim.instanceId = instance;
+        prim.primvars["widths"].interpolation = Interpolation::Vertex;
+        prim.primvars["widths"].values = {0.2f, 0.2f, 0.2f};  // 3 values for 2 vertices
+        scene.setCurves(prim);
+    }
+    Renderer renderer(gl::GlBackend::Egl);
+    Diagnostics diagnostics;
+    renderer.render(scene, squareCamera(32), RenderSettings{}, diagnostics);
+    ASSERT_EQ(diagnostics.warningCount(), 1u);
+    EXPECT_EQ(diagnostics.warnings()[0].where, "/proto{0}.widths");
+}
+
+TEST(Renderer, AVisibleMeshIsReportedAsNotDrawnOnce) {
+    Scene scene;
+    scene.setCurves(horizontalStrands("/a", 1, {0.0f}));
+    MeshPrim mesh;
+    mesh.path = "/ground";
+    mesh.points = {{-1.0f, -1.0f, 0.0f}, {1.0f, -1.0f, 0.0f}, {0.0f, 1.0f, 0.0f}};
+    mesh.faceVertexCounts = {3};
+    mesh.faceVertexIndices = {0, 1, 2};
+    MeshPrim hidden = mesh;
+    hidden.path = "/hidden";
+    hidden.visible = false;
+    scene.setMesh(mesh);
+    scene.setMesh(hidden);
+    Renderer renderer(gl::GlBackend::Egl);
+    Diagnostics diagnostics;
+    renderer.render(scene, squareCamera(32), RenderSettings{}, diagnostics);
+    renderer.render(scene, squareCamera(32), RenderSettings{}, diagnostics);  // a second frame: no repeat
+    ASSERT_EQ(diagnostics.warningCount(), 1u);
+    EXPECT_EQ(diagnostics.warnings()[0].where, "/ground");
+    EXPECT_EQ(diagnostics.warnings()[0].message,
+              "mesh not drawn: hdHair draws curves only (meshes as occluders are not implemented yet)");
+}
