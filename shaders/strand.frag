@@ -29,9 +29,9 @@ layout(location = 3) out int outElementId;
 void main() {
     // Nothing to add: not even an id (opacity 0 strands produce nothing).
     if (frame.drawMode != 0 && colorAlpha.a <= 0.0) discard;
-    // The depth-and-ids pass under transparency keeps what a user would pick:
-    // strands at least 10% opaque (Storm's default alpha threshold).
-    if (frame.drawMode == 2 && colorAlpha.a < 0.1) discard;
+    // The depth-and-ids pass under transparency keeps what a user would pick
+    // (hdHair/render/NearestStrandRule.h).
+    if (frame.drawMode == 2 && !definesDepthAndIds(colorAlpha.a)) discard;
     vec3 radiance = strandRadiance(worldPosition, worldTangent, colorAlpha.rgb, ids.z, ids.w, spanU);
     if (frame.drawMode == 0) {
         outColor = vec4(radiance, 1.0);

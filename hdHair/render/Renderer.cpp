@@ -20,6 +20,7 @@
 #include "hdHair/gl/StrandGeometry.h"
 #include "hdHair/gl/StrandPass.h"
 #include "hdHair/render/BinSort.h"
+#include "hdHair/render/NearestStrandRule.h"
 #include "hdHair/scene/Scene.h"
 #include "hdHair/shading/MarschnerTables.h"
 
@@ -56,6 +57,7 @@ gl::FrameUniforms frameUniforms(const CameraView& camera, const RenderSettings& 
     frame.minPixelWidth = opaque ? 0.0f : float(settings.getFloat("minPixelWidth"));
     frame.drawMode = opaque ? 0 : 1;
     frame.orderedDraw = plan.transparency == TransparencyPath::BinSorted ? 1 : 0;
+    frame.nearestStrandMinAlpha = kNearestStrandMinAlpha;
     return frame;
 }
 
