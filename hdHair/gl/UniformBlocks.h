@@ -22,7 +22,7 @@ struct FrameUniforms {  // binding 0, shaders/include/frameUniforms.glsl
     float maxSegmentsPerSpan = 8.0f;
     float pixelsPerUnit = 1.0f;  // pixels a world unit spans at clip w = 1
     float minPixelWidth = 0.0f;  // sub-pixel coverage threshold; 0 keeps true widths
-    int32_t drawMode = 0;        // 0 opaque, 1 pre-multiplied, 2 depth and ids only
+    int32_t drawMode = 0;        // 0 opaque, 1 pre-multiplied, 2 ids only (the ids pass)
     int32_t orderedDraw = 0;     // 1: patches come through the draw-order buffer
     // Blended frames: the least alpha (coverage x opacity) of a fragment that
     // may give its pixel depth and ids (hdHair/render/NearestStrandRule.h).

@@ -13,7 +13,7 @@ layout(std140, binding = 0) uniform FrameUniforms {
     // Strands projecting thinner than this many pixels are drawn this wide
     // with their alpha scaled by true / drawn width (0: true widths, opaque).
     float minPixelWidth;
-    int drawMode;             // 0: opaque, 1: pre-multiplied alpha, 2: depth and ids only
+    int drawMode;             // 0: opaque, 1: pre-multiplied alpha, 2: ids only (the ids pass)
     int orderedDraw;          // 1: patches are read through the draw-order buffer
     // Blended frames: a pixel's depth and ids belong to its nearest strand
     // fragment whose alpha (coverage x opacity) is at least this
