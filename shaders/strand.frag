@@ -40,11 +40,11 @@ void main() {
     // from: the nearest one faint fragments are looked through to.
     bool definesDepth = frame.drawMode == 0 || definesDepthAndIds(colorAlpha.a);
     if (frame.drawMode == 2 && !definesDepth) discard;
-    vec3 radiance = strandRadiance(worldPosition, worldTangent, colorAlpha.rgb, ids.z, ids.w, spanU);
-    if (frame.drawMode == 0) {
-        outColor = vec4(radiance, 1.0);
+    if (frame.drawMode == 2) {
+        outColor = vec4(0.0);  // masked: the ids pass needs no shading
     } else {
-        outColor = vec4(radiance * colorAlpha.a, colorAlpha.a);
+        vec3 radiance = strandRadiance(worldPosition, worldTangent, colorAlpha.rgb, ids.z, ids.w, spanU);
+        outColor = frame.drawMode == 0 ? vec4(radiance, 1.0) : vec4(radiance * colorAlpha.a, colorAlpha.a);
     }
     outPrimId = ids.x;
     outInstanceId = segmentPrim[ids.w].y;
