@@ -6,6 +6,9 @@
 // (c_i pre-multiplied). Lists that fit in registers are insertion-sorted;
 // longer ones are walked in depth order by repeated selection, which is
 // O(k^2) but exact for any length: this pass is the ground truth.
+// Depth and ids come from the nearest fragment that definesDepthAndIds()
+// accepts, as in the other blended paths; none gives depth 1 and ids -1.
+#include "include/frameUniforms.glsl"
 #include "include/fragmentLists.glsl"
 #include "include/strandGeometry.glsl"
 
@@ -17,6 +20,7 @@ layout(location = 0) out vec4 outColor;
 layout(location = 1) out int outPrimId;
 layout(location = 2) out int outInstanceId;
 layout(location = 3) out int outElementId;
+layout(location = 4) out float outNearestDepth;  // hdHair/gl/RenderTarget.h kNearestDepthOutput
 
 // Orders fragments by depth, then by index, so ties resolve the same way
 // whatever order the GPU appended them in.
@@ -28,7 +32,9 @@ void main() {
     uint head = imageLoad(listHeads, ivec2(gl_FragCoord.xy)).r;
     vec4 color = vec4(0.0);
     float transmittance = 1.0;
-    int frontSegment = -1;  // the nearest fragment's segment: what a user picks
+    // The nearest fragment that may define depth and ids: what a user picks.
+    int frontSegment = -1;
+    float frontDepth = 1.0;
 
     // Gather first, sort afterwards, on copies of the depths held in
     // registers: Mesa 22.3's llvmpipe composited wrong lists when the sort
@@ -63,7 +69,10 @@ void main() {
     if (fits) {
         for (int i = 0; i < count; ++i) {
             FragmentNode node = nodes[local[i]];
-            if (i == 0) frontSegment = node.segment;
+            if (frontSegment < 0 && definesDepthAndIds(node.color.a)) {
+                frontSegment = node.segment;
+                frontDepth = node.depth;
+            }
             color.rgb += transmittance * node.color.rgb;
             transmittance *= 1.0 - node.color.a;
         }
@@ -80,7 +89,10 @@ void main() {
             }
             if (best == HDHAIR_LIST_END) break;
             FragmentNode node = nodes[best];
-            if (first) frontSegment = node.segment;
+            if (frontSegment < 0 && definesDepthAndIds(node.color.a)) {
+                frontSegment = node.segment;
+                frontDepth = node.depth;
+            }
             color.rgb += transmittance * node.color.rgb;
             transmittance *= 1.0 - node.color.a;
             lastDepth = node.depth;
@@ -93,4 +105,5 @@ void main() {
     outPrimId = frontSegment >= 0 ? segmentPrim[frontSegment].x : -1;
     outInstanceId = frontSegment >= 0 ? segmentPrim[frontSegment].y : -1;
     outElementId = frontSegment >= 0 ? segmentCurve[frontSegment] : -1;
+    outNearestDepth = frontDepth;
 }

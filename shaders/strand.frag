@@ -2,7 +2,10 @@
 #extension GL_GOOGLE_include_directive : require
 // Strands drawn straight into the frame: opaque (alpha 1, depth written) or
 // pre-multiplied (colour x alpha, alpha; blended ONE, ONE_MINUS_SRC_ALPHA
-// over what is behind, in the order the draw-order buffer gives).
+// over what is behind, in the order the draw-order buffer gives). Blended
+// draws also give the frame its depth, whatever their order: the nearest-
+// depth image is min-blended, so it keeps the nearest fragment that
+// definesDepthAndIds() accepts.
 #include "include/frameUniforms.glsl"
 #include "include/lights.glsl"
 #include "include/kajiyaKay.glsl"
@@ -25,20 +28,26 @@ layout(location = 0) out vec4 outColor;
 layout(location = 1) out int outPrimId;
 layout(location = 2) out int outInstanceId;
 layout(location = 3) out int outElementId;
+// Blended frames only (hdHair/gl/RenderTarget.h kNearestDepthOutput): this
+// fragment's window depth if it may define the pixel's depth, else 1 (the
+// clear value), which the min blend ignores.
+layout(location = 4) out float outNearestDepth;
 
 void main() {
     // Nothing to add: not even an id (opacity 0 strands produce nothing).
     if (frame.drawMode != 0 && colorAlpha.a <= 0.0) discard;
-    // The depth-and-ids pass under transparency keeps what a user would pick:
-    // strands at least 10% opaque (Storm's default alpha threshold).
-    if (frame.drawMode == 2 && colorAlpha.a < 0.1) discard;
-    vec3 radiance = strandRadiance(worldPosition, worldTangent, colorAlpha.rgb, ids.z, ids.w, spanU);
-    if (frame.drawMode == 0) {
-        outColor = vec4(radiance, 1.0);
+    // The ids pass under transparency keeps the fragment the depth comes
+    // from: the nearest one faint fragments are looked through to.
+    bool definesDepth = frame.drawMode == 0 || definesDepthAndIds(colorAlpha.a);
+    if (frame.drawMode == 2 && !definesDepth) discard;
+    if (frame.drawMode == 2) {
+        outColor = vec4(0.0);  // masked: the ids pass needs no shading
     } else {
-        outColor = vec4(radiance * colorAlpha.a, colorAlpha.a);
+        vec3 radiance = strandRadiance(worldPosition, worldTangent, colorAlpha.rgb, ids.z, ids.w, spanU);
+        outColor = frame.drawMode == 0 ? vec4(radiance, 1.0) : vec4(radiance * colorAlpha.a, colorAlpha.a);
     }
     outPrimId = ids.x;
     outInstanceId = segmentPrim[ids.w].y;
     outElementId = ids.y;
+    outNearestDepth = definesDepth ? gl_FragCoord.z : 1.0;
 }

@@ -47,12 +47,15 @@ uint64_t FragmentListPass::render(const StrandGeometry& geometry, int width, int
     glDepthMask(GL_FALSE);
     glDisable(GL_BLEND);
     glDisable(GL_CULL_FACE);
-    for (GLuint i = 0; i < 4; ++i) glColorMaski(i, GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+    // Every draw buffer: the list shader has no outputs, so whatever reached
+    // an unmasked attachment would be undefined.
+    glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
     StrandPass::drawPatches(geometry.segmentCount(), maxSegmentsPerSpan);
-    for (GLuint i = 0; i < 4; ++i) glColorMaski(i, GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
 
-    // Pass 2: resolve every pixel (empty lists give transparent black).
+    // Pass 2: resolve every pixel (empty lists give transparent black, depth
+    // 1 and ids -1), unblended: it writes colour, ids and nearest depth.
     glUseProgram(resolveProgram_.get());
     glDisable(GL_DEPTH_TEST);
     glDrawArrays(GL_TRIANGLES, 0, 3);

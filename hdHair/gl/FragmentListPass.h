@@ -18,9 +18,11 @@ class FragmentListPass {
 public:
     FragmentListPass();  // compiles both programs
 
-    // Renders into the currently bound framebuffer (its colour and id
-    // attachments are overwritten; depth is tested, not written). The frame
-    // and light uniform blocks must be bound (StrandPass::setUniforms).
+    // Renders into the currently bound framebuffer (its colour, id and
+    // nearest-depth attachments are overwritten; the depth buffer is tested,
+    // not written). The frame and light uniform blocks must be bound
+    // (StrandPass::setUniforms). Depth and ids follow
+    // hdHair/render/NearestStrandRule.h.
     // Returns how many fragments the strands produced; more than
     // `capacity` means the image is incomplete and must not be used.
     uint64_t render(const StrandGeometry& geometry, int width, int height, size_t capacity,

@@ -5,17 +5,29 @@
 
 namespace hdhair::gl {
 
-RenderTarget::RenderTarget(int width, int height, bool withIds, int samples)
-    : width_(width), height_(height), withIds_(withIds), samples_(samples) {
+RenderTarget::RenderTarget(int width, int height, const RenderTargetImages& images)
+    : width_(width), height_(height), images_(images) {
     GLint maxSize = 0;
     glGetIntegerv(GL_MAX_RENDERBUFFER_SIZE, &maxSize);
     if (width <= 0 || height <= 0 || width > maxSize || height > maxSize)
         throw std::runtime_error("image size " + std::to_string(width) + "x" + std::to_string(height) +
                                  " is outside what the GL driver supports (1 to " + std::to_string(maxSize) +
                                  " pixels a side)");
-    create(draw_, samples_);
-    if (samples_ > 0) create(resolved_, 0);
+    create(draw_, images_.samples);
+    if (images_.samples > 0) create(resolved_, 0);
     checkGlError("creating the render target");
+}
+
+std::array<GLenum, kOutputCount> RenderTarget::drawBuffers() const {
+    // Outputs without an image are NONE: the strand shaders' writes to them
+    // are discarded.
+    std::array<GLenum, kOutputCount> buffers;
+    buffers.fill(GL_NONE);
+    buffers[kColorOutput] = GL_COLOR_ATTACHMENT0 + kColorOutput;
+    for (int i = 0; images_.ids && i < 3; ++i)
+        buffers[size_t(kFirstIdOutput + i)] = GLenum(GL_COLOR_ATTACHMENT0 + kFirstIdOutput + i);
+    if (images_.nearestDepth) buffers[kNearestDepthOutput] = GL_COLOR_ATTACHMENT0 + kNearestDepthOutput;
+    return buffers;
 }
 
 void RenderTarget::create(Attachments& a, int samples) {
@@ -26,25 +38,19 @@ void RenderTarget::create(Attachments& a, int samples) {
         else glTextureStorage2D(name, 1, format, width_, height_);
         return Texture(name);
     };
-    a.color = texture(GL_RGBA32F);
-    a.depth = texture(GL_DEPTH_COMPONENT32F);
     GLuint name = 0;
     glCreateFramebuffers(1, &name);
     a.framebuffer = Framebuffer(name);
-    glNamedFramebufferTexture(a.framebuffer.get(), GL_COLOR_ATTACHMENT0, a.color.get(), 0);
-    glNamedFramebufferTexture(a.framebuffer.get(), GL_DEPTH_ATTACHMENT, a.depth.get(), 0);
-    // The strand shaders write ids to outputs 1-3; without id images those
-    // draw buffers are NONE and the writes are discarded.
-    GLenum drawBuffers[4] = {GL_COLOR_ATTACHMENT0, GL_NONE, GL_NONE, GL_NONE};
-    if (withIds_) {
-        for (int i = 0; i < 3; ++i) {
-            a.ids[i] = texture(GL_R32I);
-            GLenum attachment = GLenum(GL_COLOR_ATTACHMENT1 + i);
-            glNamedFramebufferTexture(a.framebuffer.get(), attachment, a.ids[i].get(), 0);
-            drawBuffers[i + 1] = attachment;
-        }
-    }
-    glNamedFramebufferDrawBuffers(a.framebuffer.get(), 4, drawBuffers);
+    auto attach = [&](GLenum attachment, Texture& image, GLenum format) {
+        image = texture(format);
+        glNamedFramebufferTexture(a.framebuffer.get(), attachment, image.get(), 0);
+    };
+    attach(GL_COLOR_ATTACHMENT0 + kColorOutput, a.color, GL_RGBA32F);
+    attach(GL_DEPTH_ATTACHMENT, a.depth, GL_DEPTH_COMPONENT32F);
+    for (int i = 0; images_.ids && i < 3; ++i)
+        attach(GLenum(GL_COLOR_ATTACHMENT0 + kFirstIdOutput + i), a.ids[i], GL_R32I);
+    if (images_.nearestDepth) attach(GL_COLOR_ATTACHMENT0 + kNearestDepthOutput, a.nearestDepth, GL_R32F);
+    glNamedFramebufferDrawBuffers(a.framebuffer.get(), kOutputCount, drawBuffers().data());
     GLenum status = glCheckNamedFramebufferStatus(a.framebuffer.get(), GL_FRAMEBUFFER);
     if (status != GL_FRAMEBUFFER_COMPLETE)
         throw std::runtime_error("the GL driver cannot render to this framebuffer (" + std::to_string(samples) +
@@ -55,44 +61,52 @@ void RenderTarget::bindAndClear(const glm::vec4& clearColor) {
     GLuint framebuffer = draw_.framebuffer.get();
     glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
     // Light batches may have left the framebuffer drawing colour only.
-    GLenum drawBuffers[4] = {GL_COLOR_ATTACHMENT0, GL_NONE, GL_NONE, GL_NONE};
-    for (int i = 1; withIds_ && i < 4; ++i) drawBuffers[i] = GLenum(GL_COLOR_ATTACHMENT0 + i);
-    glNamedFramebufferDrawBuffers(framebuffer, 4, drawBuffers);
+    glNamedFramebufferDrawBuffers(framebuffer, kOutputCount, drawBuffers().data());
     glViewport(0, 0, width_, height_);
-    glClearNamedFramebufferfv(framebuffer, GL_COLOR, 0, &clearColor[0]);
-    const float clearDepth = 1.0f;
-    glClearNamedFramebufferfv(framebuffer, GL_DEPTH, 0, &clearDepth);
-    if (withIds_) {
+    glClearNamedFramebufferfv(framebuffer, GL_COLOR, kColorOutput, &clearColor[0]);
+    const float farthest = 1.0f;
+    glClearNamedFramebufferfv(framebuffer, GL_DEPTH, 0, &farthest);
+    if (images_.ids) {
         const GLint none[4] = {-1, -1, -1, -1};
-        for (GLint i = 1; i <= 3; ++i) glClearNamedFramebufferiv(framebuffer, GL_COLOR, i, none);
+        for (GLint i = 0; i < 3; ++i) glClearNamedFramebufferiv(framebuffer, GL_COLOR, kFirstIdOutput + i, none);
+    }
+    if (images_.nearestDepth) {
+        const float nothing[4] = {farthest, 0.0f, 0.0f, 0.0f};
+        glClearNamedFramebufferfv(framebuffer, GL_COLOR, kNearestDepthOutput, nothing);
     }
 }
 
 void RenderTarget::resolve() {
-    if (samples_ == 0) return;
+    if (images_.samples == 0) return;
     const GLuint from = draw_.framebuffer.get(), to = resolved_.framebuffer.get();
-    for (int i = 0; i < (withIds_ ? 4 : 1); ++i) {
-        GLenum attachment = GLenum(GL_COLOR_ATTACHMENT0 + i);
-        glNamedFramebufferReadBuffer(from, attachment);
-        glNamedFramebufferDrawBuffer(to, attachment);
+    const std::array<GLenum, kOutputCount> buffers = drawBuffers();
+    for (int i = 0; i < kOutputCount; ++i) {
+        if (buffers[size_t(i)] == GL_NONE) continue;
+        glNamedFramebufferReadBuffer(from, buffers[size_t(i)]);
+        glNamedFramebufferDrawBuffer(to, buffers[size_t(i)]);
         glBlitNamedFramebuffer(from, to, 0, 0, width_, height_, 0, 0, width_, height_,
-                               i == 0 ? GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT : GL_COLOR_BUFFER_BIT, GL_NEAREST);
+                               i == kColorOutput ? GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT : GL_COLOR_BUFFER_BIT,
+                               GL_NEAREST);
     }
-    GLenum drawBuffers[4] = {GL_COLOR_ATTACHMENT0, GL_NONE, GL_NONE, GL_NONE};
-    for (int i = 1; withIds_ && i < 4; ++i) drawBuffers[i] = GLenum(GL_COLOR_ATTACHMENT0 + i);
-    glNamedFramebufferDrawBuffers(to, 4, drawBuffers);
+    glNamedFramebufferDrawBuffers(to, kOutputCount, buffers.data());
     checkGlError("resolving the multisampled frame");
 }
 
 GLuint RenderTarget::resolvedColorTexture() const {
-    return samples_ > 0 ? resolved_.color.get() : draw_.color.get();
+    return images_.samples > 0 ? resolved_.color.get() : draw_.color.get();
+}
+
+GLuint RenderTarget::readFramebuffer() const {
+    return images_.samples > 0 ? resolved_.framebuffer.get() : draw_.framebuffer.get();
 }
 
 void RenderTarget::bindResolvedColorForDrawing() {
-    GLuint framebuffer = samples_ > 0 ? resolved_.framebuffer.get() : draw_.framebuffer.get();
+    GLuint framebuffer = readFramebuffer();
     glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
-    const GLenum colorOnly[4] = {GL_COLOR_ATTACHMENT0, GL_NONE, GL_NONE, GL_NONE};
-    glNamedFramebufferDrawBuffers(framebuffer, 4, colorOnly);
+    std::array<GLenum, kOutputCount> colorOnly;
+    colorOnly.fill(GL_NONE);
+    colorOnly[kColorOutput] = GL_COLOR_ATTACHMENT0 + kColorOutput;
+    glNamedFramebufferDrawBuffers(framebuffer, kOutputCount, colorOnly.data());
     glViewport(0, 0, width_, height_);
 }
 
@@ -119,21 +133,23 @@ std::vector<Pixel> readRowsTopDown(GLuint framebuffer, GLenum attachment, GLenum
 }  // namespace
 
 std::vector<float> RenderTarget::readColor() const {
-    GLuint framebuffer = samples_ > 0 ? resolved_.framebuffer.get() : draw_.framebuffer.get();
-    return readRowsTopDown<float>(framebuffer, GL_COLOR_ATTACHMENT0, GL_RGBA, GL_FLOAT, 4, width_, height_);
+    return readRowsTopDown<float>(readFramebuffer(), GL_COLOR_ATTACHMENT0 + kColorOutput, GL_RGBA, GL_FLOAT, 4,
+                                  width_, height_);
 }
 
 std::vector<float> RenderTarget::readDepth() const {
-    GLuint framebuffer = samples_ > 0 ? resolved_.framebuffer.get() : draw_.framebuffer.get();
-    return readRowsTopDown<float>(framebuffer, GL_DEPTH_ATTACHMENT, GL_DEPTH_COMPONENT, GL_FLOAT, 1, width_, height_);
+    if (images_.nearestDepth)
+        return readRowsTopDown<float>(readFramebuffer(), GL_COLOR_ATTACHMENT0 + kNearestDepthOutput, GL_RED,
+                                      GL_FLOAT, 1, width_, height_);
+    return readRowsTopDown<float>(readFramebuffer(), GL_DEPTH_ATTACHMENT, GL_DEPTH_COMPONENT, GL_FLOAT, 1, width_,
+                                  height_);
 }
 
 std::vector<int32_t> RenderTarget::readIds(int index) const {
-    if (!withIds_ || index < 0 || index > 2)
+    if (!images_.ids || index < 0 || index > 2)
         throw std::runtime_error("the render target has no id image " + std::to_string(index));
-    GLuint framebuffer = samples_ > 0 ? resolved_.framebuffer.get() : draw_.framebuffer.get();
-    return readRowsTopDown<int32_t>(framebuffer, GLenum(GL_COLOR_ATTACHMENT1 + index), GL_RED_INTEGER, GL_INT, 1,
-                                    width_, height_);
+    return readRowsTopDown<int32_t>(readFramebuffer(), GLenum(GL_COLOR_ATTACHMENT0 + kFirstIdOutput + index),
+                                    GL_RED_INTEGER, GL_INT, 1, width_, height_);
 }
 
 }  // namespace hdhair::gl

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "hdHair/gl/RenderTarget.h"
+
 namespace hdhair::gl {
 
 StrandPass::StrandPass()
@@ -63,7 +65,7 @@ void StrandPass::draw(const StrandGeometry& geometry, const std::vector<uint32_t
     glDisable(GL_CULL_FACE);  // ribbons are seen from both sides
     switch (blending) {
     case StrandBlending::Opaque:
-    case StrandBlending::DepthAndIdsOnly:
+    case StrandBlending::IdsOnly:
         glDepthFunc(GL_LESS);
         glDepthMask(GL_TRUE);
         glDisable(GL_BLEND);
@@ -76,11 +78,21 @@ void StrandPass::draw(const StrandGeometry& geometry, const std::vector<uint32_t
         glEnable(GL_BLEND);
         glBlendEquation(GL_FUNC_ADD);
         glBlendFunc(GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+        // The nearest depth keeps the least depth written, in any drawing
+        // order (MIN ignores the blend factors; integer id images ignore
+        // blending altogether).
+        glBlendEquationi(kNearestDepthOutput, GL_MIN);
         break;
     }
-    if (blending == StrandBlending::DepthAndIdsOnly) glColorMaski(0, GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+    if (blending == StrandBlending::IdsOnly) {
+        // Colour was composited already, and the nearest depth must stay
+        // the min-blended one (unblended writes would keep the last fragment).
+        glColorMaski(kColorOutput, GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+        glColorMaski(kNearestDepthOutput, GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+    }
     drawPatches(geometry.segmentCount(), maxSegmentsPerSpan_);
-    glColorMaski(0, GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    glBlendEquation(GL_FUNC_ADD);
     glDisable(GL_BLEND);
     glDepthMask(GL_TRUE);
     glBindVertexArray(0);

@@ -2,7 +2,8 @@
 // Draws the frame's strands (StrandGeometry) as camera-facing ribbons: one
 // patch of four Catmull-Rom control points per segment, tessellated on the
 // GPU (shaders/strand.*), either opaque (depth written) or pre-multiplied and
-// blended in a given far-to-near order (depth tested, not written).
+// blended in a given far-to-near order (depth tested, not written; the
+// nearest-depth image, when the target has one, min-blended).
 
 #include <cstdint>
 #include <vector>
@@ -15,8 +16,8 @@ namespace hdhair::gl {
 
 enum class StrandBlending {
     Opaque,          // no blending, depth test and write: the opaque path
-    PremultipliedOver,  // ONE, ONE_MINUS_SRC_ALPHA, depth test only
-    DepthAndIdsOnly  // no colour: nearest strand's depth and ids (for Hydra under transparency)
+    PremultipliedOver,  // ONE, ONE_MINUS_SRC_ALPHA, depth test only; nearest depth min-blended
+    IdsOnly  // ids of the nearest strand fragment (depth test and write); no colour, no nearest depth
 };
 
 class StrandPass {

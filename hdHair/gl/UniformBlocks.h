@@ -22,10 +22,14 @@ struct FrameUniforms {  // binding 0, shaders/include/frameUniforms.glsl
     float maxSegmentsPerSpan = 8.0f;
     float pixelsPerUnit = 1.0f;  // pixels a world unit spans at clip w = 1
     float minPixelWidth = 0.0f;  // sub-pixel coverage threshold; 0 keeps true widths
-    int32_t drawMode = 0;        // 0 opaque, 1 pre-multiplied, 2 depth and ids only
+    int32_t drawMode = 0;        // 0 opaque, 1 pre-multiplied, 2 ids only (the ids pass)
     int32_t orderedDraw = 0;     // 1: patches come through the draw-order buffer
+    // Blended frames: the least alpha (coverage x opacity) of a fragment that
+    // may give its pixel depth and ids (hdHair/render/NearestStrandRule.h).
+    float nearestStrandMinAlpha = 0.0f;
+    float padding_[3]{};  // std140 rounds the block up to whole vec4s
 };
-static_assert(sizeof(FrameUniforms) == 128, "std140 layout of FrameUniforms");
+static_assert(sizeof(FrameUniforms) == 144, "std140 layout of FrameUniforms");
 
 struct LightUniforms {  // binding 1, shaders/include/lights.glsl
     glm::vec4 lightVector[kMaxLightsPerPass]{};

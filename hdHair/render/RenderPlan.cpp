@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include "hdHair/render/CameraView.h"
+#include "hdHair/render/NearestStrandRule.h"
 #include "hdHair/render/RenderSettings.h"
 #include "hdHair/scene/Scene.h"
 
@@ -20,10 +21,61 @@ const char* toString(TransparencyPath path) {
     return "opaque";
 }
 
+namespace {
+
+// Where the frame's depth comes from on each path (and, blended, its ids).
+std::string depthSource(TransparencyPath path) {
+    switch (path) {
+    case TransparencyPath::Opaque: return "depth: the depth buffer";
+    case TransparencyPath::Exact:
+        return fmt::format("depth and ids: the nearest listed fragment with alpha >= {}", kNearestStrandMinAlpha);
+    case TransparencyPath::BinSorted:
+    case TransparencyPath::Unsorted: break;
+    }
+    return fmt::format("depth: the nearest fragment with alpha >= {}, min-blended", kNearestStrandMinAlpha);
+}
+
+// Ids need a pass of their own only where blending draws strands in an
+// order that is not nearest-last (integer images cannot be min-blended).
+PlannedPass idsPass(TransparencyPath path, bool idsRequested, bool anyStrands) {
+    PlannedPass ids{"ids", false, ""};
+    if (!idsRequested) {
+        ids.reason = "no ids asked for";
+    } else if (!anyStrands) {
+        ids.reason = "no visible curves: ids are -1 everywhere";
+    } else if (path == TransparencyPath::Opaque) {
+        ids.reason = "the strand pass writes them, with depth";
+    } else if (path == TransparencyPath::Exact) {
+        ids.reason = "the exact resolve writes them, with depth";
+    } else {
+        ids.enabled = true;
+        ids.reason = fmt::format("the host asked for ids: the nearest strand with alpha >= {}, the fragment the "
+                                 "strand pass's depth comes from",
+                                 kNearestStrandMinAlpha);
+    }
+    return ids;
+}
+
+}  // namespace
+
 bool RenderPlan::isEnabled(const std::string& name) const {
     for (const PlannedPass& pass : passes)
         if (pass.name == name) return pass.enabled;
     return false;
+}
+
+void RenderPlan::fallBackToBinSorted(uint32_t bins, bool idsRequested) {
+    transparency = TransparencyPath::BinSorted;
+    sortBins = bins;
+    const bool anyStrands = isEnabled("strands");
+    for (PlannedPass& pass : passes) {
+        if (pass.name == "sort") {
+            pass.enabled = true;
+            pass.reason = fmt::format("exact fell back: segments into {} depth bins on the CPU", bins);
+        } else if (pass.name == "ids") {
+            pass = idsPass(transparency, idsRequested, anyStrands);
+        }
+    }
 }
 
 std::string RenderPlan::describe() const {
@@ -118,9 +170,11 @@ RenderPlan makeRenderPlan(const Scene& scene, const RenderSettings& settings, co
                                                          plan.cameraLight ? " incl. the camera light" : "");
     std::string multisampling =
         plan.msaaSamples > 0 ? fmt::format(", {}x MSAA", plan.msaaSamples) : std::string();
-    strandPass.reason = strands.segments > 0 ? fmt::format("{} segments, {}: {}{}, {}", strands.segments,
-                                                           toString(plan.transparency), why, multisampling, shading)
-                                             : "no visible curves: background only";
+    strandPass.reason = strands.segments > 0
+                            ? fmt::format("{} segments, {}: {}{}, {}; {}", strands.segments,
+                                          toString(plan.transparency), why, multisampling, shading,
+                                          depthSource(plan.transparency))
+                            : "no visible curves: background only";
     plan.passes.push_back(strandPass);
 
     size_t perPass = size_t(settings.getInt("lightsPerPass"));
@@ -136,11 +190,7 @@ RenderPlan makeRenderPlan(const Scene& scene, const RenderSettings& settings, co
                          : fmt::format("{} light(s): one pass", lightCount);
     plan.passes.push_back(batches);
 
-    PlannedPass ids{"depthAndIds", idsRequested && strands.segments > 0 && plan.transparency != TransparencyPath::Opaque,
-                    ""};
-    ids.reason = ids.enabled ? "the host asked for depth and ids: nearest strand at least 10% opaque"
-                             : "ids come from the strand pass, or were not asked for";
-    plan.passes.push_back(ids);
+    plan.passes.push_back(idsPass(plan.transparency, idsRequested, strands.segments > 0));
 
     PlannedPass meshes{"meshes", false, ""};
     meshes.reason = scene.meshes().empty() ? "no meshes"

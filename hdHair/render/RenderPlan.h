@@ -56,11 +56,15 @@ struct RenderPlan {
     std::vector<std::pair<size_t, size_t>> lightBatches;
 
     bool isEnabled(const std::string& name) const;
+    // Exact transparency over its memory budget: the frame is redrawn
+    // binSorted with `bins` bins, which needs the ids pass when ids are asked for.
+    void fallBackToBinSorted(uint32_t bins, bool idsRequested);
     std::string describe() const;  // one line per pass, for --explain
     nlohmann::json toJson() const;
 };
 
-// idsRequested: a host asked for primId/instanceId/elementId (and depth).
+// idsRequested: a host asked for primId/instanceId/elementId. Depth is always
+// produced; with blending, by the strand pass (NearestStrandRule.h).
 RenderPlan makeRenderPlan(const Scene& scene, const RenderSettings& settings, const CameraView& camera,
                           const StrandSummary& strands, bool idsRequested = false);
 

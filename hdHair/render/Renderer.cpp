@@ -20,6 +20,7 @@
 #include "hdHair/gl/StrandGeometry.h"
 #include "hdHair/gl/StrandPass.h"
 #include "hdHair/render/BinSort.h"
+#include "hdHair/render/NearestStrandRule.h"
 #include "hdHair/scene/Scene.h"
 #include "hdHair/shading/MarschnerTables.h"
 
@@ -56,6 +57,7 @@ gl::FrameUniforms frameUniforms(const CameraView& camera, const RenderSettings& 
     frame.minPixelWidth = opaque ? 0.0f : float(settings.getFloat("minPixelWidth"));
     frame.drawMode = opaque ? 0 : 1;
     frame.orderedDraw = plan.transparency == TransparencyPath::BinSorted ? 1 : 0;
+    frame.nearestStrandMinAlpha = kNearestStrandMinAlpha;
     return frame;
 }
 
@@ -353,10 +355,16 @@ RenderResult Renderer::render(const Scene& scene, const CameraView& camera, cons
                                                plan.msaaSamples, samples));
     const size_t listCapacity = size_t(settings.getInt("exactMemoryMB")) * 1024 * 1024 / gl::kFragmentNodeBytes;
 
+    // Blended frames take their depth from the strand pass's min-blended
+    // nearest depth (or the exact resolve), not from the depth buffer.
+    const gl::RenderTargetImages frameImages{outputs.ids, plan.transparency != TransparencyPath::Opaque, samples};
+    // Later light batches add colour only.
+    const gl::RenderTargetImages batchImages{false, false, samples};
+
     glThread_->run([&] {
         if (!target_ || target_->width() != camera.imageWidth || target_->height() != camera.imageHeight ||
-            target_->hasIds() != outputs.ids || target_->samples() != samples)
-            target_ = std::make_unique<gl::RenderTarget>(camera.imageWidth, camera.imageHeight, outputs.ids, samples);
+            target_->images() != frameImages)
+            target_ = std::make_unique<gl::RenderTarget>(camera.imageWidth, camera.imageHeight, frameImages);
         materialTable_->bind();
 
         // Draws the strands once, with the current plan, into `target`.
@@ -379,10 +387,9 @@ RenderResult Renderer::render(const Scene& scene, const CameraView& camera, cons
                                                        "exactMemoryMB={}; rendered with binSorted (1024 bins) instead",
                                                        (fragments * gl::kFragmentNodeBytes + (1 << 20) - 1) >> 20,
                                                        fragments, settings.getInt("exactMemoryMB")));
-                plan.transparency = TransparencyPath::BinSorted;
-                plan.sortBins = 1024;
+                plan.fallBackToBinSorted(1024, outputs.ids);
                 stats.fallback = "exact -> binSorted (1024 bins): fragment lists over exactMemoryMB";
-                binSortSegments(controlPoints_, cameraPositionOf(camera), viewDirectionOf(camera), 1024, order);
+                binSortSegments(controlPoints_, cameraPositionOf(camera), viewDirectionOf(camera), plan.sortBins, order);
                 frame.orderedDraw = 1;
                 target.bindAndClear(glm::vec4(0.0f));
                 strandPass_->setUniforms(frame, lights);
@@ -406,21 +413,21 @@ RenderResult Renderer::render(const Scene& scene, const CameraView& camera, cons
         } else {
             drawStrands(*target_, lightUniforms(plan, 0), batchLabel(0));
         }
-        if (plan.isEnabled("depthAndIds")) {
+        if (plan.isEnabled("ids")) {
             Clock::time_point passStart = Clock::now();
             gl::FrameUniforms idsFrame = frame;
             idsFrame.drawMode = 2;
             idsFrame.orderedDraw = 0;
             strandPass_->setUniforms(idsFrame, lightUniforms(plan, 0));
-            strandPass_->draw(*geometry_, {}, gl::StrandBlending::DepthAndIdsOnly);
+            strandPass_->draw(*geometry_, {}, gl::StrandBlending::IdsOnly);
             glFinish();
-            stats.passes.push_back({"depthAndIds", millisecondsSince(passStart)});
+            stats.passes.push_back({"ids", millisecondsSince(passStart)});
         }
         target_->resolve();
         if (plan.isEnabled("lightBatches")) {
             if (!batchTarget_ || batchTarget_->width() != camera.imageWidth ||
-                batchTarget_->height() != camera.imageHeight || batchTarget_->samples() != samples)
-                batchTarget_ = std::make_unique<gl::RenderTarget>(camera.imageWidth, camera.imageHeight, false, samples);
+                batchTarget_->height() != camera.imageHeight || batchTarget_->images() != batchImages)
+                batchTarget_ = std::make_unique<gl::RenderTarget>(camera.imageWidth, camera.imageHeight, batchImages);
             for (size_t batch = 1; batch < plan.lightBatches.size(); ++batch) {
                 drawStrands(*batchTarget_, lightUniforms(plan, batch), batchLabel(batch));
                 Clock::time_point addStart = Clock::now();

@@ -55,8 +55,12 @@ struct RenderOutputs {
 
 struct RenderResult {
     Image color;  // RGBA, scene-linear, pre-multiplied
-    Image depth;  // one channel, window depth in [0, 1], 1 where empty
-    // With RenderOutputs::ids: per pixel, rows from the top down; -1 where empty.
+    // One channel, window depth in [0, 1], 1 where empty. Blended frames: the
+    // depth of the nearest fragment of alpha >= kNearestStrandMinAlpha
+    // (NearestStrandRule.h), whether or not ids are asked for.
+    Image depth;
+    // With RenderOutputs::ids: per pixel, rows from the top down; -1 where
+    // empty. The same fragment as depth, on every path.
     std::vector<int32_t> primIds, instanceIds, elementIds;
     RenderPlan plan;
     RenderStats stats;

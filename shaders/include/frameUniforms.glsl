@@ -13,9 +13,18 @@ layout(std140, binding = 0) uniform FrameUniforms {
     // Strands projecting thinner than this many pixels are drawn this wide
     // with their alpha scaled by true / drawn width (0: true widths, opaque).
     float minPixelWidth;
-    int drawMode;             // 0: opaque, 1: pre-multiplied alpha, 2: depth and ids only
+    int drawMode;             // 0: opaque, 1: pre-multiplied alpha, 2: ids only (the ids pass)
     int orderedDraw;          // 1: patches are read through the draw-order buffer
+    // Blended frames: a pixel's depth and ids belong to its nearest strand
+    // fragment whose alpha (coverage x opacity) is at least this
+    // (hdHair/render/NearestStrandRule.h).
+    float nearestStrandMinAlpha;
 } frame;
+
+// Whether a blended fragment of this alpha may give its pixel depth and ids.
+bool definesDepthAndIds(float alpha) {
+    return alpha >= frame.nearestStrandMinAlpha;
+}
 
 // Direction from a world-space point towards the eye.
 vec3 directionToEye(vec3 worldPosition) {

@@ -1,6 +1,7 @@
 // The Hydra plugin inside OpenUSD (built and run only with OpenUSD): it loads
 // through the plugin registry, renders through UsdImagingGL as usdrecord
-// does, re-syncs only what an edit touches, and syncs many prims in parallel.
+// does, fills every AOV with the values a host expects, re-syncs only what an
+// edit touches, and syncs many prims in parallel.
 // Run the whole binary under ThreadSanitizer with the build described in
 // README ("Hydra plugin", tests).
 
@@ -88,7 +89,8 @@ UsdStageRefPtr twoStrandsStage() {
 struct Frame {
     int width = 0;
     std::vector<float> color;  // RGBA, bottom row first
-    std::vector<int> primIds, instanceIds;
+    std::vector<float> depth;  // bottom row first, like every AOV below
+    std::vector<int> primIds, instanceIds, elementIds;
     VtDictionary syncCounts;
 
     float alpha(int x, int y) const { return color[4 * size_t(y * width + x) + 3]; }
@@ -105,6 +107,18 @@ std::vector<int> readIds(HdRenderBuffer* buffer) {
     ids.assign(values, values + size_t(buffer->GetWidth()) * buffer->GetHeight());
     buffer->Unmap();
     return ids;
+}
+
+// The Float32 depth a host reads (window depth, 1 where empty).
+std::vector<float> readDepth(HdRenderBuffer* buffer) {
+    std::vector<float> depth;
+    if (!buffer) return depth;
+    buffer->Resolve();
+    EXPECT_EQ(buffer->GetFormat(), HdFormatFloat32);
+    const float* values = static_cast<const float*>(buffer->Map());
+    depth.assign(values, values + size_t(buffer->GetWidth()) * buffer->GetHeight());
+    buffer->Unmap();
+    return depth;
 }
 
 class Recorder {
@@ -132,11 +146,26 @@ public:
         for (size_t i = 0; i < size_t(color->GetWidth()) * color->GetHeight() * 4; ++i)
             frame.color.push_back(float(pixels[i]));
         color->Unmap();
+        frame.depth = readDepth(_engine.GetAovRenderBuffer(HdAovTokens->depth));
         frame.primIds = readIds(_engine.GetAovRenderBuffer(HdAovTokens->primId));
         frame.instanceIds = readIds(_engine.GetAovRenderBuffer(HdAovTokens->instanceId));
+        frame.elementIds = readIds(_engine.GetAovRenderBuffer(HdAovTokens->elementId));
         VtDictionary stats = _engine.GetRenderStats();
         if (stats.count("hdHairSyncCounts")) frame.syncCounts = stats["hdHairSyncCounts"].Get<VtDictionary>();
         return frame;
+    }
+
+    // A render setting, as usdview's Hydra Settings set it.
+    void setSetting(std::string const& name, std::string const& value) {
+        _engine.SetRendererSetting(TfToken(name), VtValue(value));
+    }
+
+    // The prim a primId names, decoded the way a picking host does.
+    SdfPath primPath(int primId) {
+        unsigned char primColor[4], instanceColor[4] = {0, 0, 0, 0};
+        for (int i = 0; i < 4; ++i) primColor[i] = static_cast<unsigned char>((unsigned(primId) >> (8 * i)) & 0xffu);
+        SdfPath path;
+        return _engine.DecodeIntersection(primColor, instanceColor, &path) ? path : SdfPath();
     }
 
 private:
@@ -193,6 +222,100 @@ TEST_F(HdHairPlugin, LoadsThroughTheRegistryWithoutBecomingTheDefault) {
         found = found || d.key == TfToken("maxSegmentsPerSpan");
     EXPECT_TRUE(found);
     plugin->DeleteRenderDelegate(delegate);
+}
+
+TEST_F(HdHairPlugin, EveryAovHoldsTheNearestQualifyingStrandInEveryTransparencyMode) {
+    // A 20 x 15 aperture, focal length 50 camera at z = 10, clipping range
+    // [n, f] = [1, 21], rendered 64 x 48 (the aperture's aspect): at distance
+    // d the image spans 0.4 d units, 160 / d pixels a unit, and window depth
+    // is f / (f - n) * (1 - n / d). Flat shading, so colours follow from the
+    // over operator.
+    UsdStageRefPtr stage = UsdStage::CreateInMemory();
+    UsdGeomCamera camera = UsdGeomCamera::Define(stage, SdfPath("/Camera"));
+    camera.AddTranslateOp().Set(GfVec3d(0, 0, 10));
+    camera.CreateHorizontalApertureAttr(VtValue(20.0f));
+    camera.CreateVerticalApertureAttr(VtValue(15.0f));
+    camera.CreateFocalLengthAttr(VtValue(50.0f));
+    camera.CreateClippingRangeAttr(VtValue(GfVec2f(1.0f, 21.0f)));
+    // Strands along x at depth z, one curve per pixel row (from the top)
+    // through that row's centre; 0.4 wide: 6 to 11 pixels.
+    auto layer = [&](std::string const& path, float z, std::vector<int> const& rows, GfVec3f color, float opacity) {
+        VtIntArray counts;
+        VtVec3fArray points;
+        for (int row : rows) {
+            float y = (23.5f - float(row)) * (10.0f - z) / 160.0f;
+            counts.push_back(2);
+            points.push_back(GfVec3f(-5.0f, y, z));
+            points.push_back(GfVec3f(5.0f, y, z));
+        }
+        UsdGeomBasisCurves curves = UsdGeomBasisCurves::Define(stage, SdfPath(path));
+        curves.CreateTypeAttr(VtValue(UsdGeomTokens->linear));
+        curves.CreateCurveVertexCountsAttr(VtValue(counts));
+        curves.CreatePointsAttr(VtValue(points));
+        curves.CreateWidthsAttr(VtValue(VtFloatArray{0.4f}));
+        curves.CreateDisplayColorPrimvar(UsdGeomTokens->constant).Set(VtVec3fArray{color});
+        curves.CreateDisplayOpacityPrimvar(UsdGeomTokens->constant).Set(VtFloatArray{opacity});
+    };
+    // Paths in the order unsorted drawing takes them: nearest first.
+    layer("/A_front", 2.0f, {12}, GfVec3f(0, 0, 1), 0.5f);          // d = 8
+    layer("/B_faint", 4.0f, {24}, GfVec3f(0, 1, 0), 0.05f);         // d = 6: alpha under 0.1
+    layer("/C_back", 0.0f, {12, 24, 36}, GfVec3f(1, 0, 0), 1.0f);   // d = 10, elementIds 0, 1, 2
+    const float front = 21.0f / 20.0f * (1.0f - 1.0f / 8.0f);       // 0.91875
+    const float faint = 21.0f / 20.0f * (1.0f - 1.0f / 6.0f);       // 0.875
+    const float back = 21.0f / 20.0f * (1.0f - 1.0f / 10.0f);       // 0.945
+
+    struct Expected {
+        int row;
+        GfVec4f color;
+        float depth;
+        char const* prim;  // "" for none: ids -1
+        int elementId;
+    };
+    std::vector<Expected> const sorted = {
+        {12, GfVec4f(0.5f, 0.0f, 0.5f, 1.0f), front, "/A_front", 0},   // blue 0.5 over red
+        {24, GfVec4f(0.95f, 0.05f, 0.0f, 1.0f), back, "/C_back", 1},   // green 0.05 looked through
+        {36, GfVec4f(1.0f, 0.0f, 0.0f, 1.0f), back, "/C_back", 2},
+        {44, GfVec4f(0.0f), 1.0f, "", -1},
+    };
+    std::vector<Expected> unsorted = sorted;  // the opaque red drawn last covers what came first
+    unsorted[0].color = unsorted[1].color = GfVec4f(1.0f, 0.0f, 0.0f, 1.0f);
+    std::vector<Expected> opaque = sorted;    // opacity ignored: the nearest strand wins
+    opaque[0].color = GfVec4f(0.0f, 0.0f, 1.0f, 1.0f);
+    opaque[1] = {24, GfVec4f(0.0f, 1.0f, 0.0f, 1.0f), faint, "/B_faint", 0};
+
+    Recorder recorder(stage);
+    recorder.setSetting("shadingModel", "flat");
+    struct Mode {
+        char const* transparency;
+        std::vector<Expected> const* expected;
+    };
+    for (Mode const& mode : {Mode{"binSorted", &sorted}, Mode{"exact", &sorted}, Mode{"unsorted", &unsorted},
+                             Mode{"opaque", &opaque}}) {
+        recorder.setSetting("transparency", mode.transparency);
+        Frame frame = recorder.render();
+        const size_t pixels = frame.color.size() / 4;
+        ASSERT_EQ(frame.depth.size(), pixels) << mode.transparency;
+        ASSERT_EQ(frame.primIds.size(), pixels) << mode.transparency;
+        ASSERT_EQ(frame.instanceIds.size(), pixels) << mode.transparency;
+        ASSERT_EQ(frame.elementIds.size(), pixels) << mode.transparency;
+        const int height = int(pixels) / frame.width;
+        for (Expected const& pixel : *mode.expected) {
+            // Hydra's buffers run bottom-up.
+            const size_t index = size_t((height - 1 - pixel.row) * frame.width + frame.width / 2);
+            const std::string where = std::string(mode.transparency) + ", row " + std::to_string(pixel.row);
+            for (int c = 0; c < 4; ++c)  // half floats
+                EXPECT_NEAR(frame.color[4 * index + size_t(c)], pixel.color[c], 2e-3) << where << ", colour " << c;
+            EXPECT_NEAR(frame.depth[index], pixel.depth, 1e-5) << where << ", depth";
+            const bool covered = pixel.prim[0] != '\0';
+            if (covered) {
+                EXPECT_EQ(recorder.primPath(frame.primIds[index]), SdfPath(pixel.prim)) << where << ", primId";
+            } else {
+                EXPECT_EQ(frame.primIds[index], -1) << where << ", primId";
+            }
+            EXPECT_EQ(frame.instanceIds[index], covered ? 0 : -1) << where << ", instanceId";
+            EXPECT_EQ(frame.elementIds[index], pixel.elementId) << where << ", elementId";
+        }
+    }
 }
 
 TEST_F(HdHairPlugin, EditsResyncOnlyTheTouchedPrimAndChangeTheImage) {

@@ -98,3 +98,43 @@ TEST(RenderPlan, MsaaAppliesToTheOpaquePathOnly) {
     thin.minProjectedWidthPixels = 0.5;
     EXPECT_EQ(makeRenderPlan(Scene{}, settings, cameraAtPlusZ(), thin).msaaSamples, 0);
 }
+
+TEST(RenderPlan, SaysWhichPassProducesDepthAndIds) {
+    StrandSummary translucent = wideOpaqueStrands(10);
+    translucent.allOpaque = false;
+    auto plan = [&](const char* transparency, bool ids) {
+        RenderSettings settings;
+        settings.set("transparency", transparency);
+        return makeRenderPlan(Scene{}, settings, cameraAtPlusZ(), translucent, ids);
+    };
+    auto strandsReason = [](const RenderPlan& p) {
+        for (const PlannedPass& pass : p.passes)
+            if (pass.name == "strands") return pass.reason;
+        return std::string();
+    };
+    // Blended paths other than exact draw ids in a pass of their own, only when asked for.
+    for (const char* path : {"binSorted", "unsorted"}) {
+        EXPECT_TRUE(plan(path, true).isEnabled("ids")) << path;
+        EXPECT_FALSE(plan(path, false).isEnabled("ids")) << path;
+        EXPECT_NE(strandsReason(plan(path, false)).find("depth: the nearest fragment with alpha >= 0.1, min-blended"),
+                  std::string::npos)
+            << path;
+    }
+    RenderPlan exact = plan("exact", true);
+    EXPECT_FALSE(exact.isEnabled("ids"));
+    EXPECT_NE(strandsReason(exact).find("depth and ids: the nearest listed fragment with alpha >= 0.1"),
+              std::string::npos);
+    RenderPlan opaque = plan("opaque", true);
+    EXPECT_FALSE(opaque.isEnabled("ids"));
+    EXPECT_NE(strandsReason(opaque).find("depth: the depth buffer"), std::string::npos);
+
+    // Exact over its memory falls back to bin sorting, which needs the ids pass.
+    exact.fallBackToBinSorted(1024, true);
+    EXPECT_EQ(exact.transparency, TransparencyPath::BinSorted);
+    EXPECT_EQ(exact.sortBins, 1024u);
+    EXPECT_TRUE(exact.isEnabled("sort"));
+    EXPECT_TRUE(exact.isEnabled("ids"));
+    RenderPlan exactWithoutIds = plan("exact", false);
+    exactWithoutIds.fallBackToBinSorted(1024, false);
+    EXPECT_FALSE(exactWithoutIds.isEnabled("ids"));
+}
