@@ -138,8 +138,8 @@ TEST(Transparency, BinSortingEqualsExactWhenStrandsAreSeparatedByMoreThanABin) {
     CameraView camera = orthographicCamera(64);
     Image sorted = render(scene, camera, {"transparency=binSorted", "sortBins=16"}).color;
     Image exact = render(scene, camera, {"transparency=exact"}).color;
-    ImageDifference difference = compareImages(sorted, exact, kOneStep);
-    EXPECT_LE(difference.maxDifference, kOneStep) << describe(difference, {kOneStep, 0.0, kOneStep});
+    ImageComparison comparison = compareImages(sorted, exact, exactWithin(kOneStep));
+    EXPECT_TRUE(comparison.passed) << comparison.description;
 }
 
 TEST(Transparency, ErrorAgainstExactFallsAsBinsIncrease) {
@@ -148,14 +148,15 @@ TEST(Transparency, ErrorAgainstExactFallsAsBinsIncrease) {
     std::vector<double> errors;
     for (int bins : {1, 16, 256}) {
         request.settings = {"transparency=binSorted", "sortBins=" + std::to_string(bins)};
-        errors.push_back(compareImages(renderStage(request).result.color, exact, kOneStep).rootMeanSquare);
+        Image sorted = renderStage(request).result.color;
+        errors.push_back(compareImages(sorted, exact, exactWithin(kOneStep)).rootMeanSquare);
     }
     std::printf("RMSE against exact: 1 bin %.5f, 16 bins %.5f, 256 bins %.5f\n", errors[0], errors[1], errors[2]);
     EXPECT_GT(errors[0], errors[1]) << "1 bin vs 16 bins";
     EXPECT_GT(errors[1], errors[2]) << "16 bins vs 256 bins";
-    // Measured 0.0034 at 128 px (README's table has the full picture).
-    EXPECT_LT(errors[2], 0.006) << "256 bins should be close to exact";
-
+    // Measured 0.0059 over the covered pixels at 128 px (0.0034 over the
+    // whole frame; README's table has the full picture).
+    EXPECT_LT(errors[2], 0.009) << "256 bins should be close to exact";
 }
 
 TEST(Transparency, ShufflingCurvesLeavesBinSortedOutputUnchanged) {
@@ -190,7 +191,8 @@ TEST(Transparency, ShufflingCurvesLeavesBinSortedOutputUnchanged) {
     Image original = sharedRenderer().render(scene, camera, settings, diagnostics).color;
     scene.setCurves(shuffled);
     Image reordered = sharedRenderer().render(scene, camera, settings, diagnostics).color;
-    EXPECT_LE(compareImages(original, reordered, kOneStep).maxDifference, kOneStep);
+    ImageComparison comparison = compareImages(reordered, original, exactWithin(kOneStep));
+    EXPECT_TRUE(comparison.passed) << comparison.description;
 }
 
 TEST(Transparency, OpacityZeroStrandsProduceNothing) {
