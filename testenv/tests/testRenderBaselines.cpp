@@ -5,11 +5,14 @@
 // pixels either image covers. Baselines are rendered at --complexity medium,
 // so that a tessellation one level coarser is a defect they can show.
 //
-// Each case must also match with its camera moved by 1/256 px, one step of
-// llvmpipe's 8-bit sub-pixel grid, so every strand vertex rounds the other
-// way at once: more than another CPU's float rounding moves, so the
-// tolerance is loose enough for edge jitter (EGL against OSMesa is checked
-// below too).
+// Each case must also
+// - match with its camera moved by 1/256 px, one step of llvmpipe's 8-bit
+//   sub-pixel grid, so every strand vertex rounds the other way at once:
+//   more than another CPU's float rounding moves, so the tolerance is loose
+//   enough for edge jitter (EGL against OSMesa is checked below too);
+// - fail for every defect that applies to its stage (BaselineDefects.h):
+//   sorting off, Kd, Ks or shininess changed, one complexity level lower,
+//   a light removed; so the tolerance is tight enough to catch a changed shade.
 //
 // To accept new pictures after an intended change:
 //   HDHAIR_UPDATE_BASELINES=1 ctest -R Baseline     (then review the PNGs in git)
@@ -25,6 +28,7 @@
 
 #include <gtest/gtest.h>
 
+#include "BaselineDefects.h"
 #include "StageRendering.h"
 #include "TestStages.h"
 #include "hdHair/image/ImageComparison.h"
@@ -196,6 +200,28 @@ TEST_P(Baseline, MatchesWithTheCameraOneSubPixelStepAway) {
     EXPECT_TRUE(verdict.passed()) << c.name << " moved by 1/256 px:\n  " << verdict.describe();
     std::printf("moved by 1/256 px:\n  %s\n", verdict.describe().c_str());
     if (!HasFailure()) written.remove();
+}
+
+TEST_P(Baseline, FailsForEveryDefectThatApplies) {
+    const BaselineCase& c = GetParam();
+    if (updatingBaselines()) GTEST_SKIP() << "baselines are being updated";
+    Diagnostics diagnostics;
+    Scene scene = readStage(c.request, diagnostics);
+    RenderResult baseline = renderScene(scene, c.request).result;
+    CameraView camera = stageCamera(scene, c.request, sharedRenderer(), diagnostics);
+    std::vector<BaselineDefect> defects = defectsThatApply(scene, c.request, baseline.plan, camera);
+    // Every stage has lit strands: at least Kd, or a light, applies.
+    ASSERT_FALSE(defects.empty()) << c.name << ": no defect applies, so its baselines guard nothing";
+    for (const BaselineDefect& defect : defects) {
+        DefectiveStage defective = withDefect(scene, c.request, defect);
+        WrittenRender written = writeRender(renderScene(defective.scene, defective.request).result.color,
+                                            c.name + ".defect");
+        BaselineVerdict verdict = compareWithBaseline(written, c);
+        EXPECT_FALSE(verdict.passed()) << c.name << " with " << defect.name
+                                       << " still matches its baselines:\n  " << verdict.describe();
+        std::printf("%s:\n  %s\n", defect.name.c_str(), verdict.describe().c_str());
+        written.remove();
+    }
 }
 
 INSTANTIATE_TEST_SUITE_P(Stages, Baseline, ::testing::ValuesIn(baselineCases()),
