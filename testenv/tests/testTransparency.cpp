@@ -7,9 +7,9 @@
 #include <numeric>
 #include <random>
 
-#include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
 
+#include "OrthographicView.h"
 #include "StageRendering.h"
 #include "hdHair/image/ImageComparison.h"
 #include "hdHair/render/CameraView.h"
@@ -46,14 +46,7 @@ CurvesPrim sheet(const std::string& path, float z, glm::vec3 color, float opacit
 }
 
 // Orthographic, looking down -Z at [-1.2, 1.2]^2 from z = 10.
-CameraView orthographicCamera(int pixels) {
-    CameraPrim camera;
-    camera.projection = Projection::Orthographic;
-    camera.horizontalAperture = camera.verticalAperture = 24.0f;
-    camera.clippingRange = {0.1f, 100.0f};
-    camera.worldTransform = glm::translate(glm::dmat4(1.0), glm::dvec3(0.0, 0.0, 10.0));
-    return cameraViewFromPrim(camera, pixels);
-}
+CameraView orthographicCamera(int pixels) { return orthographicView(2.4, pixels); }
 
 RenderResult render(const Scene& scene, const CameraView& camera, std::vector<std::string> settings) {
     RenderSettings renderSettings;
