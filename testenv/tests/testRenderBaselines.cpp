@@ -248,6 +248,10 @@ TEST(Stages, EveryStageFileIsListed) {
 
 TEST(Rendering, EmptyStageRendersBackgroundOnly) {
     StageRender render = renderStage({"testenv/stages/empty.usda", "/World/main_cam", 128, 0.0, {}});
+    // A whole frame (93 rows: usdrecord's rule for the 20.955 x 15.2908
+    // aperture), not an empty image, holds only background.
+    ASSERT_EQ(render.result.color.pixels.size(), size_t(128 * 93 * 4));
+    ASSERT_EQ(render.result.depth.pixels.size(), size_t(128 * 93));
     for (float value : render.result.color.pixels) ASSERT_EQ(value, 0.0f);
     for (float depth : render.result.depth.pixels) ASSERT_EQ(depth, 1.0f);
 }
