@@ -100,10 +100,7 @@ std::unique_ptr<Renderer>& renderer() {
 }
 
 RenderSettings settingsFor(const Configuration& configuration) {
-    RenderSettings settings;
-    settings.setComplexity(configuration.complexity);
-    for (const std::string& assignment : configuration.settings) settings.setFromAssignment(assignment);
-    return settings;
+    return RenderSettings::fromAssignments(configuration.complexity, configuration.settings);
 }
 
 std::vector<Configuration> complexityConfigurations() {

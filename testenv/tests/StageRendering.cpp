@@ -45,10 +45,7 @@ CameraView stageCamera(const Scene& scene, const StageRenderRequest& request, Re
 }
 
 RenderSettings stageSettings(const StageRenderRequest& request) {
-    RenderSettings settings;
-    settings.setComplexity(request.complexity);
-    for (const std::string& assignment : request.settings) settings.setFromAssignment(assignment);
-    return settings;
+    return RenderSettings::fromAssignments(request.complexity, request.settings);
 }
 
 StageRender renderScene(const Scene& scene, const StageRenderRequest& request, gl::GlBackend backend) {
