@@ -8,6 +8,7 @@
 // every pixel centre), so colours at pixel centres are the curve's own.
 
 #include <array>
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -38,6 +39,12 @@ glm::vec3 at(double x, double y) {
     return glm::vec3(float(x / kPixelsPerUnit - 2.0), float(2.0 - y / kPixelsPerUnit), 0.0f);
 }
 
+Primvar displayColors(Interpolation interpolation, const std::vector<glm::vec3>& colors) {
+    std::vector<float> values;
+    for (const glm::vec3& c : colors) values.insert(values.end(), {c.r, c.g, c.b});
+    return authoredPrimvar("displayColor", interpolation, 3, values);
+}
+
 CurvesPrim strand(const std::string& path, CurveType type, CurveBasis basis, CurveWrap wrap, std::vector<int> counts,
                   std::vector<glm::vec3> points, glm::vec3 color) {
     CurvesPrim prim;
@@ -49,8 +56,7 @@ CurvesPrim strand(const std::string& path, CurveType type, CurveBasis basis, Cur
     prim.points = std::move(points);
     prim.primvars["widths"] =
         authoredPrimvar("widths", Interpolation::Constant, 1, {float(kStrandPixels / kPixelsPerUnit)});
-    prim.primvars["displayColor"] =
-        authoredPrimvar("displayColor", Interpolation::Constant, 3, {color.r, color.g, color.b});
+    prim.primvars["displayColor"] = displayColors(Interpolation::Constant, {color});
     return prim;
 }
 
@@ -207,65 +213,54 @@ TEST(AnalyticPixels, ColourPrimvarsInterpolateAsTheirInterpolationSays) {
     // x is linear in the span parameter u (uniform collinear points).
     std::vector<glm::vec3> points;
     for (double x : {-16.0, 16.0, 48.0, 80.0, 112.0}) points.push_back(at(x, 64.0));
-    auto spanAt = [](int column, int* span, float* u) {
-        double x = column + 0.5;  // the pixel's centre
-        *span = int((x - 16.0) / 32.0);
-        *u = float((x - 16.0) / 32.0 - *span);
+    CurvesPrim prim =
+        strand("/curve", CurveType::Cubic, CurveBasis::CatmullRom, CurveWrap::Nonperiodic, {5}, points, {});
+    // Each column's pixel centre on the strand: its span and u on it.
+    struct Sample {
+        int column, span;
+        float u;
     };
-    const int columns[] = {16, 20, 31, 47, 48, 59, 79};
+    std::vector<Sample> samples;
+    for (int column : {16, 20, 31, 47, 48, 59, 79}) {
+        double spans = (column + 0.5 - 16.0) / 32.0;
+        samples.push_back({column, int(spans), float(spans - std::floor(spans))});
+    }
 
     // vertex: one colour per control point, through the Catmull-Rom weights.
     const std::vector<glm::vec3> vertexColors = {
         {0.2f, 0.5f, 0.3f}, {0.8f, 0.2f, 0.6f}, {0.3f, 0.7f, 0.2f}, {0.7f, 0.4f, 0.8f}, {0.4f, 0.6f, 0.5f}};
-    CurvesPrim vertex =
-        strand("/curve", CurveType::Cubic, CurveBasis::CatmullRom, CurveWrap::Nonperiodic, {5}, points, {});
-    std::vector<float> values;
-    for (const glm::vec3& c : vertexColors) values.insert(values.end(), {c.r, c.g, c.b});
-    vertex.primvars["displayColor"] = authoredPrimvar("displayColor", Interpolation::Vertex, 3, values);
-    Image vertexImage = renderFlat(vertex);
-    for (int column : columns) {
-        int span;
-        float u;
-        spanAt(column, &span, &u);
-        std::array<float, 4> w = catmullRomWeights(u);
+    prim.primvars["displayColor"] = displayColors(Interpolation::Vertex, vertexColors);
+    Image vertex = renderFlat(prim);
+    for (const Sample& sample : samples) {
+        std::array<float, 4> w = catmullRomWeights(sample.u);
         glm::vec3 expected(0.0f);
-        for (int k = 0; k < 4; ++k) expected += w[size_t(k)] * vertexColors[size_t(span + k)];
-        expectPixel(vertexImage, column, 63, expected, "vertex");
+        for (int k = 0; k < 4; ++k) expected += w[size_t(k)] * vertexColors[size_t(sample.span + k)];
+        expectPixel(vertex, sample.column, 63, expected, "vertex");
     }
 
     // varying: one colour per span end (x = 16, 48, 80), linear between them.
     const std::vector<glm::vec3> varyingColors = {{0.9f, 0.1f, 0.2f}, {0.1f, 0.8f, 0.3f}, {0.2f, 0.3f, 0.9f}};
-    CurvesPrim varying = vertex;
-    values.clear();
-    for (const glm::vec3& c : varyingColors) values.insert(values.end(), {c.r, c.g, c.b});
-    varying.primvars["displayColor"] = authoredPrimvar("displayColor", Interpolation::Varying, 3, values);
-    Image varyingImage = renderFlat(varying);
-    for (int column : columns) {
-        int span;
-        float u;
-        spanAt(column, &span, &u);
-        expectPixel(varyingImage, column, 63, glm::mix(varyingColors[size_t(span)], varyingColors[size_t(span + 1)], u),
+    prim.primvars["displayColor"] = displayColors(Interpolation::Varying, varyingColors);
+    Image varying = renderFlat(prim);
+    for (const Sample& sample : samples)
+        expectPixel(varying, sample.column, 63,
+                    glm::mix(varyingColors[size_t(sample.span)], varyingColors[size_t(sample.span + 1)], sample.u),
                     "varying");
-    }
-
-    // uniform: one colour per curve; a second curve 32 px lower.
-    CurvesPrim uniform = vertex;
-    uniform.curveVertexCounts = {5, 5};
-    for (double x : {-16.0, 16.0, 48.0, 80.0, 112.0}) uniform.points.push_back(at(x, 96.0));
-    uniform.primvars["displayColor"] =
-        authoredPrimvar("displayColor", Interpolation::Uniform, 3, {0.9f, 0.6f, 0.1f, 0.1f, 0.4f, 0.9f});
-    Image uniformImage = renderFlat(uniform);
-    for (int column : columns) {
-        expectPixel(uniformImage, column, 63, {0.9f, 0.6f, 0.1f}, "first curve");
-        expectPixel(uniformImage, column, 95, {0.1f, 0.4f, 0.9f}, "second curve");
-    }
 
     // constant: one colour everywhere.
-    CurvesPrim constant = vertex;
-    constant.primvars["displayColor"] =
-        authoredPrimvar("displayColor", Interpolation::Constant, 3, {0.35f, 0.55f, 0.75f});
-    Image constantImage = renderFlat(constant);
-    for (int column : columns) expectPixel(constantImage, column, 63, {0.35f, 0.55f, 0.75f}, "constant");
+    prim.primvars["displayColor"] = displayColors(Interpolation::Constant, {{0.35f, 0.55f, 0.75f}});
+    Image constant = renderFlat(prim);
+    for (const Sample& sample : samples) expectPixel(constant, sample.column, 63, {0.35f, 0.55f, 0.75f}, "constant");
+
+    // uniform: one colour per curve; a second curve 32 px lower.
+    prim.curveVertexCounts = {5, 5};
+    for (double x : {-16.0, 16.0, 48.0, 80.0, 112.0}) prim.points.push_back(at(x, 96.0));
+    prim.primvars["displayColor"] = displayColors(Interpolation::Uniform, {{0.9f, 0.6f, 0.1f}, {0.1f, 0.4f, 0.9f}});
+    Image uniform = renderFlat(prim);
+    for (const Sample& sample : samples) {
+        expectPixel(uniform, sample.column, 63, {0.9f, 0.6f, 0.1f}, "first curve");
+        expectPixel(uniform, sample.column, 95, {0.1f, 0.4f, 0.9f}, "second curve");
+    }
 }
 
 TEST(AnalyticPixels, OpacityGivesPreMultipliedColourAndAlpha) {
