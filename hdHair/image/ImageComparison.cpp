@@ -6,52 +6,86 @@
 #include <fmt/format.h>
 
 namespace hdhair {
+namespace {
 
-ImageDifference compareImages(const Image& actual, const Image& expected, double threshold) {
-    ImageDifference result;
-    result.sizesMatch = actual.width == expected.width && actual.height == expected.height &&
-                        actual.channels == expected.channels;
+// Alpha above one 8-bit step: less is background that rounding or a
+// straight-alpha PNG's arbitrary colour under alpha 0 may disturb.
+constexpr float kCoveredAlpha = 1.0f / 255.0f;
+
+bool covered(const Image& image, size_t pixel) {
+    if (image.channels != 4) return true;
+    float alpha = image.pixels[pixel * 4 + 3];
+    return !(alpha <= kCoveredAlpha);  // NaN alpha counts as covered, so it is compared
+}
+
+std::string describe(const ImageComparison& c, const CoveredPixelTolerance& tolerance) {
+    std::string verdict = c.passed ? "within tolerance" : "OUT OF TOLERANCE";
+    std::string worst = c.worstChannel < 0
+                            ? std::string("no covered pixel differs")
+                            : fmt::format("worst ({}, {}) channel {}: {:.4f} vs {:.4f} expected", c.worstX, c.worstY,
+                                          c.worstChannel, c.worstActual, c.worstExpected);
+    return fmt::format(
+        "{}: {} of {} covered pixels ({:.3f}%) differ by {:.4f} to {:.4f} (allowed {:.3f}%), {} by more (allowed "
+        "{}); {}; mean {:.5f}, RMSE {:.5f}",
+        verdict, c.pixelsOverThreshold, c.coveredPixels, 100.0 * c.shareOverThreshold, tolerance.threshold,
+        tolerance.outlierLimit, 100.0 * tolerance.allowedShareOverThreshold, c.outliers, tolerance.allowedOutliers,
+        worst, c.meanDifference, c.rootMeanSquare);
+}
+
+}  // namespace
+
+CoveredPixelTolerance exactWithin(double limit) { return {limit, 0.0, limit, 0}; }
+
+ImageComparison compareImages(const Image& actual, const Image& expected, const CoveredPixelTolerance& tolerance) {
+    ImageComparison result;
+    result.sizesMatch =
+        actual.width == expected.width && actual.height == expected.height && actual.channels == expected.channels &&
+        actual.pixels.size() == size_t(actual.width) * size_t(actual.height) * size_t(actual.channels) &&
+        expected.pixels.size() == actual.pixels.size();
     if (!result.sizesMatch) {
-        result.maxDifference = result.meanDifference = result.rootMeanSquare = INFINITY;
-        result.fractionOverThreshold = 1.0;
+        result.description = fmt::format("OUT OF TOLERANCE: sizes differ: {}x{}x{} vs {}x{}x{} expected", actual.width,
+                                         actual.height, actual.channels, expected.width, expected.height,
+                                         expected.channels);
         return result;
     }
-    size_t pixels = size_t(actual.width) * size_t(actual.height);
-    size_t channels = size_t(actual.channels);
+    const size_t channels = size_t(actual.channels);
+    const size_t pixels = size_t(actual.width) * size_t(actual.height);
     double sum = 0.0, sumSquares = 0.0;
-    size_t over = 0;
     for (size_t p = 0; p < pixels; ++p) {
-        bool pixelOver = false;
+        if (!covered(actual, p) && !covered(expected, p)) continue;
+        ++result.coveredPixels;
+        double pixelDifference = 0.0;
         for (size_t c = 0; c < channels; ++c) {
-            double a = actual.pixels[p * channels + c], b = expected.pixels[p * channels + c];
-            // A NaN anywhere is as different as it gets.
-            double d = (std::isfinite(a) && std::isfinite(b)) ? std::abs(a - b) : INFINITY;
-            result.maxDifference = std::max(result.maxDifference, d);
+            float a = actual.pixels[p * channels + c], b = expected.pixels[p * channels + c];
+            // A NaN or infinity is as different as it gets.
+            double d = (std::isfinite(a) && std::isfinite(b)) ? std::abs(double(a) - double(b)) : INFINITY;
             sum += d;
             sumSquares += d * d;
-            pixelOver = pixelOver || d > threshold;
+            pixelDifference = std::max(pixelDifference, d);
+            if (d > result.maxDifference) {
+                result.maxDifference = d;
+                result.worstX = int(p % size_t(actual.width));
+                result.worstY = int(p / size_t(actual.width));
+                result.worstChannel = int(c);
+                result.worstActual = a;
+                result.worstExpected = b;
+            }
         }
-        over += pixelOver ? 1 : 0;
+        if (pixelDifference > tolerance.outlierLimit)
+            ++result.outliers;
+        else if (pixelDifference > tolerance.threshold)
+            ++result.pixelsOverThreshold;
     }
-    double samples = double(std::max<size_t>(pixels * channels, 1));
-    result.meanDifference = sum / samples;
-    result.rootMeanSquare = std::sqrt(sumSquares / samples);
-    result.fractionOverThreshold = double(over) / double(std::max<size_t>(pixels, 1));
+    if (result.coveredPixels > 0) {
+        double samples = double(result.coveredPixels * channels);
+        result.meanDifference = sum / samples;
+        result.rootMeanSquare = std::sqrt(sumSquares / samples);
+        result.shareOverThreshold = double(result.pixelsOverThreshold) / double(result.coveredPixels);
+    }
+    result.passed = result.shareOverThreshold <= tolerance.allowedShareOverThreshold &&
+                    result.outliers <= tolerance.allowedOutliers;
+    result.description = describe(result, tolerance);
     return result;
-}
-
-bool withinTolerance(const ImageDifference& difference, const ImageTolerance& tolerance) {
-    return difference.sizesMatch && difference.fractionOverThreshold <= tolerance.allowedFraction &&
-           difference.maxDifference <= tolerance.hardLimit;
-}
-
-std::string describe(const ImageDifference& difference, const ImageTolerance& tolerance) {
-    if (!difference.sizesMatch) return "image sizes or channel counts differ";
-    return fmt::format(
-        "{:.3f}% of pixels differ by more than {:.4f} (allowed {:.3f}%), max difference {:.4f} "
-        "(allowed {:.4f}), RMSE {:.5f}",
-        100.0 * difference.fractionOverThreshold, tolerance.threshold, 100.0 * tolerance.allowedFraction,
-        difference.maxDifference, tolerance.hardLimit, difference.rootMeanSquare);
 }
 
 }  // namespace hdhair

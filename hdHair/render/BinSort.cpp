@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <tuple>
 
 #include <glm/geometric.hpp>
 #include <tbb/parallel_for.h>
@@ -94,6 +95,22 @@ void binSortSegments(const std::vector<StrandControlPoint>& controlPoints, const
     for (size_t s = 0; s < segments; ++s) identity[s] = uint32_t(s);
     countingSort(identity, hash, kHashBuckets, byHash);
     countingSort(byHash, key, binCount, order);
+    // Distinct segments can share a 16-bit hash (a few dozen pairs in a
+    // frame of 30,000 segments); order those by their geometry too, so that
+    // input order shows nowhere. Such runs are short: sorting them costs
+    // little. Identical segments stay in input order (the sort is stable).
+    auto geometryLess = [&](uint32_t x, uint32_t y) {
+        const glm::vec3 &xa = controlPoints[4 * size_t(x) + 1].position, &xb = controlPoints[4 * size_t(x) + 2].position;
+        const glm::vec3 &ya = controlPoints[4 * size_t(y) + 1].position, &yb = controlPoints[4 * size_t(y) + 2].position;
+        return std::tie(xa.x, xa.y, xa.z, xb.x, xb.y, xb.z) < std::tie(ya.x, ya.y, ya.z, yb.x, yb.y, yb.z);
+    };
+    for (size_t begin = 0; begin < order.size();) {
+        size_t end = begin + 1;
+        while (end < order.size() && key[order[end]] == key[order[begin]] && hash[order[end]] == hash[order[begin]])
+            ++end;
+        if (end - begin > 1) std::stable_sort(order.begin() + long(begin), order.begin() + long(end), geometryLess);
+        begin = end;
+    }
 
     if (statistics) {
         statistics->nearDepth = segments ? range.first : 0.0;

@@ -5,9 +5,11 @@
 // holding its FARTHER end point, and slabs are drawn far to near. O(n) in the
 // number of segments, independent of N (two counting sorts).
 //
-// Within a slab the order is a hash of the segment's geometry, not the order
-// the curves were authored in: shuffling a stage's curves (or Hydra syncing
-// prims in another order) gives the same image.
+// Within a slab the order is a hash of the segment's geometry (then the
+// geometry itself, where distinct segments share a hash), not the order the
+// curves were authored in: shuffling a stage's curves (or Hydra syncing prims
+// in another order) gives the same image. Only identical segments keep their
+// input order.
 //
 // CPU (TBB) rather than a GPU compute pass, by measurement: see
 // hdHair/render/README.md ("Bin sorting: CPU or GPU").

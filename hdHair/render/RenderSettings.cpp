@@ -153,6 +153,13 @@ void RenderSettings::setFromAssignment(const std::string& assignment) {
     set(assignment.substr(0, equals), assignment.substr(equals + 1));
 }
 
+RenderSettings RenderSettings::fromAssignments(Complexity complexity, const std::vector<std::string>& assignments) {
+    RenderSettings settings;
+    settings.setComplexity(complexity);
+    for (const std::string& assignment : assignments) settings.setFromAssignment(assignment);
+    return settings;
+}
+
 std::string RenderSettings::effectiveText(const std::string& name) const {
     auto it = values_.find(name);
     if (it != values_.end()) return it->second;

@@ -33,6 +33,11 @@ public:
     static const std::vector<SettingDescriptor>& descriptors();
     static const SettingDescriptor* find(const std::string& name);
 
+    // A complexity level's defaults with "NAME=VALUE" assignments applied in
+    // order, as hdhair-record's --complexity and --setting give them; throws
+    // as setFromAssignment does.
+    static RenderSettings fromAssignments(Complexity complexity, const std::vector<std::string>& assignments);
+
     // Sets a value from text ("NAME=VALUE" is split by the caller). Throws
     // std::invalid_argument with a one-line reason: unknown name (listing the
     // known ones), or a value of the wrong type or out of range.

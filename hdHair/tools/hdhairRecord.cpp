@@ -187,12 +187,10 @@ int runThroughUsdImaging(const Options& options, const usda::SceneReadOptions& p
 }
 
 int run(const Options& options) {
-    RenderSettings settings;
     Complexity complexity;
     if (!parseComplexity(options.complexity, &complexity))
         throw std::invalid_argument("--complexity must be low, medium, high or veryhigh");
-    settings.setComplexity(complexity);
-    for (const std::string& assignment : options.settings) settings.setFromAssignment(assignment);
+    RenderSettings settings = RenderSettings::fromAssignments(complexity, options.settings);
     if (options.imageWidth < 1 || options.imageWidth > 16384)
         throw std::invalid_argument("--imageWidth must be between 1 and 16384");
     if (!isSupportedImagePath(options.outputPath))

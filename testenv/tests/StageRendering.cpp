@@ -1,9 +1,10 @@
 #include "StageRendering.h"
 
 #include <map>
+#include <stdexcept>
 
-#include "hdHair/render/CameraView.h"
-#include "hdHair/scene/Scene.h"
+#include <glm/gtc/matrix_transform.hpp>
+
 #include "hdHair/usda/SceneReader.h"
 
 namespace hdhair::testenv {
@@ -20,13 +21,14 @@ std::string sourcePath(const std::string& relative) {
     return std::string(HDHAIR_SOURCE_DIR) + "/" + relative;
 }
 
-StageRender renderStage(const StageRenderRequest& request, gl::GlBackend backend) {
-    Diagnostics diagnostics;
+Scene readStage(const StageRenderRequest& request, Diagnostics& diagnostics) {
     Scene scene;
     usda::readSceneFile(sourcePath(request.stagePath), request.time, scene, diagnostics);
-    RenderSettings settings;
-    for (const std::string& assignment : request.settings) settings.setFromAssignment(assignment);
-    Renderer& renderer = sharedRenderer(backend);
+    return scene;
+}
+
+CameraView stageCamera(const Scene& scene, const StageRenderRequest& request, Renderer& renderer,
+                       Diagnostics& diagnostics) {
     CameraView camera;
     if (!request.camera.empty()) {
         const CameraPrim* prim = scene.findCamera(request.camera);
@@ -36,9 +38,32 @@ StageRender renderStage(const StageRenderRequest& request, gl::GlBackend backend
         SceneBounds bounds = renderer.prepare(scene, diagnostics);
         camera = frameBounds(bounds.min, bounds.max, scene.info().upAxis, request.imageWidth, FramingStyle::FitAll);
     }
+    // Clip space spans 2 over the image's width and height; pixel rows run down.
+    glm::dvec3 shift(2.0 * request.pixelShift / camera.imageWidth, -2.0 * request.pixelShift / camera.imageHeight, 0.0);
+    camera.projection = glm::translate(glm::dmat4(1.0), shift) * camera.projection;
+    return camera;
+}
+
+RenderSettings stageSettings(const StageRenderRequest& request) {
+    return RenderSettings::fromAssignments(request.complexity, request.settings);
+}
+
+StageRender renderScene(const Scene& scene, const StageRenderRequest& request, gl::GlBackend backend) {
+    Diagnostics diagnostics;
+    Renderer& renderer = sharedRenderer(backend);
+    CameraView camera = stageCamera(scene, request, renderer, diagnostics);
     StageRender render;
-    render.result = renderer.render(scene, camera, settings, diagnostics);
+    render.result = renderer.render(scene, camera, stageSettings(request), diagnostics);
     render.warnings = diagnostics.warnings();
+    return render;
+}
+
+StageRender renderStage(const StageRenderRequest& request, gl::GlBackend backend) {
+    Diagnostics reading;
+    Scene scene = readStage(request, reading);
+    StageRender render = renderScene(scene, request, backend);
+    std::vector<Diagnostic> readingWarnings = reading.warnings();
+    render.warnings.insert(render.warnings.begin(), readingWarnings.begin(), readingWarnings.end());
     return render;
 }
 

@@ -76,9 +76,9 @@ TEST_P(LightBatching, ImageDoesNotDependOnHowLightsAreSplit) {
         for (int perPass : {1, 2, 4}) {
             RenderResult batched = render(stage, {transparency, "lightsPerPass=" + std::to_string(perPass)});
             EXPECT_EQ(batched.stats.lightPasses, size_t((lights + perPass - 1) / perPass));
-            ImageDifference difference = compareImages(batched.color, allAtOnce, kOneStep);
-            EXPECT_LE(difference.maxDifference, kOneStep)
-                << lights << " lights, " << perPass << " per pass: " << describe(difference, {kOneStep, 0, kOneStep});
+            ImageComparison comparison = compareImages(batched.color, allAtOnce, exactWithin(kOneStep));
+            EXPECT_TRUE(comparison.passed)
+                << lights << " lights, " << perPass << " per pass: " << comparison.description;
         }
     }
 }
@@ -94,7 +94,8 @@ TEST(LightBatchingExtra, ALightOfZeroIntensityChangesNothing) {
     stage.scene.setLight(dark);  // now 5 lights: two passes
     RenderResult after = render(stage, {});
     EXPECT_EQ(after.stats.lightPasses, 2u);
-    EXPECT_LE(compareImages(after.color, before, 1e-6).maxDifference, 1e-6);
+    ImageComparison comparison = compareImages(after.color, before, exactWithin(1e-6));
+    EXPECT_TRUE(comparison.passed) << comparison.description;
 }
 
 TEST(LightUnits, DoublingIntensityDoublesLinearOutputAndOneStopOfExposureEqualsIt) {

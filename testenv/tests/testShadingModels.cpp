@@ -6,9 +6,9 @@
 #include <cmath>
 #include <string>
 
-#include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
 
+#include "OrthographicView.h"
 #include "StageRendering.h"
 #include "hdHair/render/CameraView.h"
 #include "hdHair/render/HairMaterial.h"
@@ -45,14 +45,7 @@ CurvesPrim strand(const std::string& path, float y, glm::vec3 color) {
     return prim;
 }
 
-CameraView camera() {
-    CameraPrim prim;
-    prim.projection = Projection::Orthographic;
-    prim.horizontalAperture = prim.verticalAperture = 24.0f;
-    prim.clippingRange = {0.1f, 100.0f};
-    prim.worldTransform = glm::translate(glm::dmat4(1.0), glm::dvec3(0, 0, 10));
-    return cameraViewFromPrim(prim, 64);
-}
+CameraView camera() { return orthographicView(2.4, 64); }
 
 // A distant light shining from `towardsLight` (its -Z turned to -towardsLight).
 LightPrim distantFrom(glm::dvec3 towardsLight) {

@@ -6,27 +6,133 @@
 
 using namespace hdhair;
 
-TEST(ImageComparison, IdenticalImagesAreWithinAnyTolerance) {
-    Image a(4, 4, 4, 0.25f);
-    ImageDifference d = compareImages(a, a, 0.0);
-    EXPECT_EQ(d.maxDifference, 0.0);
-    EXPECT_TRUE(withinTolerance(d, ImageTolerance{}));
+namespace {
+
+// A 100x100 frame, transparent black but for an opaque 10x10 patch of `shade`
+// at (20..29, 40..49): 100 covered pixels in 10,000.
+Image patchImage(float shade) {
+    Image image(100, 100, 4, 0.0f);
+    for (int y = 40; y < 50; ++y)
+        for (int x = 20; x < 30; ++x) {
+            for (int c = 0; c < 3; ++c) image.at(x, y, c) = shade;
+            image.at(x, y, 3) = 1.0f;
+        }
+    return image;
 }
 
-TEST(ImageComparison, CountsPixelsOverTheThreshold) {
-    Image a(10, 10, 4, 0.0f), b(10, 10, 4, 0.0f);
-    b.at(3, 3, 1) = 0.5f;
-    ImageDifference d = compareImages(a, b, 0.1);
-    EXPECT_DOUBLE_EQ(d.fractionOverThreshold, 0.01);
-    EXPECT_DOUBLE_EQ(d.maxDifference, 0.5);
-    EXPECT_FALSE(withinTolerance(d, ImageTolerance{0.1, 0.005, 1.0}));
-    EXPECT_TRUE(withinTolerance(d, ImageTolerance{0.1, 0.02, 1.0}));
-    EXPECT_FALSE(withinTolerance(d, ImageTolerance{0.1, 0.02, 0.4}));
+const CoveredPixelTolerance kTolerance{0.02, 0.05, 0.25, 2};
+
+}  // namespace
+
+TEST(ImageComparison, IdenticalImagesPassWithNoDifference) {
+    Image image = patchImage(0.5f);
+    ImageComparison c = compareImages(image, image, exactWithin(0.0));
+    EXPECT_TRUE(c.passed) << c.description;
+    EXPECT_EQ(c.coveredPixels, 100u);
+    EXPECT_EQ(c.maxDifference, 0.0);
+    EXPECT_EQ(c.worstChannel, -1);
+    EXPECT_NE(c.description.find("no covered pixel differs"), std::string::npos) << c.description;
 }
 
-TEST(ImageComparison, SizeMismatchAndNaNFail) {
-    EXPECT_FALSE(withinTolerance(compareImages(Image(2, 2, 4), Image(3, 2, 4), 0.1), ImageTolerance{}));
-    Image a(2, 2, 4), b(2, 2, 4);
-    a.at(0, 0, 0) = NAN;
-    EXPECT_FALSE(withinTolerance(compareImages(a, b, 0.1), ImageTolerance{0.1, 1.0, 1.0}));
+TEST(ImageComparison, AChangedShadeFailsHoweverMuchBackgroundSurroundsIt) {
+    // 1 % of the frame, all of what is covered: over the whole frame this
+    // would be within a 5 % share.
+    ImageComparison c = compareImages(patchImage(0.45f), patchImage(0.5f), kTolerance);
+    EXPECT_FALSE(c.passed);
+    EXPECT_EQ(c.coveredPixels, 100u);
+    EXPECT_EQ(c.pixelsOverThreshold, 100u);
+    EXPECT_DOUBLE_EQ(c.shareOverThreshold, 1.0);
+    EXPECT_EQ(c.outliers, 0u);
+    EXPECT_NEAR(c.meanDifference, 0.05 * 3.0 / 4.0, 1e-6);  // three colour channels of four differ
+    EXPECT_NE(c.description.find("OUT OF TOLERANCE: 100 of 100 covered pixels (100.000%) differ by 0.0200 to 0.2500 "
+                                 "(allowed 5.000%), 0 by more (allowed 2)"),
+              std::string::npos)
+        << c.description;
+}
+
+TEST(ImageComparison, BackgroundColourUnderZeroAlphaIsNotCompared) {
+    // A straight-alpha PNG may hold any colour where alpha is 0.
+    Image a = patchImage(0.5f), b = patchImage(0.5f);
+    for (int x = 60; x < 90; ++x) a.at(x, 5, 0) = 1.0f;
+    b.at(0, 0, 1) = 0.7f;
+    ImageComparison c = compareImages(a, b, exactWithin(0.0));
+    EXPECT_TRUE(c.passed) << c.description;
+    EXPECT_EQ(c.coveredPixels, 100u);
+}
+
+TEST(ImageComparison, APixelCoveredInEitherImageIsCompared) {
+    Image a = patchImage(0.5f), b = patchImage(0.5f);
+    a.at(70, 70, 3) = 0.5f;  // a strand where the baseline has none
+    a.at(70, 70, 0) = 0.5f;
+    b.at(20, 40, 3) = 0.0f;  // the baseline's strand missing from the render
+    ImageComparison c = compareImages(a, b, kTolerance);
+    EXPECT_EQ(c.coveredPixels, 101u);
+    EXPECT_EQ(c.pixelsOverThreshold, 0u);
+    EXPECT_EQ(c.outliers, 2u);
+    EXPECT_TRUE(c.passed) << "two outliers are allowed: " << c.description;
+}
+
+TEST(ImageComparison, OutliersBeyondTheAllowedCountFailAndTheWorstIsNamed) {
+    Image a = patchImage(0.5f), b = patchImage(0.5f);
+    a.at(21, 41, 1) = 0.9f;
+    a.at(22, 41, 1) = 0.8f;
+    EXPECT_TRUE(compareImages(a, b, kTolerance).passed) << "two edge pixels a pixel apart";
+    a.at(27, 48, 2) = 1.0f;  // the largest difference: 0.5
+    ImageComparison c = compareImages(a, b, kTolerance);
+    EXPECT_FALSE(c.passed);
+    EXPECT_EQ(c.outliers, 3u);
+    EXPECT_EQ(c.pixelsOverThreshold, 0u) << "outliers are counted apart from shade differences";
+    EXPECT_EQ(c.worstX, 27);
+    EXPECT_EQ(c.worstY, 48);
+    EXPECT_EQ(c.worstChannel, 2);
+    EXPECT_DOUBLE_EQ(c.maxDifference, 0.5);
+    EXPECT_NE(c.description.find("worst (27, 48) channel 2: 1.0000 vs 0.5000 expected"), std::string::npos)
+        << c.description;
+}
+
+TEST(ImageComparison, ShadeDifferencesAreAllowedUpToTheirShareOfCoveredPixels) {
+    Image a = patchImage(0.5f), b = patchImage(0.5f);
+    // Five of 100 covered pixels 0.03 apart: exactly the 5 % allowed.
+    for (int x = 20; x < 25; ++x) a.at(x, 40, 0) = 0.53f;
+    ImageComparison atLimit = compareImages(a, b, kTolerance);
+    EXPECT_TRUE(atLimit.passed) << atLimit.description;
+    EXPECT_EQ(atLimit.pixelsOverThreshold, 5u);
+    EXPECT_EQ(atLimit.outliers, 0u);
+    a.at(25, 40, 0) = 0.53f;
+    ImageComparison overLimit = compareImages(a, b, kTolerance);
+    EXPECT_FALSE(overLimit.passed) << overLimit.description;
+    EXPECT_EQ(overLimit.pixelsOverThreshold, 6u);
+    // Differences at or below the threshold never count.
+    Image c = patchImage(0.515f);
+    EXPECT_EQ(compareImages(c, b, kTolerance).pixelsOverThreshold, 0u);
+}
+
+TEST(ImageComparison, NonFiniteValuesAreOutliers) {
+    Image a = patchImage(0.5f), b = patchImage(0.5f);
+    a.at(23, 44, 0) = NAN;
+    ImageComparison c = compareImages(a, b, CoveredPixelTolerance{0.1, 1.0, 1.0, 0});
+    EXPECT_FALSE(c.passed);
+    EXPECT_EQ(c.outliers, 1u);
+    EXPECT_EQ(c.worstX, 23);
+    EXPECT_EQ(c.worstY, 44);
+    Image d = patchImage(0.5f);
+    d.at(80, 80, 3) = INFINITY;  // a non-finite alpha is covered, and different
+    EXPECT_FALSE(compareImages(d, b, CoveredPixelTolerance{0.1, 1.0, 1.0, 0}).passed);
+}
+
+TEST(ImageComparison, ImagesWithoutAlphaCompareEveryPixel) {
+    Image a(10, 10, 3, 0.0f), b(10, 10, 3, 0.0f);
+    a.at(9, 9, 2) = 0.5f;
+    ImageComparison c = compareImages(a, b, exactWithin(0.1));
+    EXPECT_EQ(c.coveredPixels, 100u);
+    EXPECT_EQ(c.outliers, 1u);
+    EXPECT_FALSE(c.passed);
+}
+
+TEST(ImageComparison, DifferentSizesFail) {
+    ImageComparison c = compareImages(Image(2, 2, 4), Image(3, 2, 4), CoveredPixelTolerance{1.0, 1.0, 1.0, 100});
+    EXPECT_FALSE(c.passed);
+    EXPECT_FALSE(c.sizesMatch);
+    EXPECT_NE(c.description.find("2x2x4 vs 3x2x4"), std::string::npos) << c.description;
+    EXPECT_FALSE(compareImages(Image(2, 2, 4), Image(2, 2, 3), CoveredPixelTolerance{1.0, 1.0, 1.0, 100}).passed);
 }

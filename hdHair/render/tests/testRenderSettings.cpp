@@ -39,6 +39,16 @@ TEST(RenderSettings, ComplexityScalesTessellationUnlessSetExplicitly) {
     EXPECT_EQ(settings.getInt("maxSegmentsPerSpan"), 5);
 }
 
+TEST(RenderSettings, FromAssignmentsAppliesThemInOrderOverTheComplexity) {
+    RenderSettings settings = RenderSettings::fromAssignments(
+        Complexity::Medium, {"pixelsPerSegment=3", "transparency=exact", "transparency=opaque"});
+    EXPECT_EQ(settings.complexity(), Complexity::Medium);
+    EXPECT_EQ(settings.getFloat("pixelsPerSegment"), 3.0);
+    EXPECT_EQ(settings.getInt("maxSegmentsPerSpan"), 16);  // medium's
+    EXPECT_EQ(settings.getToken("transparency"), "opaque");
+    EXPECT_THROW(RenderSettings::fromAssignments(Complexity::Low, {"bogus=1"}), std::invalid_argument);
+}
+
 TEST(RenderSettings, BadAssignmentsGiveOneLineReasons) {
     RenderSettings settings;
     EXPECT_EQ(errorOf(settings, "maxSegmentsPerSpan=100"), "setting 'maxSegmentsPerSpan' must be in [1, 64], got 100");

@@ -226,6 +226,8 @@ def Xform "World"
 }
 
 TEST(SceneReader, InactiveAndClassPrimsAreSkipped) {
+    // An active sibling is read: the others are left out, not lost with a
+    // stage that failed to read.
     auto r = read(std::string(R"(
 def Xform "World"
 {
@@ -238,13 +240,18 @@ def Xform "World"
 )") + kOneCurve + R"(
         }
     }
+    def BasisCurves "on"
+    {
+)" + kOneCurve + R"(
+    }
 }
 class BasisCurves "Template"
 {
 )" + kOneCurve + R"(
 }
 )");
-    EXPECT_TRUE(r->scene.curves().empty());
+    ASSERT_EQ(r->scene.curves().size(), 1u);
+    EXPECT_NE(r->scene.findCurves("/World/on"), nullptr);
 }
 
 TEST(SceneReader, EveryLightType) {

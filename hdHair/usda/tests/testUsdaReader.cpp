@@ -98,7 +98,7 @@ TEST(UsdaHeader, MinimalLayers) {
     EXPECT_EQ(stage->pseudoRoot().path, "/");
     EXPECT_EQ(stage->rootLayerPath(), "test.usda");
     // Header followed by a comment on the same line, CRLF line ends, a BOM.
-    EXPECT_NO_THROW(parse("#usda 1.0 # written by hand\r\ndef \"a\" {\r\n}\r\n"));
+    EXPECT_NE(parse("#usda 1.0 # written by hand\r\ndef \"a\" {\r\n}\r\n")->findPrim("/a"), nullptr);
     EXPECT_NE(parse("\xEF\xBB\xBF#usda 1.0\ndef \"a\" {}\n")->findPrim("/a"), nullptr);
 }
 
