@@ -6,6 +6,7 @@
 #include <map>
 #include <optional>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include <glm/mat4x4.hpp>
@@ -60,6 +61,17 @@ struct CurvesPrim {
         auto it = primvars.find(name);
         return it == primvars.end() ? nullptr : &it->second;
     }
+    // Every member, for operator==: a scene keeps a prim's version when it is
+    // set again unchanged (hdhair-record --frames), so nothing is prepared,
+    // uploaded or shadowed again. A member added above must be added here;
+    // the size check after the struct is there to say so.
+    auto fields() const {
+        return std::tie(path, sourceFile, type, basis, wrap, curveVertexCounts, points, primvars, worldTransform, visible,
+                        primId, instanceId, invisibleCurves, shadingModel, materialBinding);
+    }
+    bool operator==(const CurvesPrim& other) const { return fields() == other.fields(); }
+    bool operator!=(const CurvesPrim& other) const { return !(*this == other); }
 };
+static_assert(sizeof(CurvesPrim) == 408, "a member was added to CurvesPrim: add it to fields() too (x86-64 size)");
 
 }  // namespace hdhair

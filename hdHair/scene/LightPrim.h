@@ -3,6 +3,7 @@
 // the shading code's business; the scene only records what was authored.
 
 #include <string>
+#include <tuple>
 
 #include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>
@@ -34,6 +35,17 @@ struct LightPrim {
     // cameraLight setting, like the engine's own camera light, so a stage
     // looks the same in hdhair-record, usdrecord and usdview.
     bool hostCameraLight = false;
+    // Every member, for operator==: a scene keeps a prim's version when it is
+    // set again unchanged (hdhair-record --frames), so nothing is prepared,
+    // uploaded or shadowed again. A member added above must be added here;
+    // the size check after the struct is there to say so.
+    auto fields() const {
+        return std::tie(path, type, intensity, exposure, color, enableColorTemperature, colorTemperature, normalize, angle,
+                        radius, width, height, coneAngle, coneSoftness, worldTransform, visible, hostCameraLight);
+    }
+    bool operator==(const LightPrim& other) const { return fields() == other.fields(); }
+    bool operator!=(const LightPrim& other) const { return !(*this == other); }
 };
+static_assert(sizeof(LightPrim) == 232, "a member was added to LightPrim: add it to fields() too (x86-64 size)");
 
 }  // namespace hdhair

@@ -8,6 +8,7 @@
 // for using it live in one place (hdHair/curves/StrandColorSource.h).
 
 #include <string>
+#include <tuple>
 #include <vector>
 
 namespace hdhair {
@@ -23,7 +24,17 @@ struct MaterialInput {
     std::vector<float> value;  // Value: the input; Primvar: the reader's fallback
     std::string primvar;       // Primvar: the primvar read, without "primvars:"
     std::string connectedTo;   // Unsupported: the upstream shader's id, for messages
+    // Every member, for operator==: a scene keeps a prim's version when it is
+    // set again unchanged (hdhair-record --frames), so nothing is prepared,
+    // uploaded or shadowed again. A member added above must be added here;
+    // the size check after the struct is there to say so.
+    auto fields() const {
+        return std::tie(source, value, primvar, connectedTo);
+    }
+    bool operator==(const MaterialInput& other) const { return fields() == other.fields(); }
+    bool operator!=(const MaterialInput& other) const { return !(*this == other); }
 };
+static_assert(sizeof(MaterialInput) == 96, "a member was added to MaterialInput: add it to fields() too (x86-64 size)");
 
 struct MaterialPrim {
     std::string path;  // "/World/Looks/hair"
@@ -36,6 +47,16 @@ struct MaterialPrim {
     MaterialInput opacity{MaterialInput::Source::Value, {1.0f}, {}, {}};
 
     bool isPreviewSurface() const { return surfaceShaderId == "UsdPreviewSurface"; }
+    // Every member, for operator==: a scene keeps a prim's version when it is
+    // set again unchanged (hdhair-record --frames), so nothing is prepared,
+    // uploaded or shadowed again. A member added above must be added here;
+    // the size check after the struct is there to say so.
+    auto fields() const {
+        return std::tie(path, surfaceShaderId, diffuseColor, opacity);
+    }
+    bool operator==(const MaterialPrim& other) const { return fields() == other.fields(); }
+    bool operator!=(const MaterialPrim& other) const { return !(*this == other); }
 };
+static_assert(sizeof(MaterialPrim) == 256, "a member was added to MaterialPrim: add it to fields() too (x86-64 size)");
 
 }  // namespace hdhair

@@ -5,6 +5,7 @@
 // single resolution path serves them all (hdHair/curves/PrimvarResolution.h).
 
 #include <string>
+#include <tuple>
 #include <vector>
 
 namespace hdhair {
@@ -32,6 +33,16 @@ struct Primvar {
     }
     // Number of elements after indexing (indices.size() when indexed).
     size_t authoredCount() const { return indices.empty() ? elementCount() : indices.size(); }
+    // Every member, for operator==: a scene keeps a prim's version when it is
+    // set again unchanged (hdhair-record --frames), so nothing is prepared,
+    // uploaded or shadowed again. A member added above must be added here;
+    // the size check after the struct is there to say so.
+    auto fields() const {
+        return std::tie(name, typeName, tupleSize, values, indices, interpolation, interpolationAuthored, elementSize);
+    }
+    bool operator==(const Primvar& other) const { return fields() == other.fields(); }
+    bool operator!=(const Primvar& other) const { return !(*this == other); }
 };
+static_assert(sizeof(Primvar) == 136, "a member was added to Primvar: add it to fields() too (x86-64 size)");
 
 }  // namespace hdhair

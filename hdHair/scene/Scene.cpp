@@ -30,6 +30,7 @@ void Scene::set(Entries<Prim>& entries, Prim prim) {
     std::string path = prim.path;
     if (!entries.count(path)) remove(path);
     SceneEntry<Prim>& entry = entries[path];
+    if (entry.prim && *entry.prim == prim) return;  // unchanged: keeps its version and every cache of it
     entry.prim = std::make_shared<const Prim>(std::move(prim));
     entry.version = version_ = nextVersion();
 }
@@ -54,6 +55,26 @@ void Scene::clear() {
     lights_.clear();
     materials_.clear();
     version_ = nextVersion();
+}
+
+void Scene::updateFrom(const Scene& next) {
+    auto update = [&](const auto& from, auto& to) {
+        for (auto it = to.begin(); it != to.end();) {
+            if (from.count(it->first)) {
+                ++it;
+            } else {
+                it = to.erase(it);
+                version_ = nextVersion();
+            }
+        }
+        for (const auto& [path, entry] : from) set(to, *entry.prim);
+    };
+    update(next.curves_, curves_);
+    update(next.meshes_, meshes_);
+    update(next.cameras_, cameras_);
+    update(next.lights_, lights_);
+    update(next.materials_, materials_);
+    info_ = next.info_;
 }
 
 Scene Scene::subset(const std::function<bool(const std::string& path)>& keep) const {

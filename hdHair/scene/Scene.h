@@ -3,7 +3,8 @@
 // time (the way Hydra drives a delegate). Prims are held as immutable shared
 // snapshots, so a render can keep using the version it started with while the
 // front end replaces a prim. Each change bumps the prim's version, which lets
-// caches of prepared data (curves, GPU buffers) update only what changed.
+// caches of prepared data (curves, GPU buffers) update only what changed;
+// setting a prim equal to the one there is no change.
 // Not internally synchronised: one writer at a time.
 
 #include <cstdint>
@@ -50,6 +51,11 @@ public:
     void setCamera(CameraPrim prim);
     void setLight(LightPrim prim);
     void setMaterial(MaterialPrim prim);
+    // Makes this scene hold `next`'s prims: new and changed prims are set,
+    // prims `next` lacks are removed, and prims equal to what is here keep
+    // their versions, so the renderer's caches of them stay (a stage read at
+    // each frame of hdhair-record --frames).
+    void updateFrom(const Scene& next);
     // Removes the prim at path, whatever its kind. Returns false if there was none.
     bool remove(const std::string& path);
     void clear();

@@ -88,3 +88,59 @@ TEST(Scene, MaterialsAreFoundByPathWithTheirVersions) {
     EXPECT_TRUE(scene.remove("/Looks/hair"));
     EXPECT_EQ(scene.findMaterial("/Looks/hair"), nullptr);
 }
+
+TEST(Scene, SettingAnEqualPrimKeepsItsVersion) {
+    Scene scene;
+    CurvesPrim curves;
+    curves.path = "/a";
+    curves.points = {glm::vec3(1.0f)};
+    curves.primvars["widths"].values = {0.1f};
+    scene.setCurves(curves);
+    const uint64_t version = scene.curves().at("/a").version, sceneVersion = scene.version();
+    scene.setCurves(curves);
+    EXPECT_EQ(scene.curves().at("/a").version, version);
+    EXPECT_EQ(scene.version(), sceneVersion);
+    // Any member, primvars included, is a change.
+    curves.primvars["widths"].values = {0.2f};
+    scene.setCurves(curves);
+    EXPECT_GT(scene.curves().at("/a").version, version);
+
+    LightPrim light;
+    light.path = "/key";
+    scene.setLight(light);
+    const uint64_t lightVersion = scene.lights().at("/key").version;
+    scene.setLight(light);
+    EXPECT_EQ(scene.lights().at("/key").version, lightVersion);
+    light.intensity = 2.0f;
+    scene.setLight(light);
+    EXPECT_GT(scene.lights().at("/key").version, lightVersion);
+}
+
+TEST(Scene, UpdateFromKeepsUnchangedPrimsAndDropsMissingOnes) {
+    auto frameAt = [](float y, bool withLight) {
+        Scene scene;
+        CurvesPrim still, moving;
+        still.path = "/still";
+        still.points = {glm::vec3(0.0f)};
+        moving.path = "/moving";
+        moving.points = {glm::vec3(0.0f, y, 0.0f)};
+        scene.setCurves(still);
+        scene.setCurves(moving);
+        if (withLight) {
+            LightPrim light;
+            light.path = "/key";
+            scene.setLight(light);
+        }
+        scene.info().endTimeCode = y;
+        return scene;
+    };
+    Scene scene;
+    scene.updateFrom(frameAt(1.0f, true));
+    const uint64_t still = scene.curves().at("/still").version, moving = scene.curves().at("/moving").version;
+    scene.updateFrom(frameAt(2.0f, false));
+    EXPECT_EQ(scene.curves().at("/still").version, still);
+    EXPECT_GT(scene.curves().at("/moving").version, moving);
+    EXPECT_EQ(scene.findCurves("/moving")->points[0].y, 2.0f);
+    EXPECT_TRUE(scene.lights().empty());
+    EXPECT_EQ(scene.info().endTimeCode, 2.0);
+}
