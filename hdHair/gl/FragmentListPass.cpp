@@ -13,8 +13,8 @@ FragmentListPass::FragmentListPass()
     checkGlError("setting up exact transparency");
 }
 
-uint64_t FragmentListPass::render(const StrandGeometry& geometry, int width, int height, size_t capacity,
-                                  float maxSegmentsPerSpan) {
+uint64_t FragmentListPass::render(const StrandGeometry& geometry, const std::vector<SegmentRange>& ranges, int width,
+                                  int height, size_t capacity, float maxSegmentsPerSpan) {
     if (width != headsWidth_ || height != headsHeight_) {
         GLuint name = 0;
         glCreateTextures(GL_TEXTURE_2D, 1, &name);
@@ -50,7 +50,7 @@ uint64_t FragmentListPass::render(const StrandGeometry& geometry, int width, int
     // Every draw buffer: the list shader has no outputs, so whatever reached
     // an unmasked attachment would be undefined.
     glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
-    StrandPass::drawPatches(geometry.segmentCount(), maxSegmentsPerSpan);
+    StrandPass::drawPatches(ranges, maxSegmentsPerSpan);
     glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
 

@@ -6,8 +6,10 @@
 // that needs more reports how much, and the renderer falls back.
 
 #include <cstdint>
+#include <vector>
 
 #include "hdHair/gl/GlObjects.h"
+#include "hdHair/gl/SegmentRange.h"
 #include "hdHair/gl/StrandGeometry.h"
 
 namespace hdhair::gl {
@@ -25,8 +27,9 @@ public:
     // hdHair/render/NearestStrandRule.h.
     // Returns how many fragments the strands produced; more than
     // `capacity` means the image is incomplete and must not be used.
-    uint64_t render(const StrandGeometry& geometry, int width, int height, size_t capacity,
-                    float maxSegmentsPerSpan);
+    // `ranges`: the drawn prims' segments.
+    uint64_t render(const StrandGeometry& geometry, const std::vector<SegmentRange>& ranges, int width, int height,
+                    size_t capacity, float maxSegmentsPerSpan);
 
 private:
     Program listProgram_, resolveProgram_;

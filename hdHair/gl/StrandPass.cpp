@@ -20,9 +20,20 @@ void StrandPass::setUniforms(const FrameUniforms& frame, const LightUniforms& li
     glBindBufferBase(GL_UNIFORM_BUFFER, 0, frameBlock_.get());
     glBindBufferBase(GL_UNIFORM_BUFFER, 1, lightBlock_.get());
     maxSegmentsPerSpan_ = frame.maxSegmentsPerSpan;
+    orderedDraw_ = frame.orderedDraw != 0;
 }
 
-void StrandPass::drawPatches(size_t segmentCount, float maxSegmentsPerSpan) {
+void StrandPass::setDrawOrder(const std::vector<uint32_t>& order) {
+    if (order.size() > orderCapacity_ || !orderBuffer_) {
+        orderCapacity_ = std::max<size_t>(order.size(), 1);
+        orderBuffer_ = createBuffer(nullptr, orderCapacity_ * sizeof(uint32_t), GL_DYNAMIC_STORAGE_BIT);
+    }
+    if (!order.empty())
+        glNamedBufferSubData(orderBuffer_.get(), 0, GLsizeiptr(order.size() * sizeof(uint32_t)), order.data());
+    orderedSegments_ = order.size();
+}
+
+void StrandPass::drawPatches(const std::vector<SegmentRange>& ranges, float maxSegmentsPerSpan) {
     // Mesa 22.3's llvmpipe draws triangles between unrelated vertices (long
     // spikes across the image, and 50x slower frames) once one draw's
     // tessellator emits too many vertices: examples/dense_clump.usda broke at
@@ -33,31 +44,24 @@ void StrandPass::drawPatches(size_t segmentCount, float maxSegmentsPerSpan) {
     const GLsizei verticesPerPatch = 2 * (GLsizei(maxSegmentsPerSpan) + 1);
     const GLsizei patchesPerDraw = std::max<GLsizei>(1, 2048 / verticesPerPatch);
     glPatchParameteri(GL_PATCH_VERTICES, 4);
-    const GLsizei patches = GLsizei(segmentCount);
     // strand.vert pulls control points by gl_VertexID, which counts from
     // `first`: batches need no offsets of their own.
-    for (GLsizei first = 0; first < patches; first += patchesPerDraw)
-        glDrawArrays(GL_PATCHES, first * 4, std::min(patchesPerDraw, patches - first) * 4);
+    for (const SegmentRange& range : ranges) {
+        const GLsizei first = GLsizei(range.first), end = GLsizei(range.first + range.count);
+        for (GLsizei patch = first; patch < end; patch += patchesPerDraw)
+            glDrawArrays(GL_PATCHES, patch * 4, std::min(patchesPerDraw, end - patch) * 4);
+    }
 }
 
-void StrandPass::draw(const StrandGeometry& geometry, const std::vector<uint32_t>& order, StrandBlending blending) {
-    if (geometry.segmentCount() == 0) return;
+void StrandPass::draw(const StrandGeometry& geometry, const std::vector<SegmentRange>& ranges,
+                      StrandBlending blending) {
     geometry.bind();
-    if (!order.empty()) {
-        if (order.size() > orderCapacity_) {
-            orderCapacity_ = order.size();
-            orderBuffer_ = createBuffer(nullptr, orderCapacity_ * sizeof(uint32_t), GL_DYNAMIC_STORAGE_BIT);
-        }
-        glNamedBufferSubData(orderBuffer_.get(), 0, GLsizeiptr(order.size() * sizeof(uint32_t)), order.data());
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, orderBuffer_.get());
-    } else {
-        // The shaders declare the order buffer even when they do not read it.
-        if (!orderBuffer_) {
-            orderCapacity_ = 1;
-            orderBuffer_ = createBuffer(nullptr, sizeof(uint32_t), GL_DYNAMIC_STORAGE_BIT);
-        }
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, orderBuffer_.get());
-    }
+    // The shaders declare the order buffer even when they do not read it.
+    if (!orderBuffer_) setDrawOrder({});
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, orderBuffer_.get());
+    // Ordered: patch p is segment drawOrder[p], so the patches run from 0.
+    const std::vector<SegmentRange> ordered{SegmentRange{0, orderedSegments_}};
+    const std::vector<SegmentRange>& patches = orderedDraw_ ? ordered : ranges;
 
     glUseProgram(program_.get());
     glBindVertexArray(emptyVertexArray_.get());
@@ -90,7 +94,7 @@ void StrandPass::draw(const StrandGeometry& geometry, const std::vector<uint32_t
         glColorMaski(kColorOutput, GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
         glColorMaski(kNearestDepthOutput, GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
     }
-    drawPatches(geometry.segmentCount(), maxSegmentsPerSpan_);
+    drawPatches(patches, maxSegmentsPerSpan_);
     glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     glBlendEquation(GL_FUNC_ADD);
     glDisable(GL_BLEND);

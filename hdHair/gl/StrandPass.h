@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "hdHair/gl/GlObjects.h"
+#include "hdHair/gl/SegmentRange.h"
 #include "hdHair/gl/StrandGeometry.h"
 #include "hdHair/gl/UniformBlocks.h"
 
@@ -27,21 +28,26 @@ public:
     // Uploads and binds the frame's uniform blocks (also used by other passes).
     void setUniforms(const FrameUniforms& frame, const LightUniforms& lights);
 
-    // `order`: segments in drawing order (far to near), or empty for the
-    // geometry's own order. setUniforms() must have been called with
-    // frame.orderedDraw matching.
-    void draw(const StrandGeometry& geometry, const std::vector<uint32_t>& order, StrandBlending blending);
+    // Sends the frame's drawing order (segments far to near), once a frame:
+    // every light batch draws with it.
+    void setDrawOrder(const std::vector<uint32_t>& order);
+
+    // Draws the strands: in the order set by setDrawOrder() when the frame
+    // uniforms' orderedDraw is 1, else the `ranges` of the geometry (the
+    // drawn prims' segments) as they lie. setUniforms() must have been called.
+    void draw(const StrandGeometry& geometry, const std::vector<SegmentRange>& ranges, StrandBlending blending);
 
     // Issues the draws only (the program and state are the caller's): used by
     // passes that share the strand stages with another fragment shader.
-    static void drawPatches(size_t segmentCount, float maxSegmentsPerSpan);
+    static void drawPatches(const std::vector<SegmentRange>& ranges, float maxSegmentsPerSpan);
 
 private:
     Program program_;
     VertexArray emptyVertexArray_;  // core profile draws need one bound
     Buffer frameBlock_, lightBlock_, orderBuffer_;
-    size_t orderCapacity_ = 0;
+    size_t orderCapacity_ = 0, orderedSegments_ = 0;
     float maxSegmentsPerSpan_ = 8.0f;
+    bool orderedDraw_ = false;
 };
 
 }  // namespace hdhair::gl

@@ -23,7 +23,7 @@ uint32_t floatBits(float value) {
 
 // 16 bits from the segment's end points (a murmur3-style finaliser mixes
 // them); equal segments collide, which leaves them in input order.
-uint32_t geometryHash(const StrandControlPoint& a, const StrandControlPoint& b) {
+uint16_t geometryHash(const StrandControlPoint& a, const StrandControlPoint& b) {
     uint32_t h = 0x9e3779b9u;
     const float values[6] = {a.position.x, a.position.y, a.position.z, b.position.x, b.position.y, b.position.z};
     for (float value : values) {
@@ -33,11 +33,12 @@ uint32_t geometryHash(const StrandControlPoint& a, const StrandControlPoint& b) 
         h *= 0xc2b2ae35u;
         h ^= h >> 16;
     }
-    return h & (kHashBuckets - 1u);
+    return uint16_t(h & (kHashBuckets - 1u));
 }
 
 // Stable counting sort of `in` by key[in[i]] into `out`, ascending.
-void countingSort(const std::vector<uint32_t>& in, const std::vector<uint32_t>& key, uint32_t keyCount,
+template <typename Key>
+void countingSort(const std::vector<uint32_t>& in, const std::vector<Key>& key, uint32_t keyCount,
                   std::vector<uint32_t>& out) {
     std::vector<uint32_t> start(size_t(keyCount) + 1, 0);
     for (uint32_t segment : in) ++start[key[segment] + 1];
@@ -48,21 +49,48 @@ void countingSort(const std::vector<uint32_t>& in, const std::vector<uint32_t>& 
 
 }  // namespace
 
+std::vector<uint16_t> segmentSortHashes(const std::vector<StrandControlPoint>& controlPoints) {
+    std::vector<uint16_t> hashes(controlPoints.size() / 4);
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, hashes.size()), [&](const tbb::blocked_range<size_t>& range) {
+        for (size_t s = range.begin(); s != range.end(); ++s)
+            hashes[s] = geometryHash(controlPoints[4 * s + 1], controlPoints[4 * s + 2]);
+    });
+    return hashes;
+}
+
 void binSortSegments(const std::vector<StrandControlPoint>& controlPoints, const glm::dvec3& cameraPosition,
                      const glm::dvec3& viewDirection, uint32_t binCount, std::vector<uint32_t>& order,
                      BinSortStatistics* statistics) {
-    const size_t segments = controlPoints.size() / 4;
+    const std::vector<uint16_t> hashes = segmentSortHashes(controlPoints);
+    binSortSegments({SortSpan{controlPoints.data(), hashes.data(), hashes.size(), 0}}, cameraPosition, viewDirection,
+                    binCount, order, statistics);
+}
+
+void binSortSegments(const std::vector<SortSpan>& spans, const glm::dvec3& cameraPosition,
+                     const glm::dvec3& viewDirection, uint32_t binCount, std::vector<uint32_t>& order,
+                     BinSortStatistics* statistics) {
+    // The spans' segments numbered 0..n-1 here; `start` finds each one's
+    // control points and `global` its index in the frame.
+    size_t segments = 0;
+    for (const SortSpan& span : spans) segments += span.segments;
+    std::vector<const StrandControlPoint*> start(segments);
+    std::vector<uint32_t> global(segments);
+    std::vector<uint16_t> hash(segments);
+    for (size_t i = 0, offset = 0; i < spans.size(); offset += spans[i].segments, ++i) {
+        const SortSpan& span = spans[i];
+        for (size_t s = 0; s < span.segments; ++s) {
+            start[offset + s] = span.controlPoints + 4 * s;
+            global[offset + s] = uint32_t(span.first + s);
+            hash[offset + s] = span.hashes[s];
+        }
+    }
     binCount = std::max<uint32_t>(binCount, 1);
     std::vector<float> depth(segments);
-    std::vector<uint32_t> hash(segments);
     tbb::parallel_for(tbb::blocked_range<size_t>(0, segments), [&](const tbb::blocked_range<size_t>& range) {
         for (size_t s = range.begin(); s != range.end(); ++s) {
-            const StrandControlPoint& start = controlPoints[4 * s + 1];
-            const StrandControlPoint& end = controlPoints[4 * s + 2];
-            double d0 = glm::dot(glm::dvec3(start.position) - cameraPosition, viewDirection);
-            double d1 = glm::dot(glm::dvec3(end.position) - cameraPosition, viewDirection);
+            double d0 = glm::dot(glm::dvec3(start[s][1].position) - cameraPosition, viewDirection);
+            double d1 = glm::dot(glm::dvec3(start[s][2].position) - cameraPosition, viewDirection);
             depth[s] = float(std::max(d0, d1));  // binned by the farther end point
-            hash[s] = geometryHash(start, end);
         }
     });
     using Range = std::pair<float, float>;
@@ -100,8 +128,8 @@ void binSortSegments(const std::vector<StrandControlPoint>& controlPoints, const
     // input order shows nowhere. Such runs are short: sorting them costs
     // little. Identical segments stay in input order (the sort is stable).
     auto geometryLess = [&](uint32_t x, uint32_t y) {
-        const glm::vec3 &xa = controlPoints[4 * size_t(x) + 1].position, &xb = controlPoints[4 * size_t(x) + 2].position;
-        const glm::vec3 &ya = controlPoints[4 * size_t(y) + 1].position, &yb = controlPoints[4 * size_t(y) + 2].position;
+        const glm::vec3 &xa = start[x][1].position, &xb = start[x][2].position;
+        const glm::vec3 &ya = start[y][1].position, &yb = start[y][2].position;
         return std::tie(xa.x, xa.y, xa.z, xb.x, xb.y, xb.z) < std::tie(ya.x, ya.y, ya.z, yb.x, yb.y, yb.z);
     };
     for (size_t begin = 0; begin < order.size();) {
@@ -111,6 +139,8 @@ void binSortSegments(const std::vector<StrandControlPoint>& controlPoints, const
         if (end - begin > 1) std::stable_sort(order.begin() + long(begin), order.begin() + long(end), geometryLess);
         begin = end;
     }
+
+    for (uint32_t& segment : order) segment = global[segment];
 
     if (statistics) {
         statistics->nearDepth = segments ? range.first : 0.0;

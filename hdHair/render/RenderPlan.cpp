@@ -37,8 +37,8 @@ std::string depthSource(TransparencyPath path) {
 
 // Ids need a pass of their own only where blending draws strands in an
 // order that is not nearest-last (integer images cannot be min-blended).
-PlannedPass idsPass(TransparencyPath path, bool idsRequested, bool anyStrands) {
-    PlannedPass ids{"ids", false, ""};
+FramePass idsPass(TransparencyPath path, bool idsRequested, bool anyStrands) {
+    FramePass ids{"ids", {"strands", "depth"}, {"ids"}, false, ""};
     if (!idsRequested) {
         ids.reason = "no ids asked for";
     } else if (!anyStrands) {
@@ -48,7 +48,7 @@ PlannedPass idsPass(TransparencyPath path, bool idsRequested, bool anyStrands) {
     } else if (path == TransparencyPath::Exact) {
         ids.reason = "the exact resolve writes them, with depth";
     } else {
-        ids.enabled = true;
+        ids.wanted = true;
         ids.reason = fmt::format("the host asked for ids: the nearest strand with alpha >= {}, the fragment the "
                                  "strand pass's depth comes from",
                                  kNearestStrandMinAlpha);
@@ -56,41 +56,39 @@ PlannedPass idsPass(TransparencyPath path, bool idsRequested, bool anyStrands) {
     return ids;
 }
 
-}  // namespace
-
-bool RenderPlan::isEnabled(const std::string& name) const {
-    for (const PlannedPass& pass : passes)
-        if (pass.name == name) return pass.enabled;
-    return false;
+// What the strand and light-batch passes read: the strands, and the draw
+// order when they are bin sorted.
+std::vector<FrameResource> strandReads(TransparencyPath path, std::vector<FrameResource> more) {
+    std::vector<FrameResource> reads{"strands"};
+    if (path == TransparencyPath::BinSorted) reads.push_back("drawOrder");
+    reads.insert(reads.end(), more.begin(), more.end());
+    return reads;
 }
+
+}  // namespace
 
 void RenderPlan::fallBackToBinSorted(uint32_t bins, bool idsRequested) {
     transparency = TransparencyPath::BinSorted;
     sortBins = bins;
-    const bool anyStrands = isEnabled("strands");
-    for (PlannedPass& pass : passes) {
+    const bool anyStrands = graph.find("strands")->wanted;
+    for (FramePass& pass : graph.passes()) {
         if (pass.name == "sort") {
-            pass.enabled = true;
+            pass.wanted = true;
             pass.reason = fmt::format("exact fell back: segments into {} depth bins on the CPU", bins);
         } else if (pass.name == "ids") {
-            pass = idsPass(transparency, idsRequested, anyStrands);
+            FramePass replacement = idsPass(transparency, idsRequested, anyStrands);
+            pass.wanted = replacement.wanted;
+            pass.reason = replacement.reason;
+        } else if (pass.name == "strands" || pass.name.rfind("lightBatch", 0) == 0) {
+            std::vector<FrameResource> inPlace(pass.reads.begin() + 1, pass.reads.end());
+            inPlace.erase(std::remove(inPlace.begin(), inPlace.end(), "drawOrder"), inPlace.end());
+            pass.reads = strandReads(transparency, inPlace);
         }
     }
+    graph.compile();
 }
 
-std::string RenderPlan::describe() const {
-    std::string text;
-    for (const PlannedPass& pass : passes)
-        text += fmt::format("  {:<12} {:<4} {}\n", pass.name, pass.enabled ? "on" : "off", pass.reason);
-    return text;
-}
-
-nlohmann::json RenderPlan::toJson() const {
-    nlohmann::json json = nlohmann::json::array();
-    for (const PlannedPass& pass : passes)
-        json.push_back({{"pass", pass.name}, {"enabled", pass.enabled}, {"reason", pass.reason}});
-    return json;
-}
+nlohmann::json RenderPlan::toJson() const { return graph.toJson(); }
 
 RenderPlan makeRenderPlan(const Scene& scene, const RenderSettings& settings, const CameraView& camera,
                           const StrandSummary& strands, bool idsRequested) {
@@ -153,13 +151,27 @@ RenderPlan makeRenderPlan(const Scene& scene, const RenderSettings& settings, co
                            strands.minProjectedWidthPixels);
     if (plan.transparency == TransparencyPath::Opaque) plan.msaaSamples = settings.getInt("msaaSamples");
 
-    PlannedPass sort{"sort", plan.transparency == TransparencyPath::BinSorted && strands.segments > 0, ""};
-    sort.reason = sort.enabled ? fmt::format("{} segments into {} depth bins on the CPU, O(n)", strands.segments,
-                                             plan.sortBins)
-                               : "no bin sorting on this path";
-    plan.passes.push_back(sort);
+    const bool anyStrands = strands.segments > 0;
+    FrameGraph& graph = plan.graph;
+    graph.input("preparedStrands");
 
-    PlannedPass strandPass{"strands", strands.segments > 0, ""};
+    FramePass upload{"upload", {"preparedStrands"}, {"strands"}, anyStrands, ""};
+    upload.reason = anyStrands ? fmt::format("{} segments to the GPU: only prims that changed since the last frame",
+                                             strands.segments)
+                               : "no visible curves";
+    graph.add(upload);
+
+    FramePass sort{"sort", {"preparedStrands"}, {"drawOrder"},
+                   plan.transparency == TransparencyPath::BinSorted && anyStrands, ""};
+    sort.reason = sort.wanted ? fmt::format("{} segments into {} depth bins on the CPU, O(n)", strands.segments,
+                                            plan.sortBins)
+                              : "no bin sorting on this path";
+    graph.add(sort);
+
+    std::vector<FrameResource> frameImages{"color", "depth"};
+    if (idsRequested) frameImages.push_back("ids");
+    graph.add(FramePass{"clear", {}, frameImages, true, "the frame's images, empty (transparent black, depth 1, ids -1)"});
+
     std::string models = strands.shadingModels.empty() ? std::string("kajiyaKay") : strands.shadingModels;
     if (strands.perPointPrims > 0)
         models += fmt::format(" (per-curve/vertex parameters on {} prim(s))", strands.perPointPrims);
@@ -170,34 +182,54 @@ RenderPlan makeRenderPlan(const Scene& scene, const RenderSettings& settings, co
                                                          plan.cameraLight ? " incl. the camera light" : "");
     std::string multisampling =
         plan.msaaSamples > 0 ? fmt::format(", {}x MSAA", plan.msaaSamples) : std::string();
-    strandPass.reason = strands.segments > 0
-                            ? fmt::format("{} segments, {}: {}{}, {}; {}", strands.segments,
-                                          toString(plan.transparency), why, multisampling, shading,
-                                          depthSource(plan.transparency))
-                            : "no visible curves: background only";
-    plan.passes.push_back(strandPass);
+    // The strand pass writes ids itself where it can keep the nearest
+    // fragment's (opaque, and exact's resolve).
+    std::vector<FrameResource> strandWrites{"color", "depth"};
+    if (idsRequested && (plan.transparency == TransparencyPath::Opaque || plan.transparency == TransparencyPath::Exact))
+        strandWrites.push_back("ids");
+    std::vector<FrameResource> inPlace = strandWrites;
+    FramePass strandPass{"strands", strandReads(plan.transparency, inPlace), strandWrites, anyStrands, ""};
+    strandPass.reason = anyStrands ? fmt::format("{} segments, {}: {}{}, {}; {}", strands.segments,
+                                                 toString(plan.transparency), why, multisampling, shading,
+                                                 depthSource(plan.transparency))
+                                   : "no visible curves: background only";
+    graph.add(strandPass);
+
+    graph.add(idsPass(plan.transparency, idsRequested, anyStrands));
+
+    // Light batches add onto the frame's resolved colour, and readback reads
+    // it: a multisampled frame is resolved once, here.
+    FramePass resolve{"resolve", frameImages, frameImages, plan.msaaSamples > 0, ""};
+    resolve.reason = resolve.wanted ? fmt::format("{} samples a pixel averaged (depth and ids: one sample)",
+                                                  plan.msaaSamples)
+                                    : "no multisampling";
+    graph.add(resolve);
 
     size_t perPass = size_t(settings.getInt("lightsPerPass"));
     size_t lightCount = plan.flatShading ? 0 : plan.lights.lights.size();
     for (size_t begin = 0; begin < lightCount; begin += perPass)
         plan.lightBatches.emplace_back(begin, std::min(begin + perPass, lightCount));
     if (plan.lightBatches.empty()) plan.lightBatches.emplace_back(0, 0);
-    PlannedPass batches{"lightBatches", plan.lightBatches.size() > 1 && strands.segments > 0, ""};
-    batches.reason = batches.enabled
-                         ? fmt::format("{} lights in {} passes of at most {} (lightsPerPass), each over the same "
-                                       "strands: colours summed, alpha counted once",
-                                       lightCount, plan.lightBatches.size(), perPass)
-                         : fmt::format("{} light(s): one pass", lightCount);
-    plan.passes.push_back(batches);
+    for (size_t batch = 1; batch < plan.lightBatches.size(); ++batch) {
+        FramePass lights{fmt::format("lightBatch {}", batch + 1), strandReads(plan.transparency, {"color"}), {"color"},
+                         anyStrands, ""};
+        lights.reason = fmt::format("lights {}-{} of {} (lightsPerPass {}): the strands again, colour added, alpha "
+                                    "counted once",
+                                    plan.lightBatches[batch].first + 1, plan.lightBatches[batch].second, lightCount,
+                                    perPass);
+        graph.add(lights);
+    }
 
-    plan.passes.push_back(idsPass(plan.transparency, idsRequested, strands.segments > 0));
-
-    PlannedPass meshes{"meshes", false, ""};
+    FramePass meshes{"meshes", {}, {"color", "depth"}, false, ""};
     meshes.reason = scene.meshes().empty() ? "no meshes"
                                            : fmt::format("{} mesh(es) kept in the scene; drawing them as occluders "
                                                          "is not implemented yet",
                                                          scene.meshes().size());
-    plan.passes.push_back(meshes);
+    graph.add(meshes);
+
+    graph.add(FramePass{"readback", frameImages, {"aovs"}, true, "the frame's images to the CPU"});
+    graph.output("aovs");
+    graph.compile();
     return plan;
 }
 

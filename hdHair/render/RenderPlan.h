@@ -1,7 +1,9 @@
 #pragma once
 // Which passes a frame runs, decided per scene before any GL work: only the
 // effects a scene calls for are simulated, and what is off costs nothing.
-// Each decision carries its reason, printed by --explain and kept in --stats.
+// The plan is a FrameGraph (FrameGraph.h): each pass with what it reads and
+// writes and the reason it runs or not, printed by --explain and kept, with
+// each pass's time, in --stats.
 
 #include <cstdint>
 #include <string>
@@ -9,6 +11,7 @@
 
 #include <nlohmann/json_fwd.hpp>
 
+#include "hdHair/render/FrameGraph.h"
 #include "hdHair/shading/ShadingLight.h"
 
 namespace hdhair {
@@ -36,14 +39,18 @@ struct StrandSummary {
     size_t analyticPrims = 0;    // Marschner prims shaded with per-fragment azimuthal terms
 };
 
-struct PlannedPass {
-    std::string name;    // "strands"
-    bool enabled = false;
-    std::string reason;  // why it runs, or why not
-};
-
+// The passes, in the order they run:
+//   upload        preparedStrands -> strands        GPU copy of the changed prims
+//   sort          preparedStrands -> drawOrder      binSorted only
+//   clear         -> color, depth[, ids]            the frame's targets, empty
+//   strands       strands[, drawOrder], color, depth -> color, depth[, ids]   lights of batch 1
+//   ids           strands, depth -> ids             blended paths, when a host asks for ids
+//   resolve       color, depth[, ids] (in place)    multisampled frames
+//   lightBatch k  strands[, drawOrder], color -> color   lights of batch k (k >= 2)
+//   meshes        (not drawn yet)
+//   readback      color, depth[, ids] -> aovs       the frame's images, to the CPU
 struct RenderPlan {
-    std::vector<PlannedPass> passes;
+    FrameGraph graph;
     ShadingLights lights;       // the stage's lights, plus the camera light when used
     bool cameraLight = false;
     TransparencyPath transparency = TransparencyPath::Opaque;
@@ -55,11 +62,11 @@ struct RenderPlan {
     // need a pass too).
     std::vector<std::pair<size_t, size_t>> lightBatches;
 
-    bool isEnabled(const std::string& name) const;
+    bool isEnabled(const std::string& name) const { return graph.isEnabled(name); }
     // Exact transparency over its memory budget: the frame is redrawn
     // binSorted with `bins` bins, which needs the ids pass when ids are asked for.
     void fallBackToBinSorted(uint32_t bins, bool idsRequested);
-    std::string describe() const;  // one line per pass, for --explain
+    std::string describe() const { return graph.describe(); }  // for --explain
     nlohmann::json toJson() const;
 };
 

@@ -73,6 +73,11 @@ const std::vector<SettingDescriptor>& RenderSettings::descriptors() {
         {"cameraLight", SettingType::Token, "auto",
          "Light from the camera: auto (only when the stage has no lights), on, off", 0, 0,
          {"auto", "on", "off"}},
+        {"passTimings", SettingType::Bool, "false",
+         "Time every pass of a frame for --stats and --verbose: GL timer queries where they measure whole passes, "
+         "else (llvmpipe) the CPU clock with glFinish after each pass, which costs the overlap between passes; "
+         "hdhair-record turns it on with --verbose, --explain or --stats",
+         0, 0, {}},
         {"framing", SettingType::Token, "fitAll",
          "Camera when none is given: fitAll (every corner of the stage bounds in view) or usdrecord "
          "(usdrecord's exact framing, which can cut tall stages)",

@@ -25,6 +25,9 @@ nlohmann::json RenderStats::toJson() const {
     json["warnings"] = warnings;
     json["transparency"] = transparency;
     json["lightPasses"] = lightPasses;
+    json["preparedPrims"] = preparedPrims;
+    json["uploadedSegments"] = uploadedSegments;
+    json["passTiming"] = passTiming;
     if (fragments > 0) json["fragments"] = fragments;
     if (!fallback.empty()) json["fallback"] = fallback;
     return json;

@@ -31,6 +31,9 @@ struct RenderStats {
     uint64_t fragments = 0;       // strand fragments, when known (exact transparency counts them)
     std::string fallback;         // what replaced the requested path, and why ("" when nothing did)
     size_t lightPasses = 1;       // passes over the strands, one per batch of at most lightsPerPass lights
+    size_t preparedPrims = 0;     // curves prims prepared for this frame (only new and changed ones)
+    uint64_t uploadedSegments = 0;  // strand segments sent to the GPU this frame (only changed prims)
+    std::string passTiming;       // how passes were timed (the passTimings setting and the driver)
 
     nlohmann::json toJson() const;
 };

@@ -12,14 +12,10 @@
 #include <tbb/parallel_for.h>
 
 #include "hdHair/base/Diagnostics.h"
-#include "hdHair/gl/FragmentListPass.h"
 #include "hdHair/gl/GlRenderThread.h"
-#include "hdHair/gl/HairMaterialTable.h"
-#include "hdHair/gl/LightBatchAccumulation.h"
-#include "hdHair/gl/RenderTarget.h"
-#include "hdHair/gl/StrandGeometry.h"
-#include "hdHair/gl/StrandPass.h"
 #include "hdHair/render/BinSort.h"
+#include "hdHair/render/FrameResources.h"
+#include "hdHair/render/FrameScheduler.h"
 #include "hdHair/render/NearestStrandRule.h"
 #include "hdHair/scene/Scene.h"
 #include "hdHair/shading/MarschnerTables.h"
@@ -61,24 +57,6 @@ gl::FrameUniforms frameUniforms(const CameraView& camera, const RenderSettings& 
     return frame;
 }
 
-// The lights of one batch; the dome's ambient term belongs to the first
-// batch only, so that summing batches counts it once.
-gl::LightUniforms lightUniforms(const RenderPlan& plan, size_t batch) {
-    gl::LightUniforms uniforms;
-    auto [begin, end] = plan.lightBatches[batch];
-    size_t count = end - begin;
-    for (size_t i = 0; i < count; ++i) {
-        const ShadingLight& light = plan.lights.lights[begin + i];
-        uniforms.lightVector[i] = glm::vec4(light.directionOrPosition, light.isLocal ? 1.0f : 0.0f);
-        uniforms.lightScale[i] = glm::vec4(light.scale, 0.0f);
-        uniforms.lightAxis[i] = glm::vec4(light.emissionAxis, light.oneSided ? 1.0f : 0.0f);
-        uniforms.lightCone[i] = glm::vec4(light.coneCosOuter, light.coneCosInner, light.shaped ? 1.0f : 0.0f, 0.0f);
-    }
-    uniforms.lightCount = glm::ivec4(int(count), 0, 0, 0);
-    uniforms.ambient = glm::vec4(batch == 0 ? plan.lights.ambient : glm::vec3(0.0f), 0.0f);
-    return uniforms;
-}
-
 // The thinnest projected width of any strand: its thinnest span end at the
 // farthest depth of its bounds (a lower bound for perspective cameras).
 double minProjectedWidthPixels(const CameraView& camera, const PreparedCurves& curves, float minSpanWidth) {
@@ -108,26 +86,13 @@ Diagnostics& reportingFor(const CurvesPrim& prim, Diagnostics& diagnostics, Diag
 }  // namespace
 
 Renderer::Renderer(gl::GlBackend backend) : glThread_(std::make_unique<gl::GlRenderThread>(backend)) {
-    glThread_->run([this] {
-        strandPass_ = std::make_unique<gl::StrandPass>();
-        fragmentListPass_ = std::make_unique<gl::FragmentListPass>();
-        lightBatchAccumulation_ = std::make_unique<gl::LightBatchAccumulation>();
-        materialTable_ = std::make_unique<gl::HairMaterialTable>();
-        glGetIntegerv(GL_MAX_SAMPLES, &maxSamples_);
-    });
+    glThread_->run([this] { resources_ = std::make_unique<FrameResources>(); });
+    passTiming_ = gl::passTimingFor(glThread_->contextDescription());
 }
 
 Renderer::~Renderer() {
     // GL objects die on the thread that owns the context.
-    glThread_->run([this] {
-        geometry_.reset();
-        strandPass_.reset();
-        fragmentListPass_.reset();
-        lightBatchAccumulation_.reset();
-        materialTable_.reset();
-        target_.reset();
-        batchTarget_.reset();
-    });
+    glThread_->run([this] { resources_.reset(); });
 }
 
 const std::string& Renderer::glDescription() const { return glThread_->contextDescription(); }
@@ -177,11 +142,13 @@ SceneBounds Renderer::prepare(const Scene& scene, Diagnostics& diagnostics) {
             cached.fullyOpaque = cached.fullyOpaque && point.opacity == 1.0f;
             if (c % 4 == 1 || c % 4 == 2) cached.minSpanWidth = std::min(cached.minSpanWidth, point.width);
         }
+        cached.sortHashes = segmentSortHashes(prepared->controlPoints);
         cached.prepared = std::move(prepared);
         cached.material.reset();
         cached.parameterPoints.clear();
     });
     pendingPrepareMilliseconds_ += millisecondsSince(start);
+    pendingPreparedPrims_ += changed.size();
 
     SceneBounds bounds;
     auto include = [&](const glm::dvec3& low, const glm::dvec3& high) {
@@ -204,42 +171,12 @@ SceneBounds Renderer::prepare(const Scene& scene, Diagnostics& diagnostics) {
     return bounds;
 }
 
-void Renderer::updateGeometry(const std::vector<VisiblePrim>& visible, const std::vector<uint64_t>& key,
-                              RenderStats& stats) {
-    if (geometry_ && key == geometryKey_) return;
-    Clock::time_point start = Clock::now();
-    size_t segments = 0;
-    for (const VisiblePrim& prim : visible) segments += prim.cached->prepared->segmentCount();
-    controlPoints_.clear();
-    controlPoints_.reserve(4 * segments);
-    std::vector<int32_t> segmentCurves, segmentMaterials;
-    std::vector<glm::ivec2> segmentPrims;
-    segmentCurves.reserve(segments);
-    segmentPrims.reserve(segments);
-    segmentMaterials.reserve(segments);
-    for (const VisiblePrim& prim : visible) {
-        const PreparedCurves& prepared = *prim.cached->prepared;
-        controlPoints_.insert(controlPoints_.end(), prepared.controlPoints.begin(), prepared.controlPoints.end());
-        for (uint32_t curve : prepared.segmentCurve) {
-            segmentCurves.push_back(int32_t(curve));
-            segmentPrims.emplace_back(prim.primId, prim.instanceId);
-            segmentMaterials.push_back(prim.material);
-        }
-    }
-    glThread_->run([&] {
-        geometry_ = std::make_unique<gl::StrandGeometry>(controlPoints_, segmentCurves, segmentPrims, segmentMaterials);
-        glFinish();
-    });
-    geometryKey_ = key;
-    stats.passes.push_back({"upload", millisecondsSince(start)});
-}
-
-void Renderer::updateMaterials(const std::vector<HairMaterial>& materials, const std::vector<VisiblePrim>& visible) {
-    if (materials == uploadedMaterials_ && geometryKey_ == materialsGeometryKey_) return;
-    std::vector<gl::GpuHairMaterial> gpu;
-    std::vector<glm::vec4> parameterPoints;
-    std::vector<const std::vector<uint16_t>*> tables;
-    int width = 1, height = 1;
+std::optional<MaterialUpload> Renderer::materialUpload(const std::vector<HairMaterial>& materials,
+                                                      const std::vector<CachedCurves*>& drawnCurves,
+                                                      const std::vector<DrawnPrim>& drawn,
+                                                      const StrandUploadPlan& uploads) {
+    if (materials == uploadedMaterials_ && uploads.ranges == materialRanges_) return std::nullopt;
+    MaterialUpload upload;
     for (const HairMaterial& material : materials) {
         gl::GpuHairMaterial entry;
         entry.modelAndLayer = glm::ivec4(int(material.model), 0, 0, 0);
@@ -261,32 +198,29 @@ void Renderer::updateMaterials(const std::vector<HairMaterial>& materials, const
                 marschnerTables_.push_back({material, built.halfTexels(), built.width, built.height});
                 cached = std::prev(marschnerTables_.end());
             }
-            width = cached->width;
-            height = cached->height;
-            auto layer = std::find(tables.begin(), tables.end(), &cached->halfTexels);
-            if (layer == tables.end()) layer = tables.insert(tables.end(), &cached->halfTexels);
-            entry.modelAndLayer.y = int(2 * (layer - tables.begin()));
+            upload.tableWidth = cached->width;
+            upload.tableHeight = cached->height;
+            auto layer = std::find(upload.tables.begin(), upload.tables.end(), &cached->halfTexels);
+            if (layer == upload.tables.end()) layer = upload.tables.insert(upload.tables.end(), &cached->halfTexels);
+            entry.modelAndLayer.y = int(2 * (layer - upload.tables.begin()));
         }
-        gpu.push_back(entry);
+        upload.materials.push_back(entry);
     }
     // Per-point records, prim by prim; a per-point material belongs to one
     // prim, so it records where that prim's segments and records start.
-    int32_t firstSegment = 0;
-    for (const VisiblePrim& prim : visible) {
-        const HairMaterial& material = materials[size_t(prim.material)];
-        if (material.perPoint()) {
-            gl::GpuHairMaterial& entry = gpu[size_t(prim.material)];
-            entry.modelAndLayer.z |= gl::kHairMaterialPerPoint;
-            entry.modelAndLayer.w = int32_t(parameterPoints.size() / 2);
-            entry.segments.x = firstSegment;
-            const std::vector<glm::vec4>& points = prim.cached->parameterPoints;
-            parameterPoints.insert(parameterPoints.end(), points.begin(), points.end());
-        }
-        firstSegment += int32_t(prim.cached->prepared->segmentCount());
+    for (size_t i = 0; i < drawn.size(); ++i) {
+        const HairMaterial& material = materials[size_t(drawn[i].material)];
+        if (!material.perPoint()) continue;
+        gl::GpuHairMaterial& entry = upload.materials[size_t(drawn[i].material)];
+        entry.modelAndLayer.z |= gl::kHairMaterialPerPoint;
+        entry.modelAndLayer.w = int32_t(upload.parameterPoints.size() / 2);
+        entry.segments.x = int32_t(uploads.ranges[i].first);
+        const std::vector<glm::vec4>& points = drawnCurves[i]->parameterPoints;
+        upload.parameterPoints.insert(upload.parameterPoints.end(), points.begin(), points.end());
     }
-    glThread_->run([&] { materialTable_->update(gpu, parameterPoints, tables, width, height); });
     uploadedMaterials_ = materials;
-    materialsGeometryKey_ = geometryKey_;
+    materialRanges_ = uploads.ranges;
+    return upload;
 }
 
 RenderResult Renderer::render(const Scene& scene, const CameraView& camera, const RenderSettings& settings,
@@ -297,12 +231,15 @@ RenderResult Renderer::render(const Scene& scene, const CameraView& camera, cons
     size_t warningsBefore = diagnostics.warningCount();
     prepare(scene, diagnostics);
     stats.passes.push_back({"prepareCurves", pendingPrepareMilliseconds_});
+    stats.preparedPrims = pendingPreparedPrims_;
     pendingPrepareMilliseconds_ = 0.0;
+    pendingPreparedPrims_ = 0;
 
-    std::vector<VisiblePrim> visible;
+    // The drawn prims, their materials, and what the plan needs to know of them.
+    FrameInputs inputs;
+    std::vector<CachedCurves*> drawnCurves;
     Diagnostics repeated;  // later instances' material warnings (reportingFor)
     const std::string materialSettings = hairMaterialSettingsKey(settings);
-    std::vector<uint64_t> geometryKey;  // versions, then material indices
     std::vector<HairMaterial> materials;
     StrandSummary summary;
     summary.minProjectedWidthPixels = std::numeric_limits<double>::infinity();
@@ -322,11 +259,9 @@ RenderResult Renderer::render(const Scene& scene, const CameraView& camera, cons
         summary.analyticPrims += material.analyticAzimuthal ? 1 : 0;
         auto found = std::find(materials.begin(), materials.end(), material);
         if (found == materials.end()) found = materials.insert(materials.end(), material);
-        int materialIndex = int(found - materials.begin());
-        visible.push_back({entry.prim->primId, entry.prim->instanceId, &cached, materialIndex});
-        geometryKey.push_back(cached.version);
-        geometryKey.push_back(cached.colorMaterialVersion);
-        geometryKey.push_back(uint64_t(materialIndex));
+        inputs.drawn.push_back({path, cached.prepared, glm::ivec2(entry.prim->primId, entry.prim->instanceId),
+                                int32_t(found - materials.begin())});
+        drawnCurves.push_back(&cached);
         summary.anyLit = summary.anyLit || material.model != ShadingModel::Flat;
         if (summary.shadingModels.find(toString(material.model)) == std::string::npos)
             summary.shadingModels += (summary.shadingModels.empty() ? "" : "+") + std::string(toString(material.model));
@@ -337,120 +272,34 @@ RenderResult Renderer::render(const Scene& scene, const CameraView& camera, cons
                      minProjectedWidthPixels(camera, *cached.prepared, cached.minSpanWidth));
         curveCount += cached.prepared->curveCount;
     }
-    updateGeometry(visible, geometryKey, stats);
-    updateMaterials(materials, visible);
+    inputs.uploads = uploads_.update(inputs.drawn);
+    inputs.materials = materialUpload(materials, drawnCurves, inputs.drawn, inputs.uploads);
+    for (size_t i = 0; i < inputs.drawn.size(); ++i) {
+        const PreparedCurves& curves = *inputs.drawn[i].curves;
+        inputs.sortSpans.push_back(SortSpan{curves.controlPoints.data(), drawnCurves[i]->sortHashes.data(),
+                                            curves.segmentCount(), inputs.uploads.ranges[i].first});
+    }
+
     result.plan = makeRenderPlan(scene, settings, camera, summary, outputs.ids);
     RenderPlan& plan = result.plan;
-
-    std::vector<uint32_t> order;
-    if (plan.isEnabled("sort")) {
-        Clock::time_point sortStart = Clock::now();
-        binSortSegments(controlPoints_, cameraPositionOf(camera), viewDirectionOf(camera), plan.sortBins, order);
-        stats.passes.push_back({"sort", millisecondsSince(sortStart)});
-    }
-    gl::FrameUniforms frame = frameUniforms(camera, settings, plan);
-    int samples = std::min(plan.msaaSamples, maxSamples_);
-    if (samples < plan.msaaSamples)
-        diagnostics.warn("render", fmt::format("msaaSamples={} is more than this GL driver offers; using {}",
-                                               plan.msaaSamples, samples));
-    const size_t listCapacity = size_t(settings.getInt("exactMemoryMB")) * 1024 * 1024 / gl::kFragmentNodeBytes;
-
-    // Blended frames take their depth from the strand pass's min-blended
-    // nearest depth (or the exact resolve), not from the depth buffer.
-    const gl::RenderTargetImages frameImages{outputs.ids, plan.transparency != TransparencyPath::Opaque, samples};
-    // Later light batches add colour only.
-    const gl::RenderTargetImages batchImages{false, false, samples};
+    inputs.camera = &camera;
+    inputs.settings = &settings;
+    inputs.idsRequested = outputs.ids;
+    inputs.frame = frameUniforms(camera, settings, plan);
+    inputs.fragmentListCapacity = size_t(settings.getInt("exactMemoryMB")) * 1024 * 1024 / gl::kFragmentNodeBytes;
+    const gl::PassTiming timing = settings.getBool("passTimings") ? passTiming_ : gl::PassTiming::Off;
 
     glThread_->run([&] {
-        if (!target_ || target_->width() != camera.imageWidth || target_->height() != camera.imageHeight ||
-            target_->images() != frameImages)
-            target_ = std::make_unique<gl::RenderTarget>(camera.imageWidth, camera.imageHeight, frameImages);
-        materialTable_->bind();
-
-        // Draws the strands once, with the current plan, into `target`.
-        auto drawStrands = [&](gl::RenderTarget& target, const gl::LightUniforms& lights, const std::string& label) {
-            Clock::time_point passStart = Clock::now();
-            // Empty pixels are transparent black: pre-multiplied "nothing".
-            target.bindAndClear(glm::vec4(0.0f));
-            strandPass_->setUniforms(frame, lights);
-            if (plan.transparency == TransparencyPath::Exact) {
-                uint64_t fragments = fragmentListPass_->render(*geometry_, camera.imageWidth, camera.imageHeight,
-                                                               listCapacity, frame.maxSegmentsPerSpan);
-                glFinish();
-                stats.passes.push_back({"strands (exact)" + label, millisecondsSince(passStart)});
-                stats.fragments = fragments;
-                if (fragments <= listCapacity) return;
-                // Over budget: the lists lost fragments, so the image is not
-                // exact. Say so and fall back to the finest bin sort (for this
-                // batch and the ones after it).
-                diagnostics.warn("render", fmt::format("exact transparency needs {} MB for {} fragments, more than "
-                                                       "exactMemoryMB={}; rendered with binSorted (1024 bins) instead",
-                                                       (fragments * gl::kFragmentNodeBytes + (1 << 20) - 1) >> 20,
-                                                       fragments, settings.getInt("exactMemoryMB")));
-                plan.fallBackToBinSorted(1024, outputs.ids);
-                stats.fallback = "exact -> binSorted (1024 bins): fragment lists over exactMemoryMB";
-                binSortSegments(controlPoints_, cameraPositionOf(camera), viewDirectionOf(camera), plan.sortBins, order);
-                frame.orderedDraw = 1;
-                target.bindAndClear(glm::vec4(0.0f));
-                strandPass_->setUniforms(frame, lights);
-                passStart = Clock::now();
-            }
-            strandPass_->draw(*geometry_, order,
-                              plan.transparency == TransparencyPath::Opaque ? gl::StrandBlending::Opaque
-                                                                            : gl::StrandBlending::PremultipliedOver);
-            glFinish();
-            stats.passes.push_back({std::string("strands (") + toString(plan.transparency) + ")" +
-                                        (stats.fallback.empty() ? "" : " fallback") + label,
-                                    millisecondsSince(passStart)});
-        };
-        auto batchLabel = [&](size_t batch) {
-            if (plan.lightBatches.size() == 1) return std::string();
-            return fmt::format(" lights {}-{}", plan.lightBatches[batch].first + 1, plan.lightBatches[batch].second);
-        };
-
-        if (!plan.isEnabled("strands")) {
-            target_->bindAndClear(glm::vec4(0.0f));
-        } else {
-            drawStrands(*target_, lightUniforms(plan, 0), batchLabel(0));
-        }
-        if (plan.isEnabled("ids")) {
-            Clock::time_point passStart = Clock::now();
-            gl::FrameUniforms idsFrame = frame;
-            idsFrame.drawMode = 2;
-            idsFrame.orderedDraw = 0;
-            strandPass_->setUniforms(idsFrame, lightUniforms(plan, 0));
-            strandPass_->draw(*geometry_, {}, gl::StrandBlending::IdsOnly);
-            glFinish();
-            stats.passes.push_back({"ids", millisecondsSince(passStart)});
-        }
-        target_->resolve();
-        if (plan.isEnabled("lightBatches")) {
-            if (!batchTarget_ || batchTarget_->width() != camera.imageWidth ||
-                batchTarget_->height() != camera.imageHeight || batchTarget_->images() != batchImages)
-                batchTarget_ = std::make_unique<gl::RenderTarget>(camera.imageWidth, camera.imageHeight, batchImages);
-            for (size_t batch = 1; batch < plan.lightBatches.size(); ++batch) {
-                drawStrands(*batchTarget_, lightUniforms(plan, batch), batchLabel(batch));
-                Clock::time_point addStart = Clock::now();
-                batchTarget_->resolve();
-                lightBatchAccumulation_->add(*target_, *batchTarget_);
-                glFinish();
-                stats.passes.push_back({"accumulate" + batchLabel(batch), millisecondsSince(addStart)});
-            }
-        }
-
-        Clock::time_point readStart = Clock::now();
-        result.color = Image(camera.imageWidth, camera.imageHeight, 4);
-        result.color.pixels = target_->readColor();
-        result.depth = Image(camera.imageWidth, camera.imageHeight, 1);
-        result.depth.pixels = target_->readDepth();
-        if (outputs.ids) {
-            result.primIds = target_->readIds(0);
-            result.instanceIds = target_->readIds(1);
-            result.elementIds = target_->readIds(2);
-        }
-        stats.passes.push_back({"readback", millisecondsSince(readStart)});
+        inputs.samples = std::min(plan.msaaSamples, resources_->maxSamples);
+        FrameContext context{inputs, plan, *resources_, diagnostics, result, {}, nullptr};
+        runFrameGraph(context, timing);
     });
+    if (inputs.samples < plan.msaaSamples)
+        diagnostics.warn("render", fmt::format("msaaSamples={} is more than this GL driver offers; using {}",
+                                               plan.msaaSamples, inputs.samples));
     stats.lightPasses = plan.lightBatches.size();
+    stats.uploadedSegments = inputs.uploads.writtenSegments;
+    stats.passTiming = gl::toString(timing);
 
     stats.imageWidth = camera.imageWidth;
     stats.imageHeight = camera.imageHeight;

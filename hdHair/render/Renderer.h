@@ -4,7 +4,9 @@
 // and (later) the Hydra render pass.
 //
 // Flow per frame: prepare changed curves on the CPU (in parallel, cached by
-// prim version) -> plan -> GL passes on the render thread -> read back.
+// prim version) -> the frame graph (RenderPlan) -> its passes on the render
+// thread (FrameScheduler, FramePasses), which upload only what changed and
+// read the images back.
 
 #include <cstdint>
 #include <map>
@@ -19,12 +21,15 @@
 #include "hdHair/curves/PreparedCurves.h"
 #include "hdHair/curves/StrandColorSource.h"
 #include "hdHair/gl/GlContext.h"
+#include "hdHair/gl/PassTimer.h"
 #include "hdHair/render/HairMaterial.h"
 #include "hdHair/image/Image.h"
 #include "hdHair/render/CameraView.h"
+#include "hdHair/render/FramePasses.h"
 #include "hdHair/render/RenderPlan.h"
 #include "hdHair/render/RenderSettings.h"
 #include "hdHair/render/RenderStats.h"
+#include "hdHair/render/StrandUploads.h"
 
 namespace hdhair {
 
@@ -32,14 +37,9 @@ class Diagnostics;
 class Scene;
 
 namespace gl {
-class FragmentListPass;
 class GlRenderThread;
-class HairMaterialTable;
-class LightBatchAccumulation;
-class RenderTarget;
-class StrandGeometry;
-class StrandPass;
 }  // namespace gl
+struct FrameResources;
 
 struct SceneBounds {
     glm::dvec3 min{1.0}, max{-1.0};  // min > max when the scene has nothing visible
@@ -97,46 +97,32 @@ private:
         std::optional<HairMaterial> material;
         std::string materialSettings;
         std::vector<glm::vec4> parameterPoints;
+        std::vector<uint16_t> sortHashes;  // per segment, for the bin sort (BinSort.h)
     };
 
-    struct VisiblePrim {
-        int primId;
-        int instanceId;
-        CachedCurves* cached;
-        int material;  // index into the frame's materials
-    };
-    // Combines the visible prims into one geometry (when the set, a version
-    // or a material assignment changed).
-    void updateGeometry(const std::vector<VisiblePrim>& visible, const std::vector<uint64_t>& key, RenderStats& stats);
-    // Uploads the frame's materials, the per-point parameters of prims whose
-    // parameters vary, and the Marschner tables (built once per distinct
-    // parameter set and kept). After updateGeometry: per-point records are
-    // indexed by segment.
-    void updateMaterials(const std::vector<HairMaterial>& materials, const std::vector<VisiblePrim>& visible);
+    // The frame's hair materials for the GPU, when they or the prims'
+    // ranges changed since they were last sent (else nothing).
+    std::optional<MaterialUpload> materialUpload(const std::vector<HairMaterial>& materials,
+                                                 const std::vector<CachedCurves*>& drawnCurves,
+                                                 const std::vector<DrawnPrim>& drawn, const StrandUploadPlan& uploads);
 
     std::unique_ptr<gl::GlRenderThread> glThread_;
-    std::unique_ptr<gl::StrandPass> strandPass_;
-    std::unique_ptr<gl::FragmentListPass> fragmentListPass_;
-    std::unique_ptr<gl::LightBatchAccumulation> lightBatchAccumulation_;
-    std::unique_ptr<gl::HairMaterialTable> materialTable_;
+    std::unique_ptr<FrameResources> resources_;  // created and destroyed on the GL thread
+    gl::PassTiming passTiming_ = gl::PassTiming::CpuSynchronised;  // when passTimings is on
+    StrandUploads uploads_;
     std::vector<HairMaterial> uploadedMaterials_;
-    std::vector<uint64_t> materialsGeometryKey_;  // geometryKey_ when the materials were uploaded
+    std::vector<gl::SegmentRange> materialRanges_;  // the prims' ranges when the materials were sent
     struct CachedTables {
         HairMaterial material;
         std::vector<uint16_t> halfTexels;
         int width = 0, height = 0;
     };
     std::vector<CachedTables> marschnerTables_;
-    std::unique_ptr<gl::RenderTarget> target_;
-    std::unique_ptr<gl::RenderTarget> batchTarget_;  // light batches after the first render here
-    std::unique_ptr<gl::StrandGeometry> geometry_;  // created and destroyed on the GL thread
-    std::vector<uint64_t> geometryKey_;             // prim versions and material indices geometry_ holds
-    std::vector<StrandControlPoint> controlPoints_; // CPU copy, for sorting
-    int maxSamples_ = 0;
     std::map<std::string, CachedCurves> curves_;
     std::set<std::string> reportedMeshes_;  // meshes already warned about as not drawn
-    // Preparation time since the last render (framing may prepare first).
+    // Preparation since the last render (framing may prepare first).
     double pendingPrepareMilliseconds_ = 0.0;
+    size_t pendingPreparedPrims_ = 0;
 };
 
 }  // namespace hdhair

@@ -118,6 +118,15 @@ usda::SceneReadOptions purposesFrom(const std::string& purposes) {
     return read;
 }
 
+// The --setting assignments, after passTimings=true when the run reports
+// what it did (--verbose, --explain, --stats): an explicit setting wins.
+std::vector<std::string> settingAssignments(const Options& options) {
+    std::vector<std::string> assignments;
+    if (options.verbose || options.explain || !options.statsFile.empty()) assignments.push_back("passTimings=true");
+    assignments.insert(assignments.end(), options.settings.begin(), options.settings.end());
+    return assignments;
+}
+
 // The OpenUSD path: UsdStage, UsdImagingGL and the hdHair plugin, as
 // usdrecord --renderer HdHair --disableGpu renders.
 int runThroughUsdImaging(const Options& options, const usda::SceneReadOptions& purposes) {
@@ -132,12 +141,12 @@ int runThroughUsdImaging(const Options& options, const usda::SceneReadOptions& p
         request.imageWidth = options.imageWidth;
         request.time = time;
         request.complexity = complexity;
-        request.settings = options.settings;
+        request.settings = settingAssignments(options);
         request.renderPurpose = purposes.renderPurpose;
         request.proxyPurpose = purposes.proxyPurpose;
         request.guidePurpose = purposes.guidePurpose;
         RenderSettings settings;
-        for (const std::string& assignment : options.settings) settings.setFromAssignment(assignment);
+        for (const std::string& assignment : request.settings) settings.setFromAssignment(assignment);
         request.framing = settings.getToken("framing");
         request.pluginPath = hydraPluginResources();
         Clock::time_point start = Clock::now();
@@ -190,7 +199,7 @@ int run(const Options& options) {
     Complexity complexity;
     if (!parseComplexity(options.complexity, &complexity))
         throw std::invalid_argument("--complexity must be low, medium, high or veryhigh");
-    RenderSettings settings = RenderSettings::fromAssignments(complexity, options.settings);
+    RenderSettings settings = RenderSettings::fromAssignments(complexity, settingAssignments(options));
     if (options.imageWidth < 1 || options.imageWidth > 16384)
         throw std::invalid_argument("--imageWidth must be between 1 and 16384");
     if (!isSupportedImagePath(options.outputPath))
@@ -224,10 +233,14 @@ int run(const Options& options) {
                     renderer.glDescription().c_str(), options.usdFile.c_str(), readMilliseconds);
 
     nlohmann::json allStats = nlohmann::json::array();
+    // One scene for every frame: prims that do not change between frames keep
+    // their versions, so they are not prepared or uploaded again.
+    Scene scene;
     for (double time : times) {
-        Scene scene;
         Clock::time_point sceneStart = Clock::now();
-        usda::readScene(*stage, time, scene, diagnostics, readOptions);
+        Scene atTime;
+        usda::readScene(*stage, time, atTime, diagnostics, readOptions);
+        scene.updateFrom(atTime);
         double sceneMilliseconds = millisecondsSince(sceneStart);
 
         CameraView camera;

@@ -107,11 +107,7 @@ TEST(RenderPlan, SaysWhichPassProducesDepthAndIds) {
         settings.set("transparency", transparency);
         return makeRenderPlan(Scene{}, settings, cameraAtPlusZ(), translucent, ids);
     };
-    auto strandsReason = [](const RenderPlan& p) {
-        for (const PlannedPass& pass : p.passes)
-            if (pass.name == "strands") return pass.reason;
-        return std::string();
-    };
+    auto strandsReason = [](const RenderPlan& p) { return p.graph.find("strands")->reason; };
     // Blended paths other than exact draw ids in a pass of their own, only when asked for.
     for (const char* path : {"binSorted", "unsorted"}) {
         EXPECT_TRUE(plan(path, true).isEnabled("ids")) << path;

@@ -1,0 +1,102 @@
+#include "hdHair/render/FrameGraph.h"
+
+#include <algorithm>
+#include <set>
+#include <stdexcept>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+namespace hdhair {
+
+namespace {
+
+std::string joined(const std::vector<FrameResource>& resources) {
+    std::string text;
+    for (const FrameResource& resource : resources) text += (text.empty() ? "" : ", ") + resource;
+    return text.empty() ? "-" : text;
+}
+
+}  // namespace
+
+void FrameGraph::input(const FrameResource& resource) { inputs_.push_back(resource); }
+
+FramePass& FrameGraph::add(FramePass pass) {
+    passes_.push_back(std::move(pass));
+    return passes_.back();
+}
+
+void FrameGraph::output(const FrameResource& resource) { outputs_.push_back(resource); }
+
+void FrameGraph::compile() {
+    // Backwards from the outputs: what is still needed by something later.
+    std::set<FrameResource> needed(outputs_.begin(), outputs_.end());
+    for (auto pass = passes_.rbegin(); pass != passes_.rend(); ++pass) {
+        pass->enabled = false;
+        if (!pass->wanted) continue;
+        bool read = std::any_of(pass->writes.begin(), pass->writes.end(),
+                                [&](const FrameResource& resource) { return needed.count(resource) > 0; });
+        if (!read) continue;
+        pass->enabled = true;
+        // A pass that only writes a resource provides it to those after it;
+        // one that also reads it (updates in place) still needs it before.
+        for (const FrameResource& resource : pass->writes)
+            if (std::find(pass->reads.begin(), pass->reads.end(), resource) == pass->reads.end())
+                needed.erase(resource);
+        needed.insert(pass->reads.begin(), pass->reads.end());
+    }
+    // Forwards: every read of a running pass has a provider before it.
+    std::set<FrameResource> available(inputs_.begin(), inputs_.end());
+    for (const FramePass& pass : passes_) {
+        if (!pass.enabled) continue;
+        for (const FrameResource& resource : pass.reads)
+            if (!available.count(resource))
+                throw std::logic_error(fmt::format("frame graph: pass '{}' reads '{}', which no earlier pass writes",
+                                                   pass.name, resource));
+        available.insert(pass.writes.begin(), pass.writes.end());
+    }
+}
+
+const FramePass* FrameGraph::find(const std::string& name) const {
+    auto it = std::find_if(passes_.begin(), passes_.end(), [&](const FramePass& pass) { return pass.name == name; });
+    return it == passes_.end() ? nullptr : &*it;
+}
+
+FramePass* FrameGraph::find(const std::string& name) {
+    return const_cast<FramePass*>(static_cast<const FrameGraph*>(this)->find(name));
+}
+
+bool FrameGraph::isEnabled(const std::string& name) const {
+    const FramePass* pass = find(name);
+    return pass && pass->enabled;
+}
+
+std::string FrameGraph::reasonFor(const FramePass& pass) {
+    if (pass.wanted && !pass.enabled)
+        return pass.reason + fmt::format("; not built: nothing reads its output ({})", joined(pass.writes));
+    return pass.reason;
+}
+
+std::string FrameGraph::describe() const {
+    std::string text;
+    for (const FramePass& pass : passes_) {
+        text += fmt::format("  {:<12} {:<4} {}\n", pass.name, pass.enabled ? "on" : "off", reasonFor(pass));
+        if (pass.enabled)
+            text += fmt::format("  {:<12}      reads {}; writes {}\n", "", joined(pass.reads), joined(pass.writes));
+    }
+    text += fmt::format("  {:<12}      the frame delivers {}\n", "", joined(outputs_));
+    return text;
+}
+
+nlohmann::json FrameGraph::toJson() const {
+    nlohmann::json json = nlohmann::json::array();
+    for (const FramePass& pass : passes_) {
+        nlohmann::json entry = {{"pass", pass.name},       {"enabled", pass.enabled}, {"reason", reasonFor(pass)},
+                                {"reads", pass.reads},     {"writes", pass.writes}};
+        if (pass.enabled) entry["milliseconds"] = pass.milliseconds;
+        json.push_back(std::move(entry));
+    }
+    return json;
+}
+
+}  // namespace hdhair

@@ -1,0 +1,68 @@
+#pragma once
+// A frame as a graph of passes (in the spirit of Filament's render graph):
+// each pass declares the resources it reads and writes, the scene and the
+// settings decide which passes are wanted, and compile() keeps only those
+// whose output something downstream reads, back from what the frame
+// delivers (its colour, depth and ids). The renderer then runs exactly the
+// enabled passes, in declaration order; nothing else decides what runs.
+//
+// Resources are named: "preparedStrands" (an input from the CPU),
+// "strands" (the GPU copy), "drawOrder", "color", "depth", "ids",
+// "deepOpacity <light>", and so on. A pass that reads and writes the same
+// resource (a light batch adding onto "color") updates it in place.
+
+#include <string>
+#include <vector>
+
+#include <nlohmann/json_fwd.hpp>
+
+namespace hdhair {
+
+using FrameResource = std::string;
+
+struct FramePass {
+    std::string name;                  // "strands", "lightBatch 2", "shadowDepth /World/key"
+    std::vector<FrameResource> reads;  // what it needs, written by earlier passes or inputs
+    std::vector<FrameResource> writes;
+    bool wanted = false;               // the scene and settings call for it
+    std::string reason;                // why it is wanted, or why not
+    bool enabled = false;              // wanted, and its output is read: it runs (compile())
+    double milliseconds = 0.0;         // measured when it ran (with timing on)
+};
+
+class FrameGraph {
+public:
+    // Declares a resource that comes from outside the graph (prepared curves).
+    void input(const FrameResource& resource);
+    // Declares a pass; passes run in the order they are added.
+    FramePass& add(FramePass pass);
+    // What the frame delivers: passes that (transitively) feed these run.
+    void output(const FrameResource& resource);
+
+    // Decides which wanted passes run: walking back from the outputs, a
+    // wanted pass is enabled when a later enabled pass or an output reads
+    // something it writes. Throws std::logic_error when an enabled pass
+    // reads a resource that neither an input nor an earlier enabled pass
+    // provides (a wiring mistake, never bad input).
+    void compile();
+
+    const std::vector<FramePass>& passes() const { return passes_; }
+    std::vector<FramePass>& passes() { return passes_; }
+    const std::vector<FrameResource>& outputs() const { return outputs_; }
+    const FramePass* find(const std::string& name) const;
+    FramePass* find(const std::string& name);
+    bool isEnabled(const std::string& name) const;
+
+    // One line per pass: on/off, reads -> writes, reason (and time).
+    std::string describe() const;
+    nlohmann::json toJson() const;
+
+private:
+    // The pass's reason, and for a wanted pass that is not built, why not.
+    static std::string reasonFor(const FramePass& pass);
+
+    std::vector<FrameResource> inputs_, outputs_;
+    std::vector<FramePass> passes_;
+};
+
+}  // namespace hdhair

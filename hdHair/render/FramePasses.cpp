@@ -1,0 +1,168 @@
+#include "hdHair/render/FramePasses.h"
+
+#include <stdexcept>
+#include <string>
+
+#include <fmt/format.h>
+#include <glm/geometric.hpp>
+#include <glm/matrix.hpp>
+
+#include "hdHair/base/Diagnostics.h"
+#include "hdHair/render/FrameResources.h"
+#include "hdHair/render/RenderSettings.h"
+#include "hdHair/render/Renderer.h"
+
+namespace hdhair {
+
+namespace {
+
+// The lights of one batch; the dome's ambient term belongs to the first
+// batch only, so that summing batches counts it once.
+gl::LightUniforms lightUniforms(const RenderPlan& plan, size_t batch) {
+    gl::LightUniforms uniforms;
+    auto [begin, end] = plan.lightBatches[batch];
+    size_t count = end - begin;
+    for (size_t i = 0; i < count; ++i) {
+        const ShadingLight& light = plan.lights.lights[begin + i];
+        uniforms.lightVector[i] = glm::vec4(light.directionOrPosition, light.isLocal ? 1.0f : 0.0f);
+        uniforms.lightScale[i] = glm::vec4(light.scale, 0.0f);
+        uniforms.lightAxis[i] = glm::vec4(light.emissionAxis, light.oneSided ? 1.0f : 0.0f);
+        uniforms.lightCone[i] = glm::vec4(light.coneCosOuter, light.coneCosInner, light.shaped ? 1.0f : 0.0f, 0.0f);
+    }
+    uniforms.lightCount = glm::ivec4(int(count), 0, 0, 0);
+    uniforms.ambient = glm::vec4(batch == 0 ? plan.lights.ambient : glm::vec3(0.0f), 0.0f);
+    return uniforms;
+}
+
+glm::dvec3 cameraPositionOf(const CameraView& camera) { return glm::dvec3(glm::inverse(camera.view)[3]); }
+
+glm::dvec3 viewDirectionOf(const CameraView& camera) {
+    return glm::normalize(glm::dvec3(glm::inverse(camera.view) * glm::dvec4(0.0, 0.0, -1.0, 0.0)));
+}
+
+void sortAndSend(FrameContext& context) {
+    const CameraView& camera = *context.inputs.camera;
+    binSortSegments(context.inputs.sortSpans, cameraPositionOf(camera), viewDirectionOf(camera),
+                    context.plan.sortBins, context.drawOrder);
+    // Once a frame: every light batch draws with the same order.
+    context.resources.strandPass.setDrawOrder(context.drawOrder);
+}
+
+// preparedStrands -> strands: what changed since the last frame, and the
+// materials when they changed.
+void upload(FrameContext& context) {
+    FrameInputs& inputs = context.inputs;
+    gl::StrandGeometry& strands = context.resources.strands;
+    strands.reserve(inputs.uploads.capacityNeeded);
+    for (const StrandWrite& write : inputs.uploads.writes) {
+        const DrawnPrim& prim = inputs.drawn[write.prim];
+        const gl::SegmentRange& range = inputs.uploads.ranges[write.prim];
+        if (write.materialOnly)
+            strands.writeMaterial(range.first, range.count, prim.material);
+        else
+            strands.write(range.first, *prim.curves, prim.primAndInstance, prim.material);
+    }
+    if (inputs.materials)
+        context.resources.materials.update(inputs.materials->materials, inputs.materials->parameterPoints,
+                                           inputs.materials->tables, inputs.materials->tableWidth,
+                                           inputs.materials->tableHeight);
+}
+
+void clear(FrameContext& context) {
+    const CameraView& camera = *context.inputs.camera;
+    // Blended frames take their depth from the strand pass's min-blended
+    // nearest depth (or the exact resolve), not from the depth buffer.
+    const gl::RenderTargetImages images{context.inputs.idsRequested,
+                                        context.plan.transparency != TransparencyPath::Opaque,
+                                        context.inputs.samples};
+    context.target = &context.resources.frameTarget(camera.imageWidth, camera.imageHeight, images);
+    // Empty pixels are transparent black: pre-multiplied "nothing".
+    context.target->bindAndClear(glm::vec4(0.0f));
+}
+
+// Draws the strands with the lights of one batch into `target`, as the plan
+// says. Exact transparency over its memory budget warns, falls back to the
+// finest bin sort (this batch and those after it) and draws again.
+void drawStrands(FrameContext& context, gl::RenderTarget& target, size_t batch) {
+    FrameInputs& inputs = context.inputs;
+    RenderPlan& plan = context.plan;
+    FrameResources& resources = context.resources;
+    target.bindAndClear(glm::vec4(0.0f));
+    resources.materials.bind();
+    resources.strandPass.setUniforms(inputs.frame, lightUniforms(plan, batch));
+    if (plan.transparency == TransparencyPath::Exact) {
+        const CameraView& camera = *inputs.camera;
+        uint64_t fragments = resources.fragmentLists.render(resources.strands, inputs.uploads.drawRanges,
+                                                            camera.imageWidth, camera.imageHeight,
+                                                            inputs.fragmentListCapacity, inputs.frame.maxSegmentsPerSpan);
+        context.result.stats.fragments = fragments;
+        if (fragments <= inputs.fragmentListCapacity) return;
+        const int memoryMB = inputs.settings->getInt("exactMemoryMB");
+        context.diagnostics.warn("render", fmt::format("exact transparency needs {} MB for {} fragments, more than "
+                                                       "exactMemoryMB={}; rendered with binSorted (1024 bins) instead",
+                                                       (fragments * gl::kFragmentNodeBytes + (1 << 20) - 1) >> 20,
+                                                       fragments, memoryMB));
+        plan.fallBackToBinSorted(1024, inputs.idsRequested);
+        context.result.stats.fallback = "exact -> binSorted (1024 bins): fragment lists over exactMemoryMB";
+        sortAndSend(context);
+        inputs.frame.orderedDraw = 1;
+        target.bindAndClear(glm::vec4(0.0f));
+        resources.strandPass.setUniforms(inputs.frame, lightUniforms(plan, batch));
+    }
+    resources.strandPass.draw(resources.strands, inputs.uploads.drawRanges,
+                              plan.transparency == TransparencyPath::Opaque ? gl::StrandBlending::Opaque
+                                                                            : gl::StrandBlending::PremultipliedOver);
+}
+
+void ids(FrameContext& context) {
+    gl::FrameUniforms idsFrame = context.inputs.frame;
+    idsFrame.drawMode = 2;
+    idsFrame.orderedDraw = 0;
+    context.resources.strandPass.setUniforms(idsFrame, lightUniforms(context.plan, 0));
+    context.resources.strandPass.draw(context.resources.strands, context.inputs.uploads.drawRanges,
+                                      gl::StrandBlending::IdsOnly);
+}
+
+// "lightBatch k": the strands again with lights of batch k - 1 (0-based),
+// added onto the frame's resolved colour.
+void lightBatch(FrameContext& context, size_t batch) {
+    const CameraView& camera = *context.inputs.camera;
+    gl::RenderTarget& batchTarget =
+        context.resources.lightBatchTarget(camera.imageWidth, camera.imageHeight, context.inputs.samples);
+    drawStrands(context, batchTarget, batch);
+    batchTarget.resolve();
+    context.resources.lightBatchAccumulation.add(*context.target, batchTarget);
+}
+
+void readback(FrameContext& context) {
+    const CameraView& camera = *context.inputs.camera;
+    RenderResult& result = context.result;
+    result.color = Image(camera.imageWidth, camera.imageHeight, 4);
+    result.color.pixels = context.target->readColor();
+    result.depth = Image(camera.imageWidth, camera.imageHeight, 1);
+    result.depth.pixels = context.target->readDepth();
+    if (context.inputs.idsRequested) {
+        result.primIds = context.target->readIds(0);
+        result.instanceIds = context.target->readIds(1);
+        result.elementIds = context.target->readIds(2);
+    }
+}
+
+}  // namespace
+
+bool isCpuPass(const FramePass& pass) { return pass.name == "sort"; }
+
+void runFramePass(const FramePass& pass, FrameContext& context) {
+    const std::string& name = pass.name;
+    if (name == "upload") return upload(context);
+    if (name == "sort") return sortAndSend(context);
+    if (name == "clear") return clear(context);
+    if (name == "strands") return drawStrands(context, *context.target, 0);
+    if (name == "ids") return ids(context);
+    if (name == "resolve") return context.target->resolve();
+    if (name.rfind("lightBatch ", 0) == 0) return lightBatch(context, std::stoul(name.substr(11)) - 1);
+    if (name == "readback") return readback(context);
+    throw std::logic_error("frame graph: no pass called '" + name + "'");
+}
+
+}  // namespace hdhair

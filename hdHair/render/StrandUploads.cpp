@@ -1,0 +1,87 @@
+#include "hdHair/render/StrandUploads.h"
+
+#include <set>
+
+namespace hdhair {
+
+namespace {
+
+// Holes are packed away once they are more than the live segments and more
+// than this many segments (64 K segments are 8 MB of control points): below
+// that, a full upload costs more than the memory it would save.
+constexpr uint64_t kHolesWorthPacking = 65536;
+
+}  // namespace
+
+void StrandUploads::reset() {
+    resident_.clear();
+    end_ = 0;
+}
+
+StrandUploadPlan StrandUploads::update(const std::vector<DrawnPrim>& prims) {
+    StrandUploadPlan plan;
+    plan.ranges.resize(prims.size());
+
+    // Drop prims that are no longer drawn: their ranges become holes.
+    std::set<std::string> drawn;
+    for (const DrawnPrim& prim : prims) drawn.insert(prim.path);
+    for (auto it = resident_.begin(); it != resident_.end();)
+        it = drawn.count(it->first) ? std::next(it) : resident_.erase(it);
+
+    for (size_t i = 0; i < prims.size(); ++i) {
+        const DrawnPrim& prim = prims[i];
+        const uint64_t count = prim.curves->segmentCount();
+        auto found = resident_.find(prim.path);
+        if (found != resident_.end() && found->second.curves == prim.curves &&
+            found->second.primAndInstance == prim.primAndInstance) {
+            Resident& resident = found->second;
+            if (resident.material != prim.material) {
+                resident.material = prim.material;
+                plan.writes.push_back({i, true});
+            }
+            plan.ranges[i] = resident.range;
+            continue;
+        }
+        Resident& resident = resident_[prim.path];
+        if (found == resident_.end() || resident.range.count != count) {
+            resident.range = gl::SegmentRange{end_, count};  // a new range at the end
+            end_ += count;
+        }
+        resident.curves = prim.curves;
+        resident.primAndInstance = prim.primAndInstance;
+        resident.material = prim.material;
+        plan.ranges[i] = resident.range;
+        plan.writes.push_back({i, false});
+        plan.writtenSegments += count;
+    }
+
+    for (const auto& [path, resident] : resident_) plan.liveSegments += resident.range.count;
+    if (end_ - plan.liveSegments > plan.liveSegments && end_ - plan.liveSegments > kHolesWorthPacking) {
+        // Pack every drawn prim again, in draw order.
+        end_ = 0;
+        plan.writes.clear();
+        plan.writtenSegments = 0;
+        for (size_t i = 0; i < prims.size(); ++i) {
+            Resident& resident = resident_.at(prims[i].path);
+            resident.range = gl::SegmentRange{end_, resident.range.count};
+            end_ += resident.range.count;
+            plan.ranges[i] = resident.range;
+            plan.writes.push_back({i, false});
+            plan.writtenSegments += resident.range.count;
+        }
+        plan.repacked = true;
+    }
+    plan.holeSegments = end_ - plan.liveSegments;
+    plan.capacityNeeded = end_;
+
+    for (const gl::SegmentRange& range : plan.ranges) {
+        if (range.count == 0) continue;
+        if (!plan.drawRanges.empty() && plan.drawRanges.back().first + plan.drawRanges.back().count == range.first)
+            plan.drawRanges.back().count += range.count;
+        else
+            plan.drawRanges.push_back(range);
+    }
+    return plan;
+}
+
+}  // namespace hdhair

@@ -1,0 +1,66 @@
+#pragma once
+// Which GPU segments each drawn prim owns (gl::StrandGeometry), and what a
+// frame must send: a prim whose prepared curves and ids are those already on
+// the GPU sends nothing, one whose material index alone changed rewrites its
+// materials, a changed prim of the same size rewrites its own range, and a
+// new or resized prim takes a range at the end. Ranges freed by removed or
+// resized prims stay as holes until they outweigh the live segments; then
+// every prim is packed again in draw order (one full upload).
+//
+// Pure bookkeeping, no GL: the upload pass carries out the writes.
+
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <glm/vec2.hpp>
+
+#include "hdHair/curves/PreparedCurves.h"
+#include "hdHair/gl/SegmentRange.h"
+
+namespace hdhair {
+
+struct DrawnPrim {
+    std::string path;  // engine prim path (an instance has its own)
+    std::shared_ptr<const PreparedCurves> curves;
+    glm::ivec2 primAndInstance{-1, 0};
+    int32_t material = 0;
+};
+
+struct StrandWrite {
+    size_t prim = 0;            // index into the frame's drawn prims
+    bool materialOnly = false;  // the segments are there; only their material changed
+};
+
+struct StrandUploadPlan {
+    std::vector<gl::SegmentRange> ranges;      // per drawn prim, in the same order
+    std::vector<StrandWrite> writes;      // what to send this frame
+    uint64_t capacityNeeded = 0;          // segments the GPU buffers must hold
+    uint64_t writtenSegments = 0;         // geometry sent (material-only writes not counted)
+    uint64_t liveSegments = 0, holeSegments = 0;
+    bool repacked = false;
+    // The ranges to draw when order does not matter: drawn prims' ranges in
+    // draw order, adjacent ones merged.
+    std::vector<gl::SegmentRange> drawRanges;
+};
+
+class StrandUploads {
+public:
+    StrandUploadPlan update(const std::vector<DrawnPrim>& prims);
+    // Forgets everything (the GPU buffers were recreated).
+    void reset();
+
+private:
+    struct Resident {
+        std::shared_ptr<const PreparedCurves> curves;
+        glm::ivec2 primAndInstance{-1, 0};
+        int32_t material = 0;
+        gl::SegmentRange range;
+    };
+    std::map<std::string, Resident> resident_;
+    uint64_t end_ = 0;  // one past the last allocated segment
+};
+
+}  // namespace hdhair

@@ -1,0 +1,110 @@
+// StrandUploads sends only what changed: each drawn prim keeps its GPU range
+// while it is unchanged, rewrites it in place when it changes size-for-size,
+// moves to the end when it grows or shrinks, and holes are packed away once
+// they outweigh the live segments.
+
+#include <gtest/gtest.h>
+
+#include "hdHair/render/StrandUploads.h"
+
+using namespace hdhair;
+
+namespace {
+
+std::shared_ptr<const PreparedCurves> curvesOf(size_t segments) {
+    auto curves = std::make_shared<PreparedCurves>();
+    curves->segmentCurve.assign(segments, 0);
+    curves->controlPoints.resize(4 * segments);
+    return curves;
+}
+
+DrawnPrim drawn(const std::string& path, std::shared_ptr<const PreparedCurves> curves, int material = 0) {
+    return DrawnPrim{path, std::move(curves), glm::ivec2(1, 0), material};
+}
+
+}  // namespace
+
+TEST(StrandUploads, AnUnchangedFrameSendsNothing) {
+    StrandUploads uploads;
+    auto a = curvesOf(10), b = curvesOf(20);
+    StrandUploadPlan first = uploads.update({drawn("/a", a), drawn("/b", b)});
+    EXPECT_EQ(first.writtenSegments, 30u);
+    ASSERT_EQ(first.writes.size(), 2u);
+    EXPECT_EQ(first.ranges[0], (gl::SegmentRange{0, 10}));
+    EXPECT_EQ(first.ranges[1], (gl::SegmentRange{10, 20}));
+    EXPECT_EQ(first.drawRanges.size(), 1u);  // adjacent: one draw range
+
+    StrandUploadPlan second = uploads.update({drawn("/a", a), drawn("/b", b)});
+    EXPECT_TRUE(second.writes.empty());
+    EXPECT_EQ(second.writtenSegments, 0u);
+    EXPECT_EQ(second.ranges, first.ranges);
+}
+
+TEST(StrandUploads, AMaterialChangeRewritesOnlyMaterials) {
+    StrandUploads uploads;
+    auto a = curvesOf(10);
+    uploads.update({drawn("/a", a, 0)});
+    StrandUploadPlan plan = uploads.update({drawn("/a", a, 3)});
+    ASSERT_EQ(plan.writes.size(), 1u);
+    EXPECT_TRUE(plan.writes[0].materialOnly);
+    EXPECT_EQ(plan.writtenSegments, 0u);
+}
+
+TEST(StrandUploads, AChangedPrimRewritesItsOwnRangeOrMovesToTheEnd) {
+    StrandUploads uploads;
+    auto a = curvesOf(10), b = curvesOf(20);
+    uploads.update({drawn("/a", a), drawn("/b", b)});
+
+    // Same size: in place, nothing else sent.
+    StrandUploadPlan same = uploads.update({drawn("/a", curvesOf(10)), drawn("/b", b)});
+    ASSERT_EQ(same.writes.size(), 1u);
+    EXPECT_EQ(same.writes[0].prim, 0u);
+    EXPECT_EQ(same.ranges[0], (gl::SegmentRange{0, 10}));
+    EXPECT_EQ(same.writtenSegments, 10u);
+
+    // Grown: a new range at the end, the old one a hole; b stays.
+    StrandUploadPlan grown = uploads.update({drawn("/a", curvesOf(15)), drawn("/b", b)});
+    EXPECT_EQ(grown.ranges[0], (gl::SegmentRange{30, 15}));
+    EXPECT_EQ(grown.ranges[1], (gl::SegmentRange{10, 20}));
+    EXPECT_EQ(grown.writtenSegments, 15u);
+    EXPECT_EQ(grown.holeSegments, 10u);
+    EXPECT_EQ(grown.capacityNeeded, 45u);
+    // Draw order follows the drawn prims, not the GPU layout.
+    ASSERT_EQ(grown.drawRanges.size(), 2u);
+    EXPECT_EQ(grown.drawRanges[0], (gl::SegmentRange{30, 15}));
+    EXPECT_EQ(grown.drawRanges[1], (gl::SegmentRange{10, 20}));
+}
+
+TEST(StrandUploads, RemovedPrimsLeaveHolesUntilTheyOutweighTheLiveSegments) {
+    StrandUploads uploads;
+    auto big = curvesOf(100000), small = curvesOf(1000);
+    uploads.update({drawn("/big", big), drawn("/small", small)});
+    // Dropping /big leaves 100,000 free segments against 1,000 live: packed.
+    StrandUploadPlan packed = uploads.update({drawn("/small", small)});
+    EXPECT_TRUE(packed.repacked);
+    EXPECT_EQ(packed.ranges[0], (gl::SegmentRange{0, 1000}));
+    EXPECT_EQ(packed.writtenSegments, 1000u);
+    EXPECT_EQ(packed.holeSegments, 0u);
+
+    // A small hole is cheaper to keep than a full upload.
+    StrandUploads other;
+    auto a = curvesOf(1000), b = curvesOf(1000);
+    other.update({drawn("/a", a), drawn("/b", b)});
+    StrandUploadPlan kept = other.update({drawn("/b", b)});
+    EXPECT_FALSE(kept.repacked);
+    EXPECT_TRUE(kept.writes.empty());
+    EXPECT_EQ(kept.holeSegments, 1000u);
+    EXPECT_EQ(kept.ranges[0], (gl::SegmentRange{1000, 1000}));
+}
+
+TEST(StrandUploads, NewIdsRewriteThePrim) {
+    StrandUploads uploads;
+    auto a = curvesOf(4);
+    uploads.update({drawn("/a", a)});
+    DrawnPrim renumbered = drawn("/a", a);
+    renumbered.primAndInstance = glm::ivec2(7, 2);
+    StrandUploadPlan plan = uploads.update({renumbered});
+    ASSERT_EQ(plan.writes.size(), 1u);
+    EXPECT_FALSE(plan.writes[0].materialOnly);
+    EXPECT_EQ(plan.ranges[0], (gl::SegmentRange{0, 4}));
+}
