@@ -19,6 +19,11 @@ endforeach()
 set_target_properties(OpenImageIO::OpenImageIO PROPERTIES
   INTERFACE_INCLUDE_DIRECTORIES "${_oiio_existing_includes}")
 find_package(OpenEXR REQUIRED)                    # libopenexr-dev
+# OpenColorIO through pkg-config: Debian 12 moved OpenColorIOConfig.cmake to
+# /usr/share/cmake without its relocation, so its imported target points at
+# /include (a broken package config, as OpenImageIO's above).
+find_package(PkgConfig REQUIRED)                  # pkg-config
+pkg_check_modules(OpenColorIO REQUIRED IMPORTED_TARGET OpenColorIO>=2.1)  # libopencolorio-dev
 find_package(OpenGL REQUIRED COMPONENTS EGL)      # libegl-dev
 find_library(OSMESA_LIBRARY NAMES OSMesa REQUIRED) # libosmesa6-dev
 find_path(OSMESA_INCLUDE_DIR GL/osmesa.h REQUIRED)

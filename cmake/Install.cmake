@@ -1,6 +1,7 @@
 # What `cmake --install` deploys, in two components:
 #
-#   tools      bin/hdhair-record, bin/hdhair-convert, share/doc/hdhair/{README.md,LICENSE}
+#   tools      bin/hdhair-record, bin/hdhair-convert, share/doc/hdhair/{README.md,LICENSE},
+#              share/hdhair/ocio/config.ocio (hdhair-record's OCIO config, found beside bin/)
 #   usdPlugin  plugin/usd/plugInfo.json            (includes */resources/, as OpenUSD's own)
 #              plugin/usd/hdHairSchema/resources/  the HdHairAPI schema (no library)
 #              plugin/usd/hdHair.so, plugin/usd/hdHair/resources/plugInfo.json  (with OpenUSD)
@@ -19,6 +20,8 @@ include(GNUInstallDirs)
 install(TARGETS hdhair-record hdhair-convert RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR} COMPONENT tools)
 install(FILES ${PROJECT_SOURCE_DIR}/README.md ${PROJECT_SOURCE_DIR}/LICENSE
         DESTINATION ${CMAKE_INSTALL_DATAROOTDIR}/doc/hdhair COMPONENT tools)
+install(FILES ${PROJECT_SOURCE_DIR}/hdHair/image/ocio/config.ocio
+        DESTINATION ${CMAKE_INSTALL_DATAROOTDIR}/hdhair/ocio COMPONENT tools)
 
 install(FILES ${PROJECT_SOURCE_DIR}/cmake/install/plugInfo.json DESTINATION plugin/usd COMPONENT usdPlugin)
 install(FILES ${PROJECT_SOURCE_DIR}/schemas/HdHairAPI/plugInfo.json

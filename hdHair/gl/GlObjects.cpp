@@ -56,14 +56,15 @@ std::string infoLog(GLuint object, PFNGLGETSHADERIVPROC getObjectiv,
 
 }  // namespace
 
-Program createProgram(const std::vector<std::string>& shaderNames) {
+Program createProgram(const std::vector<std::string>& shaderNames,
+                      const std::map<std::string, std::string>& overrides) {
     Program program(glCreateProgram());
     std::vector<GLuint> shaders;
     auto release = [&] {
         for (GLuint shader : shaders) glDeleteShader(shader);
     };
     for (const std::string& name : shaderNames) {
-        std::string source = expandedShaderSource(name);
+        std::string source = expandedShaderSource(name, overrides);
         GLuint shader = glCreateShader(stageOf(name));
         shaders.push_back(shader);
         const char* text = source.c_str();

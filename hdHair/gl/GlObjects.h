@@ -2,6 +2,9 @@
 // Owning handles for GL objects, created with direct state access (GL 4.5) so
 // no binding leaks from one pass into another. Only valid on the GL thread.
 
+#include <algorithm>
+#include <cstddef>
+#include <map>
 #include <string>
 #include <utility>
 #include <vector>
@@ -56,9 +59,32 @@ VertexArray createVertexArray();
 
 // Compiles and links the named shaders from shaders/ (stage from the file
 // extension). Throws std::runtime_error with the driver's log and the file.
-Program createProgram(const std::vector<std::string>& shaderNames);
+// `overrides`: sources written at run time that replace embedded files of
+// the same name (ShaderSources.h).
+Program createProgram(const std::vector<std::string>& shaderNames,
+                      const std::map<std::string, std::string>& overrides = {});
 
 // Throws std::runtime_error naming `what` if GL has recorded an error.
 void checkGlError(const char* what);
+
+// Reads `attachment` of `framebuffer` (or its depth, GL_DEPTH_ATTACHMENT):
+// `channels` values of `type` a pixel, rows from the top of the image down
+// (GL's run bottom-up).
+template <typename Pixel>
+std::vector<Pixel> readTopDown(GLuint framebuffer, GLenum attachment, GLenum format, GLenum type, int channels,
+                               int width, int height) {
+    std::vector<Pixel> pixels(size_t(width) * size_t(height) * size_t(channels));
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, framebuffer);
+    if (attachment != GL_DEPTH_ATTACHMENT) glNamedFramebufferReadBuffer(framebuffer, attachment);
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glReadPixels(0, 0, width, height, format, type, pixels.data());
+    checkGlError("reading back the image");
+    const size_t rowSize = size_t(width) * size_t(channels);
+    for (int y = 0; y < height / 2; ++y)
+        std::swap_ranges(pixels.begin() + std::ptrdiff_t(size_t(y) * rowSize),
+                         pixels.begin() + std::ptrdiff_t(size_t(y + 1) * rowSize),
+                         pixels.begin() + std::ptrdiff_t(size_t(height - 1 - y) * rowSize));
+    return pixels;
+}
 
 }  // namespace hdhair::gl

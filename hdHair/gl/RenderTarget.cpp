@@ -110,45 +110,24 @@ void RenderTarget::bindResolvedColorForDrawing() {
     glViewport(0, 0, width_, height_);
 }
 
-namespace {
-
-// GL's rows run bottom-up; images are stored top-down.
-template <typename Pixel>
-std::vector<Pixel> readRowsTopDown(GLuint framebuffer, GLenum attachment, GLenum format, GLenum type,
-                                   int channels, int width, int height) {
-    std::vector<Pixel> pixels(size_t(width) * size_t(height) * size_t(channels));
-    glBindFramebuffer(GL_READ_FRAMEBUFFER, framebuffer);
-    if (attachment != GL_DEPTH_ATTACHMENT) glNamedFramebufferReadBuffer(framebuffer, attachment);
-    glPixelStorei(GL_PACK_ALIGNMENT, 1);
-    glReadPixels(0, 0, width, height, format, type, pixels.data());
-    checkGlError("reading back the image");
-    size_t rowSize = size_t(width) * size_t(channels);
-    for (int y = 0; y < height / 2; ++y)
-        std::swap_ranges(pixels.begin() + std::ptrdiff_t(size_t(y) * rowSize),
-                         pixels.begin() + std::ptrdiff_t(size_t(y + 1) * rowSize),
-                         pixels.begin() + std::ptrdiff_t(size_t(height - 1 - y) * rowSize));
-    return pixels;
-}
-
-}  // namespace
 
 std::vector<float> RenderTarget::readColor() const {
-    return readRowsTopDown<float>(readFramebuffer(), GL_COLOR_ATTACHMENT0 + kColorOutput, GL_RGBA, GL_FLOAT, 4,
+    return readTopDown<float>(readFramebuffer(), GL_COLOR_ATTACHMENT0 + kColorOutput, GL_RGBA, GL_FLOAT, 4,
                                   width_, height_);
 }
 
 std::vector<float> RenderTarget::readDepth() const {
     if (images_.nearestDepth)
-        return readRowsTopDown<float>(readFramebuffer(), GL_COLOR_ATTACHMENT0 + kNearestDepthOutput, GL_RED,
+        return readTopDown<float>(readFramebuffer(), GL_COLOR_ATTACHMENT0 + kNearestDepthOutput, GL_RED,
                                       GL_FLOAT, 1, width_, height_);
-    return readRowsTopDown<float>(readFramebuffer(), GL_DEPTH_ATTACHMENT, GL_DEPTH_COMPONENT, GL_FLOAT, 1, width_,
+    return readTopDown<float>(readFramebuffer(), GL_DEPTH_ATTACHMENT, GL_DEPTH_COMPONENT, GL_FLOAT, 1, width_,
                                   height_);
 }
 
 std::vector<int32_t> RenderTarget::readIds(int index) const {
     if (!images_.ids || index < 0 || index > 2)
         throw std::runtime_error("the render target has no id image " + std::to_string(index));
-    return readRowsTopDown<int32_t>(readFramebuffer(), GLenum(GL_COLOR_ATTACHMENT0 + kFirstIdOutput + index),
+    return readTopDown<int32_t>(readFramebuffer(), GLenum(GL_COLOR_ATTACHMENT0 + kFirstIdOutput + index),
                                     GL_RED_INTEGER, GL_INT, 1, width_, height_);
 }
 

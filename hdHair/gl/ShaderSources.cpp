@@ -7,7 +7,10 @@
 namespace hdhair::gl {
 namespace {
 
-const std::string& sourceOf(const std::string& name, const std::string& includedFrom) {
+const std::string& sourceOf(const std::string& name, const std::string& includedFrom,
+                            const ShaderOverrides& overrides) {
+    auto overridden = overrides.find(name);
+    if (overridden != overrides.end()) return overridden->second;
     const auto& sources = embeddedShaderSources();
     auto it = sources.find(name);
     if (it == sources.end())
@@ -17,10 +20,10 @@ const std::string& sourceOf(const std::string& name, const std::string& included
     return it->second;
 }
 
-void expandInto(const std::string& name, const std::string& includedFrom,
+void expandInto(const std::string& name, const std::string& includedFrom, const ShaderOverrides& overrides,
                 std::set<std::string>& included, std::string& out) {
     if (!included.insert(name).second) return;
-    std::istringstream lines(sourceOf(name, includedFrom));
+    std::istringstream lines(sourceOf(name, includedFrom, overrides));
     std::string line;
     int lineNumber = 0;
     while (std::getline(lines, line)) {
@@ -34,8 +37,8 @@ void expandInto(const std::string& name, const std::string& includedFrom,
             if (open == std::string::npos || close == std::string::npos)
                 throw std::runtime_error(name + ":" + std::to_string(lineNumber) +
                                          ": malformed #include");
-            expandInto(trimmed.substr(open + 1, close - open - 1),
-                       name + ":" + std::to_string(lineNumber), included, out);
+            expandInto(trimmed.substr(open + 1, close - open - 1), name + ":" + std::to_string(lineNumber),
+                       overrides, included, out);
             continue;
         }
         out += line;
@@ -45,10 +48,10 @@ void expandInto(const std::string& name, const std::string& includedFrom,
 
 }  // namespace
 
-std::string expandedShaderSource(const std::string& name) {
+std::string expandedShaderSource(const std::string& name, const ShaderOverrides& overrides) {
     std::set<std::string> included;
     std::string out;
-    expandInto(name, "", included, out);
+    expandInto(name, "", overrides, included, out);
     return out;
 }
 

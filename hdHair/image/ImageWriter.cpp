@@ -34,21 +34,11 @@ OIIO::ImageBuf toImageBuf(const Image& image) {
     return buffer;
 }
 
-// Pre-multiplied scene-linear -> un-premultiplied sRGB (8-bit formats).
-OIIO::ImageBuf toDisplaySrgb(const OIIO::ImageBuf& linear, bool keepAlpha) {
-    OIIO::ImageBuf source = linear;
-    if (!keepAlpha && linear.nchannels() == 4) {
-        // No alpha in the file: pre-multiplied colour is already "over black".
-        source = OIIO::ImageBufAlgo::channels(linear, 3, {0, 1, 2});
-    }
-    OIIO::ImageBuf encoded = OIIO::ImageBufAlgo::colorconvert(source, "linear", "sRGB", /*unpremult=*/true);
-    if (encoded.has_error() || !encoded.initialized())
-        throw std::runtime_error("converting to sRGB failed: " + encoded.geterror());
-    if (keepAlpha && linear.nchannels() == 4) {
-        // colorconvert re-premultiplies; PNG and TIFF store straight alpha.
-        encoded = OIIO::ImageBufAlgo::unpremult(encoded);
-    }
-    return encoded;
+// The chromaticities (red, green, blue, white xy) EXR files record for the
+// rendering spaces.
+std::vector<float> chromaticitiesOf(const std::string& colorSpace) {
+    if (colorSpace == kAcesCg) return {0.713f, 0.293f, 0.165f, 0.830f, 0.128f, 0.044f, 0.32168f, 0.33767f};
+    return {0.64f, 0.33f, 0.30f, 0.60f, 0.15f, 0.06f, 0.3127f, 0.3290f};  // Rec.709, D65
 }
 
 std::string temporarySibling(const fs::path& target) {
@@ -65,7 +55,28 @@ std::string temporarySibling(const fs::path& target) {
 
 bool isSupportedImagePath(const std::string& path) { return fileKindOf(path) != FileKind::Unsupported; }
 
-void writeImage(const Image& image, const std::string& path) {
+bool isSceneLinearImagePath(const std::string& path) { return fileKindOf(path) == FileKind::Exr; }
+
+bool keepsAlpha(const std::string& path) { return fileKindOf(path) != FileKind::Jpeg; }
+
+Image displayImage(const Image& linear, const DisplayTransform& display, bool overBlack) {
+    Image shown(linear.width, linear.height, 4);
+    const size_t pixels = size_t(linear.width) * size_t(linear.height);
+    for (size_t p = 0; p < pixels; ++p) {
+        const float* in = linear.pixels.data() + p * size_t(linear.channels);
+        float* out = shown.pixels.data() + 4 * p;
+        const float alpha = linear.channels == 4 ? in[3] : 1.0f;
+        // Pre-multiplied colour is already "over black"; straight colour
+        // divides alpha out where there is any.
+        const float scale = overBlack || alpha <= 0.0f ? 1.0f : 1.0f / alpha;
+        for (int c = 0; c < 3; ++c) out[c] = in[std::min(c, linear.channels - 1)] * scale;
+        out[3] = overBlack ? 1.0f : alpha;
+    }
+    display.apply(shown.pixels.data(), pixels);
+    return shown;
+}
+
+void writeImage(const Image& image, const std::string& path, const ImageColor& color) {
     FileKind kind = fileKindOf(path);
     if (kind == FileKind::Unsupported)
         throw std::runtime_error("cannot write '" + path +
@@ -77,20 +88,36 @@ void writeImage(const Image& image, const std::string& path) {
         throw std::runtime_error("cannot write '" + path + "': folder '" + target.parent_path().string() +
                                  "' does not exist");
 
-    OIIO::ImageBuf linear = toImageBuf(image);
     OIIO::ImageBuf out;
     OIIO::TypeDesc format;
     if (kind == FileKind::Exr) {
-        out = linear;
+        out = toImageBuf(image);
         format = OIIO::TypeDesc::HALF;
         out.specmod().attribute("compression", "zip");
-        out.specmod().attribute("oiio:ColorSpace", "Linear");
+        // The colour space's name (as hdHair's OCIO config names it) and,
+        // in EXR's standard attribute, its primaries and white.
+        out.specmod().attribute("colorSpace", color.colorSpace);
+        const std::vector<float> chromaticities = chromaticitiesOf(color.colorSpace);
+        out.specmod().attribute("chromaticities", OIIO::TypeDesc(OIIO::TypeDesc::FLOAT, 8), chromaticities.data());
     } else {
-        out = toDisplaySrgb(linear, kind != FileKind::Jpeg);
+        const bool overBlack = kind == FileKind::Jpeg;
+        Image shown;
+        if (color.displayed) {
+            shown = *color.displayed;
+        } else {
+            const DisplayTransform srgb = DisplayTransform::create({ColorCorrectionMode::SRGB, "", "", "", "", "",
+                                                                    color.colorSpace});
+            shown = displayImage(image, color.display ? *color.display : srgb, overBlack);
+        }
+        out = toImageBuf(shown);
+        if (overBlack) out = OIIO::ImageBufAlgo::channels(out, 3, {0, 1, 2});
         format = OIIO::TypeDesc::UINT8;
-        out.specmod().attribute("oiio:ColorSpace", "sRGB");
-        if (kind != FileKind::Jpeg) out.specmod().attribute("oiio:UnassociatedAlpha", 1);
-        if (kind == FileKind::Jpeg) out.specmod().attribute("CompressionQuality", 95);
+        if (!color.display || color.display->mode() == ColorCorrectionMode::SRGB)
+            out.specmod().attribute("oiio:ColorSpace", "sRGB");
+        else
+            out.specmod().attribute("hdhair:displayTransform", color.display->summary());
+        if (!overBlack) out.specmod().attribute("oiio:UnassociatedAlpha", 1);
+        if (overBlack) out.specmod().attribute("CompressionQuality", 95);
     }
     out.set_write_format(format);
 

@@ -2,23 +2,44 @@
 // Writes rendered images through OpenImageIO, the format chosen by the file
 // extension:
 // - .exr: half float RGBA, scene-linear, pre-multiplied alpha (EXR's own
-//   convention), ZIP compressed;
-// - .png, .tif/.tiff: 8-bit sRGB-encoded RGBA (alpha un-premultiplied, as
-//   those formats expect);
-// - .jpg/.jpeg: 8-bit sRGB RGB, composited over black (no alpha channel).
+//   convention), ZIP compressed, with its colour space's name and
+//   chromaticities in the metadata;
+// - .png, .tif/.tiff: 8-bit RGBA through the display transform (alpha
+//   un-premultiplied first, as those formats expect);
+// - .jpg/.jpeg: 8-bit RGB through the display transform, composited over
+//   black (no alpha channel).
+// Without a display transform, display formats get the sRGB curve.
 // Files are written atomically: to a temporary file in the same folder, then
 // renamed over the target, so a reader never sees a half-written image and a
 // failed render leaves any previous file in place.
 
 #include <string>
 
+#include "hdHair/image/DisplayTransform.h"
 #include "hdHair/image/Image.h"
 
 namespace hdhair {
 
+struct ImageColor {
+    std::string colorSpace = kLinearRec709;     // the linear image's space (lin_rec709 or ACEScg)
+    const DisplayTransform* display = nullptr;  // for display formats; nullptr: sRGB
+    // The display image, when it was made elsewhere (the GPU path): used as
+    // it is instead of applying `display`.
+    const Image* displayed = nullptr;
+};
+
 // Throws std::runtime_error naming the path for an unsupported extension, a
 // missing folder or a failed write.
-void writeImage(const Image& image, const std::string& path);
+void writeImage(const Image& linear, const std::string& path, const ImageColor& color = {});
+
+// True for scene-linear formats (.exr), which no display transform touches.
+bool isSceneLinearImagePath(const std::string& path);
+// True when the format keeps alpha (its display image is un-premultiplied);
+// false for JPEG, whose display image is the colour over black.
+bool keepsAlpha(const std::string& path);
+// The display image a display format stores: `linear` (pre-multiplied)
+// un-premultiplied, or over black when `overBlack`, through `display`.
+Image displayImage(const Image& linear, const DisplayTransform& display, bool overBlack);
 
 // True for the extensions writeImage() accepts.
 bool isSupportedImagePath(const std::string& path);

@@ -148,6 +148,15 @@ void readback(FrameContext& context) {
     }
 }
 
+// The display image from the frame's resolved colour, on the GPU.
+void displayTransform(FrameContext& context) {
+    const CameraView& camera = *context.inputs.camera;
+    context.result.display = Image(camera.imageWidth, camera.imageHeight, 4);
+    context.result.display.pixels =
+        context.resources.displayTransform.run(*context.inputs.gpuDisplay, context.target->resolvedColorTexture(),
+                                               camera.imageWidth, camera.imageHeight, context.inputs.displayOverBlack);
+}
+
 }  // namespace
 
 bool isCpuPass(const FramePass& pass) { return pass.name == "sort"; }
@@ -162,6 +171,7 @@ void runFramePass(const FramePass& pass, FrameContext& context) {
     if (name == "resolve") return context.target->resolve();
     if (name.rfind("lightBatch ", 0) == 0) return lightBatch(context, std::stoul(name.substr(11)) - 1);
     if (name == "readback") return readback(context);
+    if (name == "displayTransform") return displayTransform(context);
     throw std::logic_error("frame graph: no pass called '" + name + "'");
 }
 

@@ -11,6 +11,7 @@
 #include <glm/vec4.hpp>
 
 #include "hdHair/gl/UniformBlocks.h"
+#include "hdHair/image/DisplayShader.h"
 #include "hdHair/render/BinSort.h"
 #include "hdHair/render/CameraView.h"
 #include "hdHair/render/RenderPlan.h"
@@ -41,6 +42,8 @@ struct FrameInputs {
     const CameraView* camera = nullptr;
     const RenderSettings* settings = nullptr;
     bool idsRequested = false;
+    const DisplayShader* gpuDisplay = nullptr;  // the displayTransform pass's shader
+    bool displayOverBlack = false;
     std::vector<DrawnPrim> drawn;            // visible prims, in draw order
     StrandUploadPlan uploads;                // their GPU ranges and what to send
     std::vector<SortSpan> sortSpans;         // their segments for the bin sort

@@ -7,6 +7,7 @@
 
 #include <memory>
 
+#include "hdHair/gl/DisplayTransformPass.h"
 #include "hdHair/gl/FragmentListPass.h"
 #include "hdHair/gl/HairMaterialTable.h"
 #include "hdHair/gl/LightBatchAccumulation.h"
@@ -29,6 +30,7 @@ struct FrameResources {
     gl::LightBatchAccumulation lightBatchAccumulation;
     gl::HairMaterialTable materials;
     gl::StrandGeometry strands;
+    gl::DisplayTransformPass displayTransform;
     int maxSamples = 0;  // the driver's GL_MAX_SAMPLES
 
 private:

@@ -91,7 +91,7 @@ void RenderPlan::fallBackToBinSorted(uint32_t bins, bool idsRequested) {
 nlohmann::json RenderPlan::toJson() const { return graph.toJson(); }
 
 RenderPlan makeRenderPlan(const Scene& scene, const RenderSettings& settings, const CameraView& camera,
-                          const StrandSummary& strands, bool idsRequested) {
+                          const StrandSummary& strands, bool idsRequested, bool displayOnGpu) {
     RenderPlan plan;
     std::vector<const LightPrim*> stageLights;
     const LightPrim* hostCameraLight = nullptr;
@@ -229,6 +229,10 @@ RenderPlan makeRenderPlan(const Scene& scene, const RenderSettings& settings, co
 
     graph.add(FramePass{"readback", frameImages, {"aovs"}, true, "the frame's images to the CPU"});
     graph.output("aovs");
+    graph.add(FramePass{"displayTransform", {"color"}, {"displayImage"}, displayOnGpu,
+                        displayOnGpu ? "the display image through the display transform's GLSL, on the GPU"
+                                     : "no display image asked of the GPU (display transforms run on the CPU)"});
+    if (displayOnGpu) graph.output("displayImage");
     graph.compile();
     return plan;
 }

@@ -49,6 +49,7 @@ struct StrandSummary {
 //   lightBatch k  strands[, drawOrder], color -> color   lights of batch k (k >= 2)
 //   meshes        (not drawn yet)
 //   readback      color, depth[, ids] -> aovs       the frame's images, to the CPU
+//   displayTransform  color -> displayImage         the display image on the GPU, when asked for
 struct RenderPlan {
     FrameGraph graph;
     ShadingLights lights;       // the stage's lights, plus the camera light when used
@@ -72,7 +73,8 @@ struct RenderPlan {
 
 // idsRequested: a host asked for primId/instanceId/elementId. Depth is always
 // produced; with blending, by the strand pass (NearestStrandRule.h).
+// displayOnGpu: the frame also delivers its display image, made on the GPU.
 RenderPlan makeRenderPlan(const Scene& scene, const RenderSettings& settings, const CameraView& camera,
-                          const StrandSummary& strands, bool idsRequested = false);
+                          const StrandSummary& strands, bool idsRequested = false, bool displayOnGpu = false);
 
 }  // namespace hdhair

@@ -280,11 +280,13 @@ RenderResult Renderer::render(const Scene& scene, const CameraView& camera, cons
                                             curves.segmentCount(), inputs.uploads.ranges[i].first});
     }
 
-    result.plan = makeRenderPlan(scene, settings, camera, summary, outputs.ids);
+    result.plan = makeRenderPlan(scene, settings, camera, summary, outputs.ids, outputs.gpuDisplay != nullptr);
     RenderPlan& plan = result.plan;
     inputs.camera = &camera;
     inputs.settings = &settings;
     inputs.idsRequested = outputs.ids;
+    inputs.gpuDisplay = outputs.gpuDisplay;
+    inputs.displayOverBlack = outputs.displayOverBlack;
     inputs.frame = frameUniforms(camera, settings, plan);
     inputs.fragmentListCapacity = size_t(settings.getInt("exactMemoryMB")) * 1024 * 1024 / gl::kFragmentNodeBytes;
     const gl::PassTiming timing = settings.getBool("passTimings") ? passTiming_ : gl::PassTiming::Off;

@@ -23,6 +23,7 @@
 #include "hdHair/gl/GlContext.h"
 #include "hdHair/gl/PassTimer.h"
 #include "hdHair/render/HairMaterial.h"
+#include "hdHair/image/DisplayShader.h"
 #include "hdHair/image/Image.h"
 #include "hdHair/render/CameraView.h"
 #include "hdHair/render/FramePasses.h"
@@ -51,6 +52,11 @@ struct RenderOutputs {
     // primId, instanceId and elementId images (for Hydra's picking and
     // selection). Off by default: id attachments are made only when asked for.
     bool ids = false;
+    // The display image made on the GPU through this transform
+    // (RenderResult::display), un-premultiplied, or over black for formats
+    // without alpha. nullptr: none (hdhair-record applies it on the CPU).
+    const DisplayShader* gpuDisplay = nullptr;
+    bool displayOverBlack = false;
 };
 
 struct RenderResult {
@@ -62,6 +68,8 @@ struct RenderResult {
     // With RenderOutputs::ids: per pixel, rows from the top down; -1 where
     // empty. The same fragment as depth, on every path.
     std::vector<int32_t> primIds, instanceIds, elementIds;
+    // With RenderOutputs::gpuDisplay: RGBA display code values, rows from the top down.
+    Image display;
     RenderPlan plan;
     RenderStats stats;
 };

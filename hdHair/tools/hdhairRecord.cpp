@@ -23,6 +23,7 @@
 #include "hdHair/base/Diagnostics.h"
 #include "hdHair/base/InputError.h"
 #include "hdHair/gl/GlContext.h"
+#include "hdHair/image/DisplayTransform.h"
 #include "hdHair/image/ImageWriter.h"
 #include "hdHair/render/CameraView.h"
 #include "hdHair/render/Renderer.h"
@@ -53,7 +54,11 @@ struct Options {
     int imageWidth = 960;
     bool defaultTime = false, verbose = false, explain = false;
     std::vector<std::string> settings;
+    // Colour management, as usdrecord's --colorCorrectionMode, with OCIO's choices.
+    std::string colorCorrectionMode = "sRGB", ocioConfig, ocioDisplay, ocioView, ocioColorSpace, ocioLook;
+    std::string displayTransformOn = "cpu";
 };
+
 
 #if HDHAIR_WITH_USD
 // The plugin's plugInfo.json folder: $HDHAIR_PLUGIN_RESOURCES when set, else
@@ -76,6 +81,57 @@ std::string describeTime(double time) {
 
 double millisecondsSince(Clock::time_point start) {
     return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
+
+// The display transform display formats go through (EXR stays scene-linear).
+// Throws std::invalid_argument with one line for an unknown mode, config or
+// name (DisplayTransform::create lists the valid ones).
+DisplayTransform displayTransformFor(const Options& options) {
+    DisplayTransformOptions display;
+    if (!parseColorCorrectionMode(options.colorCorrectionMode, &display.mode))
+        throw std::invalid_argument("--colorCorrectionMode must be disabled, sRGB or openColorIO, not '" +
+                                    options.colorCorrectionMode + "'");
+    const bool anyOcio = !options.ocioConfig.empty() || !options.ocioDisplay.empty() || !options.ocioView.empty() ||
+                         !options.ocioLook.empty();
+    if (anyOcio && display.mode != ColorCorrectionMode::OpenColorIO)
+        throw std::invalid_argument("--ocioConfig, --ocioDisplay, --ocioView and --ocioLook need "
+                                    "--colorCorrectionMode openColorIO");
+    if (options.displayTransformOn != "cpu" && options.displayTransformOn != "gpu")
+        throw std::invalid_argument("--displayTransformOn must be cpu or gpu, not '" + options.displayTransformOn + "'");
+    display.config = options.ocioConfig;
+    display.display = options.ocioDisplay;
+    display.view = options.ocioView;
+    display.look = options.ocioLook;
+    display.colorSpace = options.ocioColorSpace;
+    return DisplayTransform::create(display);
+}
+
+// Writes a frame's image: EXR scene-linear, display formats through the
+// display transform (made on the GPU already in `gpuDisplayed`, or here on
+// the CPU, timed). Adds what it did to `frameStats`.
+void writeFrameImage(const Image& linear, const Image* gpuDisplayed, const DisplayTransform& display,
+                     const std::string& outputPath, std::vector<PassTiming>& passes, nlohmann::json& frameStats) {
+    ImageColor color;
+    color.display = &display;
+    const bool sceneLinear = isSceneLinearImagePath(outputPath);
+    Image shown;
+    if (!sceneLinear) {
+        if (gpuDisplayed) {
+            color.displayed = gpuDisplayed;
+        } else {
+            Clock::time_point start = Clock::now();
+            shown = displayImage(linear, display, !keepsAlpha(outputPath));
+            passes.push_back({"displayTransform (cpu)", millisecondsSince(start)});
+            color.displayed = &shown;
+        }
+    }
+    Clock::time_point writeStart = Clock::now();
+    writeImage(linear, outputPath, color);
+    passes.push_back({"writeImage", millisecondsSince(writeStart)});
+    nlohmann::json colorStats = display.describe();
+    colorStats["output"] = sceneLinear ? "scene-linear" : "display";
+    if (!sceneLinear) colorStats["on"] = gpuDisplayed ? "gpu" : "cpu";
+    frameStats["color"] = colorStats;
 }
 
 void writeTextAtomically(const std::string& path, const std::string& text) {
@@ -129,8 +185,13 @@ std::vector<std::string> settingAssignments(const Options& options) {
 
 // The OpenUSD path: UsdStage, UsdImagingGL and the hdHair plugin, as
 // usdrecord --renderer HdHair --disableGpu renders.
-int runThroughUsdImaging(const Options& options, const usda::SceneReadOptions& purposes) {
+int runThroughUsdImaging(const Options& options, const usda::SceneReadOptions& purposes,
+                         const DisplayTransform& display) {
 #if HDHAIR_WITH_USD
+    if (options.displayTransformOn == "gpu")
+        std::fprintf(stderr, "hdhair-record: warning: --displayTransformOn gpu needs --reader embedded (through "
+                             "OpenUSD the plugin renders in its own context); the display transform runs on the "
+                             "CPU\n");
     Complexity complexity = Complexity::Low;
     parseComplexity(options.complexity, &complexity);
     nlohmann::json allStats = nlohmann::json::array();
@@ -154,13 +215,18 @@ int runThroughUsdImaging(const Options& options, const usda::SceneReadOptions& p
         double milliseconds = millisecondsSince(start);
         std::string outputPath =
             std::isfinite(time) ? expandFramePlaceholder(options.outputPath, time) : options.outputPath;
-        writeImage(result.color, outputPath);
         // The plugin's own report of the frame (its passes and plan), as the
         // embedded path prints it; the total also covers opening the stage
         // and Hydra's sync.
         nlohmann::json frameStats = nlohmann::json::object();
         if (!result.frameStatsJson.empty()) frameStats = nlohmann::json::parse(result.frameStatsJson, nullptr, false);
         if (frameStats.is_discarded()) frameStats = nlohmann::json::object();
+        // The plugin's colour AOV is scene-linear (hosts correct it once);
+        // the display transform runs here, on the CPU.
+        std::vector<PassTiming> writing;
+        writeFrameImage(result.color, nullptr, display, outputPath, writing, frameStats);
+        for (const PassTiming& pass : writing)
+            frameStats["passes"].push_back({{"name", pass.name}, {"milliseconds", pass.milliseconds}});
         if (options.explain && !result.plan.empty())
             std::printf("hdhair-record: plan (%s):\n%s", describeTime(time).c_str(), result.plan.c_str());
         if (options.verbose || options.explain) {
@@ -190,6 +256,7 @@ int runThroughUsdImaging(const Options& options, const usda::SceneReadOptions& p
 #else
     (void)options;
     (void)purposes;
+    (void)display;
     throw std::invalid_argument("--reader usd needs hdHair built with OpenUSD (see README, 'Hydra plugin'); "
                                 "this build has only --reader embedded");
 #endif
@@ -209,7 +276,8 @@ int run(const Options& options) {
     if (!options.gl.empty() && !gl::parseGlBackend(options.gl, &backend))
         throw std::invalid_argument("--gl must be egl or osmesa");
     usda::SceneReadOptions readOptions = purposesFrom(options.purposes);
-    if (options.reader == "usd") return runThroughUsdImaging(options, readOptions);
+    const DisplayTransform display = displayTransformFor(options);
+    if (options.reader == "usd") return runThroughUsdImaging(options, readOptions, display);
     if (options.reader != "embedded") throw std::invalid_argument("--reader must be usd or embedded");
 
     Diagnostics diagnostics;
@@ -228,6 +296,8 @@ int run(const Options& options) {
                                     " frames needs a '#' placeholder in the output name, e.g. out.####.png");
 
     Renderer renderer(backend);
+    DisplayShader displayShader;
+    if (options.displayTransformOn == "gpu") displayShader = display.shader();
     if (options.verbose)
         std::printf("hdhair-record: GL %s (%s); read %s in %.1f ms\n", gl::toString(backend),
                     renderer.glDescription().c_str(), options.usdFile.c_str(), readMilliseconds);
@@ -263,16 +333,20 @@ int run(const Options& options) {
             cameraName = "framing camera (" + settings.getToken("framing") + ")";
         }
 
-        RenderResult result = renderer.render(scene, camera, settings, diagnostics);
+        const bool gpuDisplay = options.displayTransformOn == "gpu" && !isSceneLinearImagePath(options.outputPath);
+        RenderOutputs outputs;
+        outputs.gpuDisplay = gpuDisplay ? &displayShader : nullptr;
+        outputs.displayOverBlack = !keepsAlpha(options.outputPath);
+        RenderResult result = renderer.render(scene, camera, settings, diagnostics, outputs);
         result.stats.camera = cameraName;
         result.stats.time = time;
         result.stats.passes.insert(result.stats.passes.begin(), PassTiming{"readScene", sceneMilliseconds});
 
         std::string outputPath =
             std::isfinite(time) ? expandFramePlaceholder(options.outputPath, time) : options.outputPath;
-        Clock::time_point writeStart = Clock::now();
-        writeImage(result.color, outputPath);
-        result.stats.passes.push_back({"writeImage", millisecondsSince(writeStart)});
+        nlohmann::json frameColor;
+        writeFrameImage(result.color, gpuDisplay ? &result.display : nullptr, display, outputPath,
+                        result.stats.passes, frameColor);
 
         if (options.explain)
             std::printf("hdhair-record: plan (%s):\n%s", describeTime(time).c_str(),
@@ -289,6 +363,7 @@ int run(const Options& options) {
         }
         nlohmann::json frameStats = result.stats.toJson();
         frameStats["output"] = outputPath;
+        frameStats["color"] = frameColor["color"];
         allStats.push_back(frameStats);
     }
     if (printed > kWarningsPrinted)
@@ -315,7 +390,8 @@ int main(int argc, char** argv) {
                  "hdhair-record"};
     app.add_option("usdFile", options.usdFile, "The stage to render (.usda)")->required();
     app.add_option("outputImagePath", options.outputPath,
-                   "Output image (.exr: linear half float; .png/.tif/.jpg: 8-bit sRGB). A '#' run is replaced "
+                   "Output image (.exr: scene-linear half float; .png/.tif/.jpg: 8-bit through the display "
+                   "transform). A '#' run is replaced "
                    "by the frame number")
         ->required();
     app.add_option("--camera", options.camera,
@@ -339,6 +415,21 @@ int main(int argc, char** argv) {
     app.add_option("--reader", options.reader,
                    "How the stage is read: usd (OpenUSD, UsdImaging and the HdHair plugin, when built with "
                    "OpenUSD) or embedded (hdHair's own .usda reader)")
+        ->capture_default_str();
+    app.add_option("--colorCorrectionMode,--color", options.colorCorrectionMode,
+                   "Display transform of .png/.tif/.jpg outputs: disabled, sRGB or openColorIO (EXR stays "
+                   "scene-linear)")
+        ->capture_default_str();
+    app.add_option("--ocioConfig", options.ocioConfig,
+                   "OCIO config for openColorIO (default: $OCIO, else hdHair's own)");
+    app.add_option("--ocioDisplay", options.ocioDisplay, "OCIO display (default: the config's default)");
+    app.add_option("--ocioView", options.ocioView, "OCIO view (default: the display's default)");
+    app.add_option("--ocioColorSpace", options.ocioColorSpace,
+                   "The rendered image's colour space (default: the rendering space, lin_rec709)");
+    app.add_option("--ocioLook", options.ocioLook, "OCIO look applied before the view");
+    app.add_option("--displayTransformOn", options.displayTransformOn,
+                   "Where the display transform runs: cpu (OpenColorIO's CPU processor) or gpu (its GLSL, on "
+                   "hdHair's GL context)")
         ->capture_default_str();
     app.add_option("--stats", options.statsFile, "Write what was rendered (prims, curves, segments, pass times, "
                                                  "settings) to this JSON file");

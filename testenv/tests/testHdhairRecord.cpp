@@ -16,6 +16,8 @@
 #include "hdHair/image/ImageComparison.h"
 #include "hdHair/image/ImageWriter.h"
 
+#include <OpenImageIO/imagebuf.h>
+
 using namespace hdhair;
 namespace fs = std::filesystem;
 
@@ -147,6 +149,77 @@ TEST_F(HdhairRecord, ExrOutputIsLinearHalfFloatWithAlpha) {
     EXPECT_GT(compared, 600) << "the strands cover about 860 such pixels at 64 px";
 }
 
+// EXR stays scene-linear, named and with its primaries in the metadata;
+// display formats go through the chosen transform, recorded in --stats.
+TEST_F(HdhairRecord, ColourManagementFollowsUsdrecordsModesAndOcio) {
+    const std::string stage = example("wavy_strands.usda");
+    RecordRun exr = record("--imageWidth 48 --colorCorrectionMode openColorIO " + stage + " " + file("l.exr"));
+    ASSERT_EQ(exr.exitCode, 0) << exr.output;
+    OIIO::ImageBuf exrFile(file("l.exr"));
+    ASSERT_TRUE(exrFile.init_spec(file("l.exr"), 0, 0));
+    EXPECT_EQ(exrFile.spec().get_string_attribute("colorSpace"), "lin_rec709");
+    float chromaticities[8] = {};
+    ASSERT_TRUE(exrFile.spec().getattribute("chromaticities", OIIO::TypeDesc(OIIO::TypeDesc::FLOAT, 8), chromaticities));
+    EXPECT_NEAR(chromaticities[0], 0.64f, 1e-6f);   // Rec.709 red x
+    EXPECT_NEAR(chromaticities[7], 0.329f, 1e-6f);  // D65 white y
+    const Image linear = readImage(file("l.exr"));
+
+    // The Raw view shows un-premultiplied linear values as they are.
+    RecordRun raw = record("--imageWidth 48 --colorCorrectionMode openColorIO --ocioView Raw --stats " +
+                           file("s.json") + " " + stage + " " + file("raw.png"));
+    ASSERT_EQ(raw.exitCode, 0) << raw.output;
+    const Image rawImage = readImage(file("raw.png"));
+    int compared = 0;
+    for (size_t p = 0; p < linear.pixels.size(); p += 4) {
+        const float alpha = linear.pixels[p + 3];
+        if (alpha < 0.5f) continue;
+        ++compared;
+        for (size_t c = 0; c < 3; ++c)
+            EXPECT_NEAR(rawImage.pixels[p + c], std::min(linear.pixels[p + c] / alpha, 1.0f), 1.0 / 255.0) << p / 4;
+    }
+    EXPECT_GT(compared, 50);
+    nlohmann::json color = nlohmann::json::parse(std::ifstream(file("s.json")))["frames"][0]["color"];
+    EXPECT_EQ(color["mode"], "openColorIO");
+    EXPECT_EQ(color["display"], "sRGB");
+    EXPECT_EQ(color["view"], "Raw");
+    EXPECT_EQ(color["look"], "");
+    EXPECT_EQ(color["on"], "cpu");
+    EXPECT_NE(color["config"].get<std::string>().find("share/hdhair/ocio/config.ocio"), std::string::npos);
+
+    // disabled: linear values straight into 8 bits, the same as the Raw view.
+    RecordRun disabled = record("--imageWidth 48 --colorCorrectionMode disabled " + stage + " " + file("off.png"));
+    ASSERT_EQ(disabled.exitCode, 0) << disabled.output;
+    EXPECT_EQ(readImage(file("off.png")).pixels, rawImage.pixels);
+
+    // The GPU path: the same picture within an 8-bit step, its pass timed.
+    RecordRun gpu = record("--imageWidth 48 --colorCorrectionMode openColorIO --ocioView 'ACES 1.0 SDR-video' "
+                           "--displayTransformOn gpu --stats " + file("g.json") + " " + stage + " " + file("gpu.png"));
+    RecordRun cpu = record("--imageWidth 48 --colorCorrectionMode openColorIO --ocioView 'ACES 1.0 SDR-video' " +
+                           stage + " " + file("cpu.png"));
+    ASSERT_EQ(gpu.exitCode, 0) << gpu.output;
+    ASSERT_EQ(cpu.exitCode, 0) << cpu.output;
+    const Image gpuImage = readImage(file("gpu.png")), cpuImage = readImage(file("cpu.png"));
+    ASSERT_EQ(gpuImage.pixels.size(), cpuImage.pixels.size());
+    for (size_t i = 0; i < gpuImage.pixels.size(); ++i) ASSERT_NEAR(gpuImage.pixels[i], cpuImage.pixels[i], 1.0 / 255.0);
+    nlohmann::json gpuFrame = nlohmann::json::parse(std::ifstream(file("g.json")))["frames"][0];
+    EXPECT_EQ(gpuFrame["color"]["on"], "gpu");
+    bool timed = false;
+    for (const auto& pass : gpuFrame["passes"]) timed = timed || (pass["name"] == "displayTransform" && pass["milliseconds"] > 0.0);
+    EXPECT_TRUE(timed) << gpuFrame["passes"].dump();
+
+    // Names the config lacks are one-line errors listing the valid ones.
+    RecordRun badView = record("--colorCorrectionMode openColorIO --ocioView Filmic " + stage + " " + file("b.png"));
+    EXPECT_EQ(badView.exitCode, 1);
+    EXPECT_EQ(badView.output.find("hdhair-record: error: display 'sRGB' of the OCIO config"), 0u) << badView.output;
+    EXPECT_NE(badView.output.find("(views: sRGB, ACES 1.0 SDR-video, Raw)\n"), std::string::npos) << badView.output;
+    RecordRun badMode = record("--colorCorrectionMode film " + stage + " " + file("b.png"));
+    EXPECT_EQ(badMode.output,
+              "hdhair-record: error: --colorCorrectionMode must be disabled, sRGB or openColorIO, not 'film'\n");
+    RecordRun lookWithoutOcio = record("--ocioLook Brighter " + stage + " " + file("b.png"));
+    EXPECT_EQ(lookWithoutOcio.exitCode, 1);
+    EXPECT_NE(lookWithoutOcio.output.find("need --colorCorrectionMode openColorIO"), std::string::npos);
+}
+
 TEST_F(HdhairRecord, FramesFillTheOutputPlaceholder) {
     std::string stage = std::string(HDHAIR_SOURCE_DIR) + "/testenv/stages/xforms.usda";
     RecordRun run = record("--frames 1:10x9 --imageWidth 48 " + stage + " " + file("frame.####.png"));
@@ -232,7 +305,8 @@ TEST_F(HdhairRecord, HelpListsUsdrecordOptions) {
     RecordRun run = record("--help");
     EXPECT_EQ(run.exitCode, 0);
     for (const char* option : {"--camera", "--imageWidth", "--frames", "--defaultTime", "--complexity", "--setting",
-                               "--gl", "--stats"})
+                               "--gl", "--stats", "--colorCorrectionMode", "--ocioConfig", "--ocioDisplay",
+                               "--ocioView", "--ocioColorSpace", "--ocioLook", "--displayTransformOn"})
         EXPECT_NE(run.output.find(option), std::string::npos) << option;
     RecordRun settings = record("--help-settings");
     EXPECT_EQ(settings.exitCode, 0);

@@ -89,7 +89,7 @@ class InstallPrefix(unittest.TestCase):
     def test_installedToolsRenderWhatTheBuildTreeRenders(self):
         self.install("tools")
         for name in ["bin/hdhair-record", "bin/hdhair-convert", "share/doc/hdhair/README.md",
-                     "share/doc/hdhair/LICENSE"]:
+                     "share/doc/hdhair/LICENSE", "share/hdhair/ocio/config.ocio"]:
             self.assertTrue(os.path.isfile(os.path.join(self.prefix, name)), name)
         # The tools component is the tools alone.
         self.assertFalse(os.path.exists(os.path.join(self.prefix, "plugin")))
@@ -168,7 +168,8 @@ class DebianPackage(unittest.TestCase):
         files = sorted(line.split()[-1] for line in run(["dpkg-deb", "-c", deb]).splitlines()
                        if not line.startswith("d"))
         self.assertEqual(files, ["./usr/bin/hdhair-convert", "./usr/bin/hdhair-record",
-                                 "./usr/share/doc/hdhair/LICENSE", "./usr/share/doc/hdhair/README.md"])
+                                 "./usr/share/doc/hdhair/LICENSE", "./usr/share/doc/hdhair/README.md",
+                                 "./usr/share/hdhair/ocio/config.ocio"])
         depends = run(["dpkg-deb", "-f", deb, "Depends"])
         for package in ["libopenimageio", "libtbb", "libegl-mesa0", "libgl1-mesa-dri"]:
             self.assertIn(package, depends)
@@ -176,8 +177,12 @@ class DebianPackage(unittest.TestCase):
         root = os.path.join(self.work, "root")
         run(["dpkg-deb", "-x", deb, root])
         image = os.path.join(self.work, "deb.png")
+        # OCIO through the config the package carries beside its binary.
+        environment = dict(os.environ)
+        environment.pop("OCIO", None)
         run([os.path.join(root, "usr", "bin", "hdhair-record"), "--camera", "/World/main_cam", "--imageWidth",
-             "120", STAGE, image])
+             "120", "--colorCorrectionMode", "openColorIO", "--ocioView", "ACES 1.0 SDR-video", STAGE, image],
+            environment)
         self.assertGreater(coveredPixels(image), 50)
 
 
