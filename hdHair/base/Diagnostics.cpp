@@ -1,9 +1,11 @@
 #include "hdHair/base/Diagnostics.h"
 
+#include "hdHair/base/PrintableText.h"
+
 namespace hdhair {
 
 void Diagnostics::warn(std::string where, std::string message) {
-    Diagnostic diagnostic{std::move(where), std::move(message)};
+    Diagnostic diagnostic{printableText(where), printableText(message)};
     std::lock_guard<std::mutex> lock(mutex_);
     if (listener_) listener_(diagnostic);
     warnings_.push_back(std::move(diagnostic));

@@ -1,13 +1,13 @@
 #include "hdHair/tools/TressFxReader.h"
 
-#include <cerrno>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <stdexcept>
 
 #include <fmt/format.h>
+
+#include "hdHair/base/RegularFile.h"
 
 namespace hdhair::convert {
 
@@ -140,19 +140,10 @@ std::string displayName(const std::string& path) {
 }
 
 std::vector<uint8_t> readFileBytes(const std::string& path) {
-    const std::string name = displayName(path);
-    std::error_code error;
-    if (std::filesystem::is_directory(path, error)) fail(name, "is a directory, not a file");
-    std::ifstream in(path, std::ios::binary);
-    if (!in) fail(name, fmt::format("cannot open ({})", std::strerror(errno)));
-    std::vector<uint8_t> bytes;
-    in.seekg(0, std::ios::end);
-    const std::streamoff size = in.tellg();
-    if (size < 0) fail(name, "cannot read");
-    in.seekg(0, std::ios::beg);
-    bytes.resize(static_cast<size_t>(size));
-    if (size > 0 && !in.read(reinterpret_cast<char*>(bytes.data()), size)) fail(name, "cannot read");
-    return bytes;
+    std::string contents;
+    const std::string error = readRegularFile(path, contents);
+    if (!error.empty()) fail(displayName(path), "cannot open (" + error + ")");
+    return std::vector<uint8_t>(contents.begin(), contents.end());
 }
 
 HairStrands parseTressFx(const std::vector<uint8_t>& bytes, const std::string& name) {

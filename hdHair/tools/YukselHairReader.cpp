@@ -75,33 +75,43 @@ HairStrands parseYukselHair(const std::vector<uint8_t>& bytes, const std::string
     if (hairCount == 0) fail(name, "the header says the file has 0 hairs");
     if (!(arrays & kPointsBit)) fail(name, "the file has no points array (bit 1 of the array bit field is 0)");
 
+    // Every array the header announces is checked against the bytes
+    // present before anything is sized by the header's counts: a 192-byte
+    // file claiming four billion hairs fails here, allocating nothing.
     ArrayCursor cursor(bytes, name);
+    uint64_t segmentsAt = 0;
+    if (arrays & kSegmentsBit) {
+        segmentsAt = cursor.take("segment counts", hairCount, 2);
+    } else if (defaultSegments == 0 || defaultSegments > 65535) {
+        fail(name, fmt::format("the header's default segment count is {} (1 to 65535) and there is no segments "
+                               "array",
+                               defaultSegments));
+    }
+    const uint64_t pointsAt = cursor.take("points", pointCount, 12);
+    if (!(arrays & kSegmentsBit) && uint64_t{hairCount} * (defaultSegments + 1) != pointCount)
+        fail(name, fmt::format("the header says {} points but the {} hairs' segments need {}", pointCount, hairCount,
+                               uint64_t{hairCount} * (defaultSegments + 1)));
+
     HairStrands out;
     out.source = name;
     out.format = "Cem Yuksel .hair";
     out.vertexCounts.resize(hairCount);
     uint64_t sum = 0;
     if (arrays & kSegmentsBit) {
-        const uint64_t at = cursor.take("segment counts", hairCount, 2);
         for (uint32_t h = 0; h < hairCount; ++h) {
-            const uint16_t segments = readValue<uint16_t>(bytes, at + uint64_t{h} * 2);
+            const uint16_t segments = readValue<uint16_t>(bytes, segmentsAt + uint64_t{h} * 2);
             if (segments == 0) fail(name, fmt::format("hair {} has 0 segments", h));
             out.vertexCounts[h] = segments + 1;
             sum += segments + 1u;
         }
     } else {
-        if (defaultSegments == 0 || defaultSegments > 65535)
-            fail(name, fmt::format("the header's default segment count is {} (1 to 65535) and there is no segments "
-                                   "array",
-                                   defaultSegments));
         out.vertexCounts.assign(hairCount, static_cast<int>(defaultSegments + 1));
-        sum = uint64_t{hairCount} * (defaultSegments + 1);
+        sum = pointCount;
     }
     if (sum != pointCount)
         fail(name, fmt::format("the header says {} points but the {} hairs' segments need {}", pointCount, hairCount,
                                sum));
 
-    const uint64_t pointsAt = cursor.take("points", pointCount, 12);
     out.points.resize(pointCount);
     for (uint64_t i = 0; i < pointCount; ++i) {
         out.points[i] = finiteVec3(bytes, pointsAt + i * 12, name, "position", i);

@@ -8,6 +8,8 @@
 #include <utility>
 #include <vector>
 
+#include <fmt/format.h>
+
 #include "hdHair/usda/MaterialBinding.h"
 #include "hdHair/usda/XformOps.h"
 
@@ -211,9 +213,13 @@ std::vector<int> Reader::readIntArray(const Prim& prim, const std::string& name)
         isFloatingPointType(scalarTypeNameOf(value->typeName)))
         typeError(prim, name, "int[]", *value);
     result.reserve(value->numbers.size());
-    for (double number : value->numbers) {
-        if (number != std::floor(number) || std::fabs(number) > 2147483647.0)
-            typeError(prim, name, "int[]", *value);
+    for (size_t i = 0; i < value->numbers.size(); ++i) {
+        const double number = value->numbers[i];
+        if (number != std::floor(number)) typeError(prim, name, "int[]", *value);
+        if (std::fabs(number) > 2147483647.0)
+            throw SkipPrim{locationOf(prim, name), fmt::format("{}.{}: element {} is {:.0f}, beyond a 32-bit int "
+                                                               "(at most 2147483647); prim skipped",
+                                                               prim.path, name, i, number)};
         result.push_back(static_cast<int>(number));
     }
     return result;
@@ -461,7 +467,11 @@ void Reader::walk(const Prim& prim, const Inherited& parent) {
     // to the whole subtree.
     if (std::optional<Value> visibility = valueOf(prim, "visibility")) {
         if (visibility->isStringType() && !visibility->strings.empty()) {
-            if (visibility->strings[0] == "invisible") state.visible = false;
+            const std::string& token = visibility->strings[0];
+            if (token == "invisible")
+                state.visible = false;
+            else if (token != "inherited")
+                warn(prim, "visibility", "\"" + token + "\" is neither inherited nor invisible; taken as inherited");
         } else {
             warn(prim, "visibility", "expected token, found " + visibility->typeName + "; ignored");
         }

@@ -1,15 +1,13 @@
 #include "hdHair/usda/StageComposer.h"
 
 #include <algorithm>
-#include <cerrno>
-#include <cstdio>
-#include <cstring>
 #include <deque>
 #include <filesystem>
 #include <functional>
 #include <unordered_set>
 
 #include "hdHair/base/InputError.h"
+#include "hdHair/base/RegularFile.h"
 #include "hdHair/usda/LayerParser.h"
 
 namespace hdhair::usda {
@@ -28,34 +26,6 @@ constexpr int kMaxNamespaceDepth = 1000;
 constexpr size_t kMaxIndexNodes = 100000;
 
 // ---------------------------------------------------------------- files
-
-bool readFile(const std::string& path, std::string& contents, std::string& error) {
-    std::error_code ec;
-    if (fs::is_directory(path, ec)) {
-        error = std::strerror(EISDIR);
-        return false;
-    }
-    std::FILE* file = std::fopen(path.c_str(), "rb");
-    if (!file) {
-        error = std::strerror(errno);
-        return false;
-    }
-    contents.clear();
-    char buffer[1 << 16];
-    while (true) {
-        size_t n = std::fread(buffer, 1, sizeof buffer, file);
-        contents.append(buffer, n);
-        if (n < sizeof buffer) break;
-    }
-    bool failed = std::ferror(file) != 0;
-    int savedErrno = errno;
-    std::fclose(file);
-    if (failed) {
-        error = std::strerror(savedErrno);
-        return false;
-    }
-    return true;
-}
 
 std::string absoluteNormal(const fs::path& path) {
     std::error_code ec;
@@ -182,10 +152,10 @@ public:
     const Layer& loadLayer(const std::string& absPath, const SourceLocation& from, const char* what) {
         auto it = layers_.find(absPath);
         if (it != layers_.end()) return *it->second;
-        std::string contents, error;
-        if (!readFile(absPath, contents, error)) {
-            throw InputError(from.toString() + ": cannot open " + what + " '" + absPath + "'");
-        }
+        std::string contents;
+        const std::string error = readRegularFile(absPath, contents);
+        if (!error.empty())
+            throw InputError(from.toString() + ": cannot open " + what + " '" + absPath + "': " + error);
         std::unique_ptr<Layer> layer =
             detail::parseLayer(contents, absPath, fs::path(absPath).parent_path().string());
         const Layer* raw = layer.get();
@@ -560,8 +530,9 @@ private:
 }  // namespace
 
 std::unique_ptr<Stage> StageComposer::openFile(const std::string& path) {
-    std::string contents, error;
-    if (!readFile(path, contents, error)) throw InputError("cannot open '" + path + "': " + error);
+    std::string contents;
+    const std::string error = readRegularFile(path, contents);
+    if (!error.empty()) throw InputError("cannot open '" + path + "': " + error);
     const std::string absolute = absoluteNormal(path);
     Composer composer;
     const Layer& root = composer.addRootLayer(

@@ -3,6 +3,8 @@
 // malformed ones, the written .usda read back with hdHair's embedded reader,
 // and (when ../shared/data is there) AMD's real TressFX assets.
 
+#include <sys/stat.h>
+
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -377,6 +379,39 @@ TEST_F(HairImport, YukselHairErrors) {
     header.data.resize(127);
     EXPECT_EQ(errorOf([&] { readYukselHair(write("header.hair", header)); }),
               "header.hair: the 127-byte file is too small for a .hair header (128 bytes)");
+}
+
+// A header's counts are checked against the bytes present before anything
+// is sized by them: four billion hairs in a 192-byte file (16 GB of vertex
+// counts, had they been allocated first) is a one-line error.
+TEST_F(HairImport, YukselHeaderCountsAreCheckedBeforeAllocating) {
+    Bytes huge = HairFile{}.bytes();
+    huge.data.resize(192);
+    const uint32_t hairs = 4000000000u;
+    std::memcpy(huge.data.data() + 4, &hairs, sizeof hairs);
+    EXPECT_EQ(errorOf([&] { readYukselHair(write("huge.hair", huge)); }),
+              "huge.hair: segment counts (4000000000 x 2 bytes) at byte 128 run past the end of the 192-byte file "
+              "(they end at byte 8000000128)");
+    HairFile noSegments;
+    noSegments.arrays = 0x2;  // points only: the default segment count sizes every hair
+    noSegments.segments = {0, 0};
+    noSegments.defaultSegments = 3;
+    Bytes manyDefaults = noSegments.bytes();
+    std::memcpy(manyDefaults.data.data() + 4, &hairs, sizeof hairs);
+    EXPECT_EQ(errorOf([&] { readYukselHair(write("defaults.hair", manyDefaults)); }),
+              "defaults.hair: the header says 8 points but the 4000000000 hairs' segments need 16000000000");
+}
+
+// Only regular files are read: a device would never end, a FIFO would block.
+TEST_F(HairImport, OnlyRegularFilesAreRead) {
+    EXPECT_EQ(errorOf([&] { readTressFx("/dev/zero"); }), "zero: cannot open (a character device, not a regular file)");
+    EXPECT_EQ(errorOf([&] { readYukselHair("/dev/zero"); }),
+              "zero: cannot open (a character device, not a regular file)");
+    const std::string fifo = (dir_ / "pipe.hair").string();
+    ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+    EXPECT_EQ(errorOf([&] { readYukselHair(fifo); }), "pipe.hair: cannot open (a FIFO, not a regular file)");
+    EXPECT_EQ(errorOf([&] { readTressFx(dir_.string()); }),
+              dir_.filename().string() + ": cannot open (a directory, not a regular file)");
 }
 
 // ---------------------------------------------------------------------------

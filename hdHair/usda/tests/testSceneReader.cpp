@@ -729,6 +729,29 @@ def Xform "World"
     EXPECT_EQ(r->diagnostics.warningCount(), 7u) << allWarnings(r->diagnostics);
 }
 
+// An integer beyond 32 bits says which element and why, not "expected int[],
+// found int[]"; control bytes quoted from the input reach no terminal raw.
+TEST(SceneReader, OutOfRangeIntegersAndControlBytesAreSpelledOut) {
+    auto r = read(std::string(R"(
+def BasisCurves "wide"
+{
+    int[] curveVertexCounts = [4, 99999999999]
+    point3f[] points = [(0, 0, 0), (0, 1, 0), (0, 2, 0), (0, 3, 0)]
+}
+def BasisCurves "bell"
+{
+    token visibility = "in)") + "\x07\x1b[2J" + R"(visible"
+)" + kOneCurve + R"(
+}
+)");
+    EXPECT_TRUE(hasWarning(r->diagnostics, {"/wide.curveVertexCounts: element 1 is 99999999999, beyond a 32-bit int "
+                                            "(at most 2147483647); prim skipped"}))
+        << allWarnings(r->diagnostics);
+    for (const Diagnostic& d : r->diagnostics.warnings())
+        for (char c : d.where + d.message) EXPECT_FALSE(static_cast<unsigned char>(c) < 0x20) << d.message;
+    EXPECT_TRUE(hasWarning(r->diagnostics, {"/bell.visibility", "\\x07\\x1b[2J"})) << allWarnings(r->diagnostics);
+}
+
 TEST(SceneReader, MeshPrim) {
     auto r = read(R"(
 def Mesh "ground"

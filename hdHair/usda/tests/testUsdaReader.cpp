@@ -3,6 +3,8 @@
 // over/class), value resolution over time, and exact error messages for
 // malformed input, plus truncation/garbage robustness and a speed check.
 
+#include <sys/stat.h>
+
 #include <gtest/gtest.h>
 
 #include <atomic>
@@ -1023,13 +1025,13 @@ def "World"
 }
 )");
     EXPECT_EQ(openError(scene),
-              scene + ":4:27: cannot open referenced layer '" + dir.path("missing.usda") + "'");
+              scene + ":4:27: cannot open referenced layer '" + dir.path("missing.usda") + "': No such file or directory");
 
     const std::string payload = dir.write("payload.usda", "#usda 1.0\ndef \"a\" (\n    payload = @./gone/x.usda@\n) {}\n");
-    EXPECT_EQ(openError(payload), payload + ":3:15: cannot open payload layer '" + dir.path("gone/x.usda") + "'");
+    EXPECT_EQ(openError(payload), payload + ":3:15: cannot open payload layer '" + dir.path("gone/x.usda") + "': No such file or directory");
 
     const std::string sub = dir.write("sub.usda", "#usda 1.0\n(\n    subLayers = [@nope.usda@]\n)\n");
-    EXPECT_EQ(openError(sub), sub + ":3:18: cannot open sublayer '" + dir.path("nope.usda") + "'");
+    EXPECT_EQ(openError(sub), sub + ":3:18: cannot open sublayer '" + dir.path("nope.usda") + "': No such file or directory");
 
     EXPECT_EQ(openError(dir.path("absent.usda")),
               "cannot open '" + dir.path("absent.usda") + "': No such file or directory");
@@ -1252,6 +1254,31 @@ TEST(UsdaLargeLayers, FiveMegabyteLayerParsesCompletely) {
 // timed (hdhair-bench's ComposeStage row has the seconds): eight times the
 // prims may cost at most eight times the index nodes, spec lookups and
 // opinions, with 5 % for the fixed cost of the root.
+// Only regular files are read: a layer naming a device (which would be read
+// until memory ran out) or a FIFO (which would block) is refused first.
+TEST(UsdaComposition, OnlyRegularFilesAreRead) {
+    TempDir dir;
+    const std::string sub = dir.write("sub.usda", "#usda 1.0\n(\n    subLayers = [@/dev/zero@]\n)\n");
+    EXPECT_EQ(openError(sub), sub + ":3:18: cannot open sublayer '/dev/zero': a character device, not a regular file");
+    const std::string reference =
+        dir.write("ref.usda", "#usda 1.0\ndef \"a\" (\n    references = @/dev/urandom@</a>\n) {}\n");
+    EXPECT_NE(openError(reference).find("cannot open referenced layer '/dev/urandom': a character device, not a "
+                                        "regular file"),
+              std::string::npos)
+        << openError(reference);
+    const std::string fifo = dir.path("pipe.usda");
+    ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+    EXPECT_EQ(openError(fifo), "cannot open '" + fifo + "': a FIFO, not a regular file");
+    EXPECT_EQ(openError("/dev/zero"), "cannot open '/dev/zero': a character device, not a regular file");
+}
+
+// Messages quote input with its control bytes escaped.
+TEST(UsdaParser, ControlBytesInMessagesAreEscaped) {
+    const std::string message = errorOf(std::string("#usda 1.0\ndef \"c\x01\x1b[31mred\" {\n}\n"));
+    EXPECT_NE(message.find("\"c\\x01\\x1b[31mred\""), std::string::npos) << message;
+    for (char c : message) EXPECT_FALSE(static_cast<unsigned char>(c) < 0x20) << message;
+}
+
 TEST(UsdaComposition, WorkGrowsLinearlyWithPrimCount) {
     auto siblings = [](int count) { return parse(siblingPrimsLayer(count)); };
     auto small = siblings(2500), large = siblings(20000);
