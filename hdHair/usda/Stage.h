@@ -99,6 +99,8 @@ struct CompositionWork {
     uint64_t indexNodes = 0;   // prim index nodes expanded (one per prim and arc)
     uint64_t specLookups = 0;  // steps down a layer's namespace to find a prim spec
     uint64_t opinions = 0;     // prim specs gathered as opinions
+    uint64_t cycleChecks = 0;  // path prefixes looked up to keep references from cycling
+    uint64_t mappings = 0;     // path mappings stored for opinions (one per index node)
 };
 
 class Stage {

@@ -23,7 +23,12 @@ using detail::Reference;
 using detail::RelationshipSpec;
 
 constexpr int kMaxNamespaceDepth = 1000;
-constexpr size_t kMaxIndexNodes = 100000;
+// Caps that keep hostile stages from exhausting memory or the stack, each
+// far beyond what real stages use (README, "The embedded .usda reader").
+constexpr size_t kMaxIndexNodes = 100000;     // layer sites in one prim's index
+constexpr size_t kMaxArcDepth = 1000;         // arcs nested in one prim's index (recursion depth)
+constexpr size_t kMaxLayers = 10000;          // layers one stage loads
+constexpr size_t kMaxComposedPrims = 5000000; // prims one stage composes
 
 // ---------------------------------------------------------------- files
 
@@ -95,29 +100,83 @@ struct Node {
     std::vector<const PrimSpec*> specs;  // strongest first
     std::vector<Node> children;
 
-    bool hasSpecs() const {
-        if (!specs.empty()) return true;
-        for (const Node& child : children) {
-            if (child.hasSpecs()) return true;
-        }
-        return false;
-    }
+    // After expand(): children without specs anywhere below are pruned,
+    // so a node has specs when it or any remaining child does (O(1), where
+    // walking the subtree made a reference chain's composition cubic).
+    bool hasSpecs() const { return !specs.empty() || !children.empty(); }
 };
 
-using Mappings = std::vector<std::pair<std::string, std::string>>;  // node first, root last
+// The path mappings from an index node up to the index's root: each arc maps
+// its source (there) to its target (in the node above), "" for identity. A
+// node's chain shares its parent's: O(1) memory a node, where a copied list
+// a node made memory grow with the square of a reference chain's depth.
+struct Mapping {
+    std::string source, target;
+    const Mapping* outer = nullptr;  // toward the root; nullptr above the root
+};
 
-std::string mapPath(const std::string& path, const Mappings& mappings) {
+std::string mapPath(const std::string& path, const Mapping* mapping) {
     std::string mapped = path;
-    for (const auto& [source, target] : mappings) {
-        if (source.empty()) continue;
-        if (hasPathPrefix(mapped, source)) mapped = target + mapped.substr(source.size());
+    for (; mapping; mapping = mapping->outer) {
+        if (mapping->source.empty()) continue;
+        if (hasPathPrefix(mapped, mapping->source)) mapped = mapping->target + mapped.substr(mapping->source.size());
     }
     return mapped;
 }
 
 struct Opinion {
     const PrimSpec* spec;
-    const Mappings* mappings;
+    const Mapping* mapping;
+};
+
+// The index nodes being expanded, from the index's root down: a new
+// reference or payload must not point into or above one of them in the same
+// layer stack (a cycle). Looked up by path prefix, O(path depth) per arc,
+// rather than by walking every ancestor.
+class ArcChain {
+public:
+    void push(const Node& node) {
+        const std::string path = primPathOf(node.site);
+        nodes_.push_back({node.stack, path});
+        exact_[{node.stack, path}] += 1;
+        for (const std::string& prefix : prefixesOf(path)) {
+            auto& [count, example] = underneath_[{node.stack, prefix}];
+            if (count++ == 0) example = path;
+        }
+    }
+    void pop() {
+        const auto [stack, path] = nodes_.back();
+        nodes_.pop_back();
+        if (--exact_[{stack, path}] == 0) exact_.erase({stack, path});
+        for (const std::string& prefix : prefixesOf(path))
+            if (--underneath_[{stack, prefix}].first == 0) underneath_.erase({stack, prefix});
+    }
+    size_t depth() const { return nodes_.size(); }
+    // An ancestor's path in `stack` that `path` is at, under or above; ""
+    // when none. Counts the prefixes it looks up into `lookups`.
+    std::string overlapping(const LayerStack* stack, const std::string& path, uint64_t& lookups) const {
+        for (const std::string& prefix : prefixesOf(path)) {
+            ++lookups;
+            if (exact_.count({stack, prefix})) return prefix;
+        }
+        ++lookups;
+        auto below = underneath_.find({stack, path});
+        return below == underneath_.end() ? std::string() : below->second.second;
+    }
+
+private:
+    // "/A/B" -> "/A", "/A/B"; "/" -> "/".
+    static std::vector<std::string> prefixesOf(const std::string& path) {
+        std::vector<std::string> prefixes;
+        for (size_t slash = path.find('/', 1); slash != std::string::npos; slash = path.find('/', slash + 1))
+            prefixes.push_back(path.substr(0, slash));
+        prefixes.push_back(path);
+        return prefixes;
+    }
+    using Site = std::pair<const LayerStack*, std::string>;
+    std::vector<Site> nodes_;
+    std::map<Site, int> exact_;
+    std::map<Site, std::pair<int, std::string>> underneath_;  // paths under a prefix: how many, and one of them
 };
 
 void mergeMetadatum(std::map<std::string, Value>& into, const std::string& key, const Value& weaker) {
@@ -152,6 +211,9 @@ public:
     const Layer& loadLayer(const std::string& absPath, const SourceLocation& from, const char* what) {
         auto it = layers_.find(absPath);
         if (it != layers_.end()) return *it->second;
+        if (layers_.size() >= kMaxLayers)
+            throw InputError(from.toString() + ": cannot open " + what + " '" + absPath + "': the stage already has " +
+                             std::to_string(kMaxLayers) + " layers, the most hdHair reads");
         std::string contents;
         const std::string error = readRegularFile(absPath, contents);
         if (!error.empty())
@@ -257,7 +319,7 @@ private:
     }
 
     void addReferenceArc(Node& node, const Reference& reference, ArcType arc, int depth, int& sibling,
-                         const std::vector<const Node*>& chain) {
+                         const ArcChain& chain) {
         const char* what = arc == ArcType::Payload ? "payload layer" : "referenced layer";
         const LayerStack* targetStack = node.stack;
         std::string layerName = node.stack->root->identifier;
@@ -282,13 +344,10 @@ private:
             throw InputError(reference.location.toString() + ": unsupported prim path <" + targetPath +
                              "> in a reference (expected an absolute prim path such as </World/asset>)");
         }
-        for (const Node* ancestor : chain) {
-            if (ancestor->stack != targetStack) continue;
-            const std::string ancestorPath = primPathOf(ancestor->site);
-            if (hasPathPrefix(ancestorPath, targetPath) || hasPathPrefix(targetPath, ancestorPath)) {
-                throw InputError(reference.location.toString() + ": reference cycle: <" + targetPath + "> in '" +
-                                 layerName + "' is already being composed as <" + ancestorPath + ">");
-            }
+        const std::string ancestorPath = chain.overlapping(targetStack, targetPath, work_.cycleChecks);
+        if (!ancestorPath.empty()) {
+            throw InputError(reference.location.toString() + ": reference cycle: <" + targetPath + "> in '" +
+                             layerName + "' is already being composed as <" + ancestorPath + ">");
         }
         Node child;
         child.stack = targetStack;
@@ -309,14 +368,19 @@ private:
 
     // Fills the node's specs for its site and adds the arcs they author
     // (variants, references, payloads), recursively.
-    void expand(Node& node, std::vector<const Node*>& chain, int depth, const Node& indexRoot) {
+    void expand(Node& node, ArcChain& chain, int depth, const Node& indexRoot) {
         ++work_.indexNodes;
         if (++nodeCount_ > kMaxIndexNodes) {
             throw InputError(node.stack->root->identifier + ": composition of <" + primPathOf(node.site) +
                              "> reaches more than " + std::to_string(kMaxIndexNodes) + " layer sites");
         }
+        if (chain.depth() >= kMaxArcDepth) {
+            throw InputError(node.stack->root->identifier + ": composition of <" + primPathOf(node.site) +
+                             "> nests more than " + std::to_string(kMaxArcDepth) +
+                             " references, payloads and variants inside each other");
+        }
         fillSpecs(node);
-        chain.push_back(&node);
+        chain.push(node);
         if (!node.specs.empty()) {
             int sibling = static_cast<int>(node.children.size());
             // Variant sets: the names listed in variantSets, then any other authored set.
@@ -361,31 +425,31 @@ private:
             return a.sibling < b.sibling;
         });
         for (Node& child : node.children) expand(child, chain, depth, indexRoot);
-        chain.pop_back();
+        chain.pop();
         node.children.erase(std::remove_if(node.children.begin(), node.children.end(),
                                            [](const Node& child) { return !child.hasSpecs(); }),
                             node.children.end());
     }
 
     // Strength order: a node, then its arcs' subtrees in order.
-    void collectOpinions(const Node& node, Mappings mappings, std::deque<Mappings>& storage,
+    void collectOpinions(const Node& node, const Mapping* outer, std::deque<Mapping>& storage,
                          std::vector<Opinion>& out) {
-        mappings.insert(mappings.begin(), {node.mapSource, node.mapTarget});
-        storage.push_back(mappings);
-        const Mappings* stored = &storage.back();
+        storage.push_back(Mapping{node.mapSource, node.mapTarget, outer});
+        ++work_.mappings;
+        const Mapping* mine = &storage.back();
         work_.opinions += node.specs.size();
-        for (const PrimSpec* spec : node.specs) out.push_back(Opinion{spec, stored});
-        for (const Node& child : node.children) collectOpinions(child, mappings, storage, out);
+        for (const PrimSpec* spec : node.specs) out.push_back(Opinion{spec, mine});
+        for (const Node& child : node.children) collectOpinions(child, mine, storage, out);
     }
 
     static Attribute composeAttribute(const std::string& name,
-                                      const std::vector<std::pair<const AttributeSpec*, const Mappings*>>& specs) {
+                                      const std::vector<std::pair<const AttributeSpec*, const Mapping*>>& specs) {
         Attribute attribute;
         attribute.name = name;
         attribute.location = specs.front().first->location;
         bool typed = false;
         bool valueSourceFound = false;
-        for (const auto& [spec, mappings] : specs) {
+        for (const auto& [spec, mapping] : specs) {
             if (!typed && !spec->typeName.empty()) {
                 typed = true;
                 attribute.typeName = spec->typeName;
@@ -411,7 +475,7 @@ private:
             ListOp<std::string> remapped = op;
             for (auto* list : {&remapped.explicitItems, &remapped.prepended, &remapped.appended, &remapped.added,
                                &remapped.deleted}) {
-                for (std::string& path : *list) path = mapPath(path, *specs[i].second);
+                for (std::string& path : *list) path = mapPath(path, specs[i].second);
             }
             remapped.applyTo(attribute.connections);
         }
@@ -419,7 +483,7 @@ private:
     }
 
     static Relationship composeRelationship(
-        const std::string& name, const std::vector<std::pair<const RelationshipSpec*, const Mappings*>>& specs) {
+        const std::string& name, const std::vector<std::pair<const RelationshipSpec*, const Mapping*>>& specs) {
         Relationship relationship;
         relationship.name = name;
         relationship.location = specs.front().first->location;
@@ -427,7 +491,7 @@ private:
             ListOp<std::string> remapped = specs[i].first->targets;
             for (auto* list : {&remapped.explicitItems, &remapped.prepended, &remapped.appended, &remapped.added,
                                &remapped.deleted}) {
-                for (std::string& path : *list) path = mapPath(path, *specs[i].second);
+                for (std::string& path : *list) path = mapPath(path, specs[i].second);
             }
             remapped.applyTo(relationship.targets);
         }
@@ -469,14 +533,14 @@ private:
             prim.metadata["variantSets"] = std::move(value);
         }
 
-        std::map<std::string, std::vector<std::pair<const AttributeSpec*, const Mappings*>>> attributes;
-        std::map<std::string, std::vector<std::pair<const RelationshipSpec*, const Mappings*>>> relationships;
+        std::map<std::string, std::vector<std::pair<const AttributeSpec*, const Mapping*>>> attributes;
+        std::map<std::string, std::vector<std::pair<const RelationshipSpec*, const Mapping*>>> relationships;
         for (const Opinion& opinion : opinions) {
             for (const auto& [name, spec] : opinion.spec->attributes) {
-                attributes[name].emplace_back(&spec, opinion.mappings);
+                attributes[name].emplace_back(&spec, opinion.mapping);
             }
             for (const auto& [name, spec] : opinion.spec->relationships) {
-                relationships[name].emplace_back(&spec, opinion.mappings);
+                relationships[name].emplace_back(&spec, opinion.mapping);
             }
         }
         for (const auto& [name, specList] : attributes) prim.attributes[name] = composeAttribute(name, specList);
@@ -492,8 +556,8 @@ private:
         }
         // Child names: weakest opinions first, stronger ones appending new names.
         std::vector<Opinion> opinions;
-        std::deque<Mappings> storage;
-        collectOpinions(parentIndex, Mappings(), storage, opinions);
+        std::deque<Mapping> storage;
+        collectOpinions(parentIndex, nullptr, storage, opinions);
         std::vector<std::string> names;
         std::unordered_set<std::string> seen;
         for (size_t i = opinions.size(); i-- > 0;) {
@@ -503,13 +567,16 @@ private:
         }
         for (const std::string& name : names) {
             Node index = mapToChild(parentIndex, name);
-            std::vector<const Node*> chain;
+            ArcChain chain;
             nodeCount_ = 0;
             expand(index, chain, depth + 1, index);
             if (!index.hasSpecs()) continue;
             std::vector<Opinion> childOpinions;
-            std::deque<Mappings> childStorage;
-            collectOpinions(index, Mappings(), childStorage, childOpinions);
+            std::deque<Mapping> childStorage;
+            collectOpinions(index, nullptr, childStorage, childOpinions);
+            if (++composedPrims_ > kMaxComposedPrims)
+                throw InputError(parent.location.toString() + ": the stage composes more than " +
+                                 std::to_string(kMaxComposedPrims) + " prims, the most hdHair reads");
             auto prim = std::make_unique<Prim>();
             prim->name = name;
             prim->path = (parent.path == "/" ? "/" : parent.path + "/") + name;
@@ -524,6 +591,7 @@ private:
     std::map<std::string, std::unique_ptr<Layer>> layers_;
     std::map<const Layer*, std::unique_ptr<LayerStack>> stacks_;
     size_t nodeCount_ = 0;
+    size_t composedPrims_ = 0;
     CompositionWork work_;
 };
 

@@ -14,6 +14,7 @@
 #include <fstream>
 #include <random>
 #include <sstream>
+#include <tuple>
 
 #include "hdHair/base/InputError.h"
 #include "hdHair/usda/Stage.h"
@@ -1254,6 +1255,66 @@ TEST(UsdaLargeLayers, FiveMegabyteLayerParsesCompletely) {
 // timed (hdhair-bench's ComposeStage row has the seconds): eight times the
 // prims may cost at most eight times the index nodes, spec lookups and
 // opinions, with 5 % for the fixed cost of the root.
+// A chain of internal references, P0 -> P1 -> ... -> Pn-1: each prim's index
+// holds the rest of the chain, so index nodes grow with n^2 (as in OpenUSD);
+// nothing may grow faster. Cycle checks and stored mappings once cost O(n)
+// a node (cubic in all: 2,000 prims took 321 s); doubling n may now cost at
+// most 4.4 times the work of every kind.
+TEST(UsdaComposition, ReferenceChainsCostNoMoreThanTheirIndexNodes) {
+    auto chain = [](int n) {
+        std::string text = "#usda 1.0\n";
+        for (int i = 0; i < n; ++i) {
+            text += "def Xform \"P" + std::to_string(i) + "\"";
+            if (i + 1 < n) text += " (\n    references = </P" + std::to_string(i + 1) + ">\n)";
+            text += "\n{\n    double radius = " + std::to_string(i) + "\n}\n";
+        }
+        return parse(text);
+    };
+    auto small = chain(200), large = chain(400);
+    EXPECT_EQ(large->traverse().size(), 400u);
+    // P0 sees the weakest opinion of its chain's end only where nothing stronger speaks.
+    EXPECT_EQ(attr(*large, "/P0", "radius").defaultValue->numberOr(-1), 0.0);
+    const CompositionWork& a = small->compositionWork();
+    const CompositionWork& b = large->compositionWork();
+    ASSERT_GT(a.cycleChecks, 0u);
+    for (auto [name, x, y] : {std::tuple{"indexNodes", a.indexNodes, b.indexNodes},
+                              std::tuple{"specLookups", a.specLookups, b.specLookups},
+                              std::tuple{"opinions", a.opinions, b.opinions},
+                              std::tuple{"cycleChecks", a.cycleChecks, b.cycleChecks},
+                              std::tuple{"mappings", a.mappings, b.mappings}})
+        EXPECT_LE(double(y), 4.4 * double(x)) << name << ": " << x << " -> " << y;
+}
+
+// Nesting deeper than the documented cap is a one-line error, not a stack overflow.
+TEST(UsdaComposition, ArcsNestedPastTheCapAreRefused) {
+    std::string text = "#usda 1.0\n";
+    for (int i = 0; i < 1200; ++i) {
+        text += "def Xform \"P" + std::to_string(i) + "\"";
+        if (i + 1 < 1200) text += " (\n    references = </P" + std::to_string(i + 1) + ">\n)";
+        text += "\n{\n}\n";
+    }
+    EXPECT_EQ(errorOf(text, "deep.usda"),
+              "deep.usda: composition of </P1000> nests more than 1000 references, payloads and variants inside "
+              "each other");
+}
+
+// A stage of more layers than the cap is refused at the first one too many.
+TEST(UsdaComposition, LayersPastTheCapAreRefused) {
+    TempDir dir;
+    // A chain of sublayers: layer i names layer i + 1.
+    const int layers = 10001;
+    for (int i = layers - 1; i >= 0; --i) {
+        std::string text = "#usda 1.0\n";
+        if (i + 1 < layers) text += "(\n    subLayers = [@l" + std::to_string(i + 1) + ".usda@]\n)\n";
+        dir.write("l" + std::to_string(i) + ".usda", text);
+    }
+    const std::string message = openError(dir.path("l0.usda"));
+    EXPECT_NE(message.find("cannot open sublayer '" + dir.path("l10000.usda") +
+                           "': the stage already has 10000 layers, the most hdHair reads"),
+              std::string::npos)
+        << message;
+}
+
 // Only regular files are read: a layer naming a device (which would be read
 // until memory ran out) or a FIFO (which would block) is refused first.
 TEST(UsdaComposition, OnlyRegularFilesAreRead) {
