@@ -1,9 +1,10 @@
 #include "hdHair/image/ImageWriter.h"
 
+#include "hdHair/base/AtomicFile.h"
+
 #include <algorithm>
 #include <cctype>
 #include <filesystem>
-#include <random>
 #include <stdexcept>
 
 #include <OpenImageIO/imagebuf.h>
@@ -39,16 +40,6 @@ OIIO::ImageBuf toImageBuf(const Image& image) {
 std::vector<float> chromaticitiesOf(const std::string& colorSpace) {
     if (colorSpace == kAcesCg) return {0.713f, 0.293f, 0.165f, 0.830f, 0.128f, 0.044f, 0.32168f, 0.33767f};
     return {0.64f, 0.33f, 0.30f, 0.60f, 0.15f, 0.06f, 0.3127f, 0.3290f};  // Rec.709, D65
-}
-
-std::string temporarySibling(const fs::path& target) {
-    std::random_device device;
-    std::uniform_int_distribution<unsigned> digits(0, 0xffffff);
-    char suffix[16];
-    std::snprintf(suffix, sizeof suffix, "%06x", digits(device));
-    // Keep the extension last: OpenImageIO picks the format from it.
-    return (target.parent_path() / ("." + target.stem().string() + ".tmp-" + suffix +
-                                    target.extension().string())).string();
 }
 
 }  // namespace
@@ -121,18 +112,9 @@ void writeImage(const Image& image, const std::string& path, const ImageColor& c
     }
     out.set_write_format(format);
 
-    std::string temporary = temporarySibling(target);
-    if (!out.write(temporary)) {
-        std::error_code ignored;
-        fs::remove(temporary, ignored);
-        throw std::runtime_error("cannot write '" + path + "': " + out.geterror());
-    }
-    std::error_code error;
-    fs::rename(temporary, target, error);
-    if (error) {
-        fs::remove(temporary, error);
-        throw std::runtime_error("cannot write '" + path + "': " + error.message());
-    }
+    writeFileAtomically(path, [&](const std::string& temporary) {
+        return out.write(temporary) ? std::string() : out.geterror();
+    });
 }
 
 Image readImage(const std::string& path) {

@@ -20,6 +20,7 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "hdHair/base/AtomicFile.h"
 #include "hdHair/base/Diagnostics.h"
 #include "hdHair/base/InputError.h"
 #include "hdHair/gl/GlContext.h"
@@ -135,14 +136,22 @@ void writeFrameImage(const Image& linear, const Image* gpuDisplayed, const Displ
 }
 
 void writeTextAtomically(const std::string& path, const std::string& text) {
-    std::filesystem::path target = std::filesystem::absolute(path);
-    std::filesystem::path temporary = target.parent_path() / ("." + target.filename().string() + ".tmp");
-    {
+    writeFileAtomically(path, [&](const std::string& temporary) {
         std::ofstream out(temporary);
         out << text;
-        if (!out.good()) throw std::runtime_error("cannot write '" + path + "'");
-    }
-    std::filesystem::rename(temporary, target);
+        out.close();
+        return out.good() ? std::string() : std::string("the file system refused the bytes");
+    });
+}
+
+// Where the images and --stats go must be writable before anything is
+// rendered: a farm job should fail in its first second, not after its frames.
+void checkOutputTargets(const Options& options) {
+    if (std::string why = whyNotWritable(options.outputPath); !why.empty())
+        throw std::invalid_argument("cannot write '" + options.outputPath + "': " + why);
+    if (!options.statsFile.empty())
+        if (std::string why = whyNotWritable(options.statsFile); !why.empty())
+            throw std::invalid_argument("cannot write --stats file '" + options.statsFile + "': " + why);
 }
 
 // The time codes to render, as usdrecord chooses them: --frames; the Default
@@ -275,6 +284,10 @@ int run(const Options& options) {
     gl::GlBackend backend = gl::defaultGlBackend();
     if (!options.gl.empty() && !gl::parseGlBackend(options.gl, &backend))
         throw std::invalid_argument("--gl must be egl or osmesa");
+    checkOutputTargets(options);
+    if (const size_t frames = timesToRender(options).size(); frames > 1 && !hasFramePlaceholder(options.outputPath))
+        throw std::invalid_argument("rendering " + std::to_string(frames) +
+                                    " frames needs a '#' placeholder in the output name, e.g. out.####.png");
     usda::SceneReadOptions readOptions = purposesFrom(options.purposes);
     const DisplayTransform display = displayTransformFor(options);
     if (options.reader == "usd") return runThroughUsdImaging(options, readOptions, display);
@@ -290,10 +303,7 @@ int run(const Options& options) {
     Clock::time_point readStart = Clock::now();
     std::unique_ptr<usda::Stage> stage = usda::Stage::open(options.usdFile);
     double readMilliseconds = millisecondsSince(readStart);
-    std::vector<double> times = timesToRender(options);
-    if (times.size() > 1 && !hasFramePlaceholder(options.outputPath))
-        throw std::invalid_argument("rendering " + std::to_string(times.size()) +
-                                    " frames needs a '#' placeholder in the output name, e.g. out.####.png");
+    const std::vector<double> times = timesToRender(options);
 
     Renderer renderer(backend);
     DisplayShader displayShader;

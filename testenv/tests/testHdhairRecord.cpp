@@ -275,6 +275,28 @@ TEST_F(HdhairRecord, BadArgumentsAreOneLineErrors) {
     EXPECT_NE(noArguments.exitCode, 0);
 }
 
+// A farm job fails before rendering when its outputs cannot be written, and
+// a failed write leaves neither a partial image nor a temporary file.
+TEST_F(HdhairRecord, OutputTargetsAreCheckedBeforeRenderingAndFailuresLeaveNothing) {
+    const std::string stage = example("straight_strands.usda");
+    RecordRun stats = record("--imageWidth 32 --stats /nonexistent/s.json " + stage + " " + file("o.png"));
+    EXPECT_EQ(stats.exitCode, 1);
+    EXPECT_EQ(stats.output, "hdhair-record: error: cannot write --stats file '/nonexistent/s.json': folder "
+                            "'/nonexistent' does not exist\n");
+    EXPECT_FALSE(fs::exists(file("o.png"))) << "rendered before the --stats target was checked";
+    RecordRun frames = record("--imageWidth 32 --frames 1:2 " + stage + " /nonexistent/f.#.png");
+    EXPECT_EQ(frames.output, "hdhair-record: error: cannot write '/nonexistent/f.#.png': folder '/nonexistent' does "
+                             "not exist\n");
+    // The target is a folder: rendering happens, the rename fails, nothing is left behind.
+    fs::create_directories(file("taken.png"));
+    RecordRun taken = record("--imageWidth 32 " + stage + " " + file("taken.png"));
+    EXPECT_EQ(taken.exitCode, 1);
+    EXPECT_EQ(taken.output.rfind("hdhair-record: error: cannot write '" + file("taken.png") + "': ", 0), 0u)
+        << taken.output;
+    for (const auto& entry : fs::directory_iterator(directory))
+        EXPECT_EQ(entry.path().filename().string().find(".tmp-"), std::string::npos) << entry.path();
+}
+
 TEST_F(HdhairRecord, NoGlContextIsAClearErrorNotACrash) {
     RecordRun run = record("--gl egl " + example("straight_strands.usda") + " " + file("o.png"),
                      "__EGL_VENDOR_LIBRARY_FILENAMES=/nonexistent.json");
