@@ -204,6 +204,27 @@ void growBoundsBySpan(const StrandControlPoint* c, glm::vec3& lo, glm::vec3& hi)
 
 }  // namespace
 
+namespace {
+
+// Values outside a shading primvar's documented range are clamped to it,
+// with one warning naming the prim, the primvar, how many and an example.
+void clampToDocumentedRange(const CurvesPrim& prim, const ShadingPrimvarRequest& request, ResolvedPrimvar& resolved,
+                            Diagnostics& diagnostics) {
+    size_t outside = 0;
+    float example = 0.0f;
+    for (float& value : resolved.values) {
+        if (value >= request.minimum && value <= request.maximum) continue;
+        if (outside++ == 0) example = value;
+        value = std::clamp(value, request.minimum, request.maximum);
+    }
+    if (outside > 0)
+        diagnostics.warn(prim.path + "." + attributeName(request.name),
+                         fmt::format("{} value(s) outside the documented range [{}, {}] (e.g. {}); clamped", outside,
+                                     request.minimum, request.maximum, example));
+}
+
+}  // namespace
+
 PreparedCurves prepareCurves(const CurvesPrim& prim, Diagnostics& diagnostics,
                              const std::vector<ShadingPrimvarRequest>& shadingPrimvars,
                              const StrandColorSource* colors) {
@@ -243,6 +264,7 @@ PreparedCurves prepareCurves(const CurvesPrim& prim, Diagnostics& diagnostics,
     for (const ShadingPrimvarRequest& request : shadingPrimvars) {
         if (!prim.findPrimvar(request.name)) continue;
         ResolvedPrimvar resolved = resolvePrimvar(prim, topology, request.name, request.fallback, diagnostics);
+        clampToDocumentedRange(prim, request, resolved, diagnostics);
         PreparedShadingPrimvar prepared;
         prepared.name = request.name;
         prepared.tupleSize = resolved.tupleSize;

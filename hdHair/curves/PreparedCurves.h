@@ -12,6 +12,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -37,6 +38,10 @@ static_assert(sizeof(StrandControlPoint) == 32, "tightly packed for the GPU");
 struct ShadingPrimvarRequest {
     std::string name;  // e.g. "hdHair:melanin"
     std::vector<float> fallback;
+    // The documented range of every component (HdHairAPI's schema): values
+    // outside are clamped to it with one warning a prim.
+    float minimum = -std::numeric_limits<float>::infinity();
+    float maximum = std::numeric_limits<float>::infinity();
 };
 
 // A requested primvar as authored on the prim, resolved like the colours.

@@ -170,16 +170,20 @@ unsigned variationOf(const HairParameterSource& prim, ShadingModel model) {
 }  // namespace
 
 const std::vector<ShadingPrimvarRequest>& hairParameterPrimvars() {
+    // Ranges from the schema's docs (schemas/HdHairAPI/schema.usda); where
+    // it gives none beyond "> 0", the bounds that keep the model finite:
+    // eta above 1 (at 1 a fibre refracts nothing), lobe shifts and widths
+    // within a right angle, weights and the exponent as the settings allow.
     static const std::vector<ShadingPrimvarRequest> requests{
-        {"hdHair:melanin", {kDefaultMelanin}},
-        {"hdHair:melaninRedness", {0.0f}},
-        {"hdHair:absorption", {0.0f, 0.0f, 0.0f}},  // an unusable absorption means no absorption
-        {"hdHair:eta", {kDefaultEta}},
-        {"hdHair:longitudinalShift", {kDefaultShiftDegrees}},
-        {"hdHair:longitudinalWidth", {kDefaultWidthDegrees}},
-        {"hdHair:kajiyaKay:diffuse", {KajiyaKayParameters{}.diffuse}},
-        {"hdHair:kajiyaKay:specular", {KajiyaKayParameters{}.specular}},
-        {"hdHair:kajiyaKay:shininess", {KajiyaKayParameters{}.shininess}},
+        {"hdHair:melanin", {kDefaultMelanin}, 0.0f, 1.0f},
+        {"hdHair:melaninRedness", {0.0f}, 0.0f, 1.0f},
+        {"hdHair:absorption", {0.0f, 0.0f, 0.0f}, 0.0f, 1e6f},  // an unusable absorption means no absorption
+        {"hdHair:eta", {kDefaultEta}, 1.001f, 2.0f},
+        {"hdHair:longitudinalShift", {kDefaultShiftDegrees}, -90.0f, 90.0f},
+        {"hdHair:longitudinalWidth", {kDefaultWidthDegrees}, 0.1f, 90.0f},
+        {"hdHair:kajiyaKay:diffuse", {KajiyaKayParameters{}.diffuse}, 0.0f, 100.0f},
+        {"hdHair:kajiyaKay:specular", {KajiyaKayParameters{}.specular}, 0.0f, 100.0f},
+        {"hdHair:kajiyaKay:shininess", {KajiyaKayParameters{}.shininess}, 1.0f, 10000.0f},
     };
     return requests;
 }

@@ -152,9 +152,11 @@ TEST(ShadingModels, GpuAnalyticMarschnerMatchesTheCpuModel) {
 
 TEST(ShadingModels, GpuAnalyticMarschnerStaysFiniteAtHardAngles) {
     const glm::dvec3 directions[] = {{1.0, 0.0, 0.0}, {0.0, 0.0, -1.0}, {0.0, 0.0, 1.0}, {0.0, 1.0, 0.0}};
+    // The ends of the documented ranges (values beyond them are clamped to
+    // them with a warning: ParametersOutsideTheirRangeAreClampedWithAWarning).
     const std::vector<std::pair<std::string, std::vector<float>>> fibres = {
-        {"hdHair:eta", {1.0f}}, {"hdHair:eta", {1.0001f}}, {"hdHair:absorption", {0.0f, 0.0f, 0.0f}},
-        {"hdHair:absorption", {1e6f, 1e6f, 1e6f}}, {"hdHair:longitudinalWidth", {0.0f}}};
+        {"hdHair:eta", {1.001f}}, {"hdHair:eta", {2.0f}}, {"hdHair:absorption", {0.0f, 0.0f, 0.0f}},
+        {"hdHair:absorption", {1e6f, 1e6f, 1e6f}}, {"hdHair:longitudinalWidth", {0.1f}}};
     for (const auto& [name, value] : fibres) {
         for (const glm::dvec3& direction : directions) {
             CurvesPrim hair = strand("/hair", 0.0f, {0.5f, 0.5f, 0.5f});
@@ -170,6 +172,41 @@ TEST(ShadingModels, GpuAnalyticMarschnerStaysFiniteAtHardAngles) {
                 EXPECT_LT(gpu[c], 1e6f);
             }
         }
+    }
+}
+
+// HdHairAPI values beyond their documented ranges (eta 1, where a fibre
+// refracts nothing; a lobe of width 0; negative weights) are clamped to the
+// range with one warning naming the prim and primvar, and render as the
+// clamped value does.
+TEST(ShadingModels, ParametersOutsideTheirRangeAreClampedWithAWarning) {
+    const struct {
+        const char* name;
+        float outside, clamped;
+        const char* model;
+    } cases[] = {{"hdHair:eta", 1.0f, 1.001f, "marschner"},
+                 {"hdHair:longitudinalWidth", 0.0f, 0.1f, "marschner"},
+                 {"hdHair:melanin", 1.5f, 1.0f, "marschner"},
+                 {"hdHair:kajiyaKay:specular", -2.0f, 0.0f, "kajiyaKay"}};
+    for (const auto& c : cases) {
+        SCOPED_TRACE(c.name);
+        auto render = [&](float value, Diagnostics& diagnostics) {
+            CurvesPrim hair = strand("/hair", 0.0f, {0.5f, 0.5f, 0.5f});
+            hair.shadingModel = c.model;
+            hair.primvars[c.name] = constant(c.name, {value});
+            Scene scene;
+            scene.setCurves(hair);
+            scene.setLight(distantFrom({0.0, 0.0, 1.0}));
+            return sharedRenderer().render(scene, camera(), RenderSettings{}, diagnostics);
+        };
+        Diagnostics outside, inside;
+        RenderResult clamped = render(c.outside, outside), expected = render(c.clamped, inside);
+        EXPECT_TRUE(inside.warnings().empty());
+        ASSERT_EQ(outside.warnings().size(), 1u);
+        EXPECT_EQ(outside.warnings()[0].where, std::string("/hair.primvars:") + c.name);
+        EXPECT_NE(outside.warnings()[0].message.find("outside the documented range"), std::string::npos)
+            << outside.warnings()[0].message;
+        EXPECT_EQ(clamped.color.pixels, expected.color.pixels);
     }
 }
 
