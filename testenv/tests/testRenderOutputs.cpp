@@ -185,6 +185,26 @@ TEST(RenderOutputs, EveryOutputInEveryTransparencyModeWithAndWithoutIds) {
     }
 }
 
+// A pixel that only faint strands cover has nothing to pick: depth 1 and ids
+// -1 under blending, however many faint strands are drawn over it.
+TEST(RenderOutputs, PixelsUnderOnlyFaintStrandsHaveNoIds) {
+    CameraView camera = orthographicCamera();
+    const double width = 8.0 / pixelsPerUnit(camera);
+    Scene scene;
+    scene.setCurves(horizontalStrands("/faint", 3, 0, 4.0f, {heightAtPixel(camera, kFaintRow + 0.5)}, width, {0, 1, 0},
+                                      0.05f));
+    scene.setCurves(horizontalStrands("/fainter", 5, 0, 2.0f, {heightAtPixel(camera, kFaintRow + 0.5)}, width,
+                                      {0, 0, 1}, 0.02f));
+    // Sorted: green 0.05 (z = 4, in front) over blue 0.02; unsorted draws by
+    // path, /faint then /fainter over it: blue 0.02 over green 0.05.
+    const ExpectedPixel sorted{kFaintRow, {0.0f, 0.05f, 0.95f * 0.02f, 0.05f + 0.95f * 0.02f}, 1.0f, -1, -1, -1};
+    const ExpectedPixel unsorted{kFaintRow, {0.0f, 0.98f * 0.05f, 0.02f, 0.02f + 0.98f * 0.05f}, 1.0f, -1, -1, -1};
+    for (const char* mode : {"binSorted", "exact", "unsorted"}) {
+        RenderResult result = render(scene, camera, {std::string("transparency=") + mode}, true);
+        expectOutputs(result, {std::string(mode) == "unsorted" ? unsorted : sorted}, true, mode);
+    }
+}
+
 TEST(RenderOutputs, MultisampledOpaqueFramesKeepDepthAndIds) {
     CameraView camera = orthographicCamera();
     Scene scene = layeredScene(camera);
