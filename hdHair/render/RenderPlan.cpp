@@ -178,8 +178,10 @@ RenderPlan makeRenderPlan(const Scene& scene, const RenderSettings& settings, co
     graph.add(upload);
 
     graph.input("preparedMeshes");
+    // Why the mesh passes are off, when they are.
+    const std::string noMeshes = scene.meshes().empty() ? "no meshes" : "no visible meshes";
     FramePass meshUpload{"meshUpload", {"preparedMeshes"}, {"meshGeometry"}, anyMeshes, ""};
-    meshUpload.reason = !anyMeshes       ? "no visible meshes"
+    meshUpload.reason = !anyMeshes       ? noMeshes
                         : meshes.changed ? fmt::format("{} mesh(es), {} triangles to the GPU: a mesh changed since the "
                                                        "last frame",
                                                        meshes.meshes, meshes.triangles)
@@ -211,7 +213,7 @@ RenderPlan makeRenderPlan(const Scene& scene, const RenderSettings& settings, co
                                       plan.meshesLit ? "Lambert under the lights" : "flat displayColor",
                                       idsRequested ? "and ids " : "");
     } else {
-        meshPass.reason = scene.meshes().empty() ? "no meshes" : "no visible meshes";
+        meshPass.reason = noMeshes;
     }
     graph.add(meshPass);
 
