@@ -93,7 +93,7 @@ Sdc::Options schemeOptions(const MeshTopology& topology) {
 MeshRefinement::MeshRefinement(const MeshTopology& topology, int level,
                                const std::vector<std::vector<int>>& faceVaryingChannels, const std::string& primPath,
                                Diagnostics& diagnostics)
-    : topology_(topology), channels_(faceVaryingChannels) {
+    : channels_(faceVaryingChannels) {
     if (level > 0 && topology.scheme != SubdivisionScheme::None && topology.faceCount() > 0) {
         // Every value a channel uses, for OpenSubdiv's value count.
         std::vector<int> valueCounts;

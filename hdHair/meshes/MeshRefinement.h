@@ -61,7 +61,6 @@ public:
 private:
     struct Refiner;  // OpenSubdiv's, kept for the primvars
     std::unique_ptr<Refiner> refiner_;
-    const MeshTopology& topology_;
     std::vector<std::vector<int>> channels_;
     int level_ = 0;
     bool onLimitSurface_ = false;
