@@ -59,10 +59,40 @@ glm::dvec3 newellNormal(const std::vector<glm::vec3>& points, const int* indices
     return normal;
 }
 
+bool isPoint(int vertex, const MeshTopology& topology) {
+    return vertex >= 0 && size_t(vertex) < topology.points.size();
+}
+
+// A sharpness as OpenSubdiv takes it: negative or non-finite ones are 0
+// (smooth), counted in `bad` as `element`.
+float checkedSharpness(float sharpness, size_t element, Tally& bad) {
+    if (std::isfinite(sharpness) && sharpness >= 0.0f) return sharpness;
+    bad.add(element);
+    return 0.0f;
+}
+
+// The warnings for tags (`kind`: "crease edge", "corner") naming a vertex
+// outside the points, and for sharpnesses repaired to 0.
+void reportTags(Diagnostics& diagnostics, const MeshPrim& prim, const char* indicesAttribute,
+                const char* sharpnessAttribute, const std::string& kind, const Tally& outOfRange,
+                const Tally& badSharpness, size_t points) {
+    if (outOfRange.count > 0)
+        diagnostics.warn(prim.path + "." + indicesAttribute,
+                         fmt::format("{} {} a vertex outside the {} points (first: {} {}); {}", outOfRange.count,
+                                     plural(outOfRange.count, (kind + " names").c_str(), (kind + "s name").c_str()),
+                                     points, kind, outOfRange.first,
+                                     plural(outOfRange.count, "it is ignored", "they are ignored")));
+    if (badSharpness.count > 0)
+        diagnostics.warn(prim.path + "." + sharpnessAttribute,
+                         fmt::format("{} {} {} negative or not finite (first: {} {}); using 0 (smooth)",
+                                     badSharpness.count, kind,
+                                     plural(badSharpness.count, "sharpness is", "sharpnesses are"), kind,
+                                     badSharpness.first));
+}
+
 // The vertices of each crease edge and its sharpness, from USD's chains.
 void readCreases(const MeshPrim& prim, MeshTopology& topology, Diagnostics& diagnostics) {
     if (prim.creaseIndices.empty() && prim.creaseLengths.empty() && prim.creaseSharpnesses.empty()) return;
-    const std::string where = prim.path + ".creaseIndices";
     uint64_t chained = 0, edges = 0;
     for (int length : prim.creaseLengths) {
         if (length < 2) {
@@ -74,8 +104,9 @@ void readCreases(const MeshPrim& prim, MeshTopology& topology, Diagnostics& diag
         edges += uint64_t(length) - 1;
     }
     if (chained != prim.creaseIndices.size()) {
-        diagnostics.warn(where, fmt::format("creaseLengths add up to {} vertices, found {}; creases ignored", chained,
-                                            prim.creaseIndices.size()));
+        diagnostics.warn(prim.path + ".creaseIndices",
+                         fmt::format("creaseLengths add up to {} vertices, found {}; creases ignored", chained,
+                                     prim.creaseIndices.size()));
         return;
     }
     const bool perCrease = prim.creaseSharpnesses.size() == prim.creaseLengths.size();
@@ -91,31 +122,19 @@ void readCreases(const MeshPrim& prim, MeshTopology& topology, Diagnostics& diag
     for (size_t crease = 0; crease < prim.creaseLengths.size(); ++crease) {
         for (int k = 0; k + 1 < prim.creaseLengths[crease]; ++k, ++edge) {
             const int a = prim.creaseIndices[vertex + size_t(k)], b = prim.creaseIndices[vertex + size_t(k) + 1];
-            float sharpness = prim.creaseSharpnesses[perCrease ? crease : edge];
-            if (a < 0 || b < 0 || size_t(a) >= topology.points.size() || size_t(b) >= topology.points.size()) {
+            if (!isPoint(a, topology) || !isPoint(b, topology)) {
                 outOfRange.add(edge);
                 continue;
             }
-            if (!std::isfinite(sharpness) || sharpness < 0.0f) {
-                badSharpness.add(edge);
-                sharpness = 0.0f;
-            }
             topology.creaseEdges.push_back(a);
             topology.creaseEdges.push_back(b);
-            topology.creaseSharpnesses.push_back(sharpness);
+            topology.creaseSharpnesses.push_back(
+                checkedSharpness(prim.creaseSharpnesses[perCrease ? crease : edge], edge, badSharpness));
         }
         vertex += size_t(prim.creaseLengths[crease]);
     }
-    if (outOfRange.count > 0)
-        diagnostics.warn(where, fmt::format("{} crease {} a vertex outside the {} points (first: edge {}); {}",
-                                            outOfRange.count, plural(outOfRange.count, "edge names", "edges name"),
-                                            topology.points.size(), outOfRange.first,
-                                            plural(outOfRange.count, "it is ignored", "they are ignored")));
-    if (badSharpness.count > 0)
-        diagnostics.warn(prim.path + ".creaseSharpnesses",
-                         fmt::format("{} crease {} negative or not finite (first: edge {}); using 0 (smooth)",
-                                     badSharpness.count, plural(badSharpness.count, "sharpness is", "sharpnesses are"),
-                                     badSharpness.first));
+    reportTags(diagnostics, prim, "creaseIndices", "creaseSharpnesses", "crease edge", outOfRange, badSharpness,
+               topology.points.size());
 }
 
 void readCorners(const MeshPrim& prim, MeshTopology& topology, Diagnostics& diagnostics) {
@@ -128,29 +147,15 @@ void readCorners(const MeshPrim& prim, MeshTopology& topology, Diagnostics& diag
     }
     Tally outOfRange, badSharpness;
     for (size_t i = 0; i < prim.cornerIndices.size(); ++i) {
-        const int vertex = prim.cornerIndices[i];
-        float sharpness = prim.cornerSharpnesses[i];
-        if (vertex < 0 || size_t(vertex) >= topology.points.size()) {
+        if (!isPoint(prim.cornerIndices[i], topology)) {
             outOfRange.add(i);
             continue;
         }
-        if (!std::isfinite(sharpness) || sharpness < 0.0f) {
-            badSharpness.add(i);
-            sharpness = 0.0f;
-        }
-        topology.corners.push_back(vertex);
-        topology.cornerSharpnesses.push_back(sharpness);
+        topology.corners.push_back(prim.cornerIndices[i]);
+        topology.cornerSharpnesses.push_back(checkedSharpness(prim.cornerSharpnesses[i], i, badSharpness));
     }
-    if (outOfRange.count > 0)
-        diagnostics.warn(prim.path + ".cornerIndices",
-                         fmt::format("{} {} outside the {} points (first: cornerIndices[{}]); {}", outOfRange.count,
-                                     plural(outOfRange.count, "corner is", "corners are"), topology.points.size(),
-                                     outOfRange.first, plural(outOfRange.count, "it is ignored", "they are ignored")));
-    if (badSharpness.count > 0)
-        diagnostics.warn(prim.path + ".cornerSharpnesses",
-                         fmt::format("{} corner {} negative or not finite (first: corner {}); using 0 (smooth)",
-                                     badSharpness.count, plural(badSharpness.count, "sharpness is", "sharpnesses are"),
-                                     badSharpness.first));
+    reportTags(diagnostics, prim, "cornerIndices", "cornerSharpnesses", "corner", outOfRange, badSharpness,
+               topology.points.size());
 }
 
 // Non-finite points become the mean of the finite points they share a face

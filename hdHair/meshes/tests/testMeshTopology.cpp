@@ -17,10 +17,25 @@ using hdhair::test::cube;
 using hdhair::test::quadGrid;
 using hdhair::test::warningsText;
 
-TEST(MeshTopology, AValidMeshKeepsEveryFaceAndCornerInOrder) {
+namespace {
+
+// What checkMeshTopology makes of `mesh`, and its warnings, one a line.
+struct Checked {
+    MeshTopology topology;
+    std::string warnings;
+};
+
+Checked check(const MeshPrim& mesh) {
     Diagnostics diagnostics;
-    const MeshTopology topology = checkMeshTopology(cube(), diagnostics);
-    EXPECT_EQ(diagnostics.warningCount(), 0u) << warningsText(diagnostics);
+    MeshTopology topology = checkMeshTopology(mesh, diagnostics);
+    return {std::move(topology), warningsText(diagnostics)};
+}
+
+}  // namespace
+
+TEST(MeshTopology, AValidMeshKeepsEveryFaceAndCornerInOrder) {
+    const auto [topology, warnings] = check(cube());
+    EXPECT_EQ(warnings, "");
     EXPECT_EQ(topology.scheme, SubdivisionScheme::CatmullClark);
     EXPECT_EQ(topology.faceVertexCounts, cube().faceVertexCounts);
     EXPECT_EQ(topology.faceVertexIndices, cube().faceVertexIndices);
@@ -36,9 +51,8 @@ TEST(MeshTopology, LeftHandedFacesAreReversedKeepingTheirFirstCorner) {
     MeshPrim mesh = quadGrid(1);
     mesh.orientation = "leftHanded";
     mesh.faceVertexIndices = {0, 2, 3, 1};  // clockwise seen from +z: leftHanded, its front is +z
-    Diagnostics diagnostics;
-    const MeshTopology topology = checkMeshTopology(mesh, diagnostics);
-    EXPECT_EQ(diagnostics.warningCount(), 0u);
+    const auto [topology, warnings] = check(mesh);
+    EXPECT_EQ(warnings, "");
     EXPECT_EQ(topology.faceVertexIndices, (std::vector<int>{0, 1, 3, 2}));
     EXPECT_EQ(topology.authoredCorner, (std::vector<int>{0, 3, 2, 1}));
 }
@@ -52,12 +66,11 @@ TEST(MeshTopology, BadFacesAreLeftOutAndTheRestKeepTheirAuthoredNumbers) {
                               1, 2, 5, 99, // face 3: a point that does not exist
                               3, 4, 7, 6,  // face 4: kept
                               4, 5};       // face 5: runs past the end
-    Diagnostics diagnostics;
-    const MeshTopology topology = checkMeshTopology(mesh, diagnostics);
+    const auto [topology, warnings] = check(mesh);
     EXPECT_EQ(topology.authoredFace, (std::vector<int>{0, 4}));
     EXPECT_EQ(topology.faceVertexIndices, (std::vector<int>{0, 1, 4, 3, 3, 4, 7, 6}));
     EXPECT_EQ(topology.authoredCorner, (std::vector<int>{0, 1, 2, 3, 10, 11, 12, 13}));
-    EXPECT_EQ(warningsText(diagnostics),
+    EXPECT_EQ(warnings,
               "/grid.faceVertexCounts: 1 face has a negative vertex count (first: face 2); not drawn\n"
               "/grid.faceVertexCounts: 1 face has fewer than 3 vertices (first: face 1); not drawn\n"
               "/grid.faceVertexCounts: the faces need 18 faceVertexIndices, found 16; the last 1 face is (from "
@@ -68,20 +81,18 @@ TEST(MeshTopology, BadFacesAreLeftOutAndTheRestKeepTheirAuthoredNumbers) {
 TEST(MeshTopology, ExtraIndicesAreIgnoredWithAWarning) {
     MeshPrim mesh = quadGrid(1);
     mesh.faceVertexIndices.push_back(0);
-    Diagnostics diagnostics;
-    const MeshTopology topology = checkMeshTopology(mesh, diagnostics);
+    const auto [topology, warnings] = check(mesh);
     EXPECT_EQ(topology.faceCount(), 1u);
-    EXPECT_EQ(warningsText(diagnostics),
+    EXPECT_EQ(warnings,
               "/grid.faceVertexIndices: 5 indices, 1 more than the faces use; the rest are ignored\n");
 }
 
 TEST(MeshTopology, AHugeDeclaredFaceSizeIsRejectedWithoutAllocating) {
     MeshPrim mesh = quadGrid(1);
     mesh.faceVertexCounts = {std::numeric_limits<int>::max(), 4};
-    Diagnostics diagnostics;
-    const MeshTopology topology = checkMeshTopology(mesh, diagnostics);
+    const auto [topology, warnings] = check(mesh);
     EXPECT_EQ(topology.faceCount(), 0u);
-    EXPECT_EQ(warningsText(diagnostics), "/grid.faceVertexCounts: the faces need 2147483651 faceVertexIndices, "
+    EXPECT_EQ(warnings, "/grid.faceVertexCounts: the faces need 2147483651 faceVertexIndices, "
                                          "found 4; the last 2 faces are (from face 0) not drawn\n");
 }
 
@@ -90,14 +101,13 @@ TEST(MeshTopology, HolesNameAuthoredFaces) {
     mesh.faceVertexCounts = {4, 2, 4, 4};  // face 1 is left out, so kept face 1 is authored face 2
     mesh.faceVertexIndices = {0, 1, 4, 3, 1, 2, 3, 4, 7, 6, 4, 5, 8, 7};
     mesh.holeIndices = {2, 1, 7, -1};
-    Diagnostics diagnostics;
-    const MeshTopology topology = checkMeshTopology(mesh, diagnostics);
+    const auto [topology, warnings] = check(mesh);
     EXPECT_EQ(topology.authoredFace, (std::vector<int>{0, 2, 3}));
     EXPECT_EQ(topology.hole, (std::vector<bool>{false, true, false}));
-    EXPECT_NE(warningsText(diagnostics).find("/grid.holeIndices: 2 holes are outside the 4 faces (first: "
+    EXPECT_NE(warnings.find("/grid.holeIndices: 2 holes are outside the 4 faces (first: "
                                              "holeIndices[2]); ignored\n"),
               std::string::npos)
-        << warningsText(diagnostics);
+        << warnings;
 }
 
 TEST(MeshTopology, NonFinitePointsBecomeTheirNeighboursMeanAndTheirFacesHoles) {
@@ -107,8 +117,7 @@ TEST(MeshTopology, NonFinitePointsBecomeTheirNeighboursMeanAndTheirFacesHoles) {
     mesh.faceVertexCounts.push_back(4);  // a fifth face away from both
     mesh.points.insert(mesh.points.end(), {{5, 0, 0}, {6, 0, 0}, {6, 1, 0}, {5, 1, 0}});
     mesh.faceVertexIndices.insert(mesh.faceVertexIndices.end(), {9, 10, 11, 12});
-    Diagnostics diagnostics;
-    const MeshTopology topology = checkMeshTopology(mesh, diagnostics);
+    const auto [topology, warnings] = check(mesh);
     EXPECT_EQ(topology.hole, (std::vector<bool>{true, true, true, true, false}));
     // The centre's finite neighbours in its four faces, counted once per
     // face: (0,0) (1,0) (0,1) | (1,0) (2,0) (2,1) | (0,1) (1,2) (0,2) |
@@ -117,7 +126,7 @@ TEST(MeshTopology, NonFinitePointsBecomeTheirNeighboursMeanAndTheirFacesHoles) {
     const glm::vec3 expected(10.0f / 11.0f, 10.0f / 11.0f, 0.0f);
     EXPECT_NEAR(centre.x, expected.x, 1e-6f);
     EXPECT_NEAR(centre.y, expected.y, 1e-6f);
-    EXPECT_EQ(warningsText(diagnostics),
+    EXPECT_EQ(warnings,
               "/grid.points: 2 points are not finite (first: points[4]); the faces using them are not drawn\n");
 }
 
@@ -126,10 +135,9 @@ TEST(MeshTopology, ZeroAreaFacesAreKeptAndReported) {
     mesh.points.insert(mesh.points.end(), {{3, 0, 0}, {4, 0, 0}, {5, 0, 0}});  // collinear
     mesh.faceVertexCounts = {4, 3, 3};
     mesh.faceVertexIndices = {0, 1, 3, 2, 4, 5, 6, 0, 0, 1};  // a line and a repeated point
-    Diagnostics diagnostics;
-    const MeshTopology topology = checkMeshTopology(mesh, diagnostics);
+    const auto [topology, warnings] = check(mesh);
     EXPECT_EQ(topology.faceCount(), 3u);
-    EXPECT_EQ(warningsText(diagnostics),
+    EXPECT_EQ(warnings,
               "/grid.faceVertexCounts: 2 faces have no area (first: face 1); they cover no pixels and no normal\n");
 }
 
@@ -138,20 +146,18 @@ TEST(MeshTopology, CreaseChainsBecomeEdgesWithSharpnessPerCreaseOrPerEdge) {
     mesh.creaseIndices = {0, 2, 3, 4, 5};
     mesh.creaseLengths = {3, 2};
     mesh.creaseSharpnesses = {2.0f, 5.0f};  // per crease
-    Diagnostics diagnostics;
-    MeshTopology topology = checkMeshTopology(mesh, diagnostics);
-    EXPECT_EQ(diagnostics.warningCount(), 0u) << warningsText(diagnostics);
-    EXPECT_EQ(topology.creaseEdges, (std::vector<int>{0, 2, 2, 3, 4, 5}));
-    EXPECT_EQ(topology.creaseSharpnesses, (std::vector<float>{2.0f, 2.0f, 5.0f}));
+    Checked checked = check(mesh);
+    EXPECT_EQ(checked.warnings, "");
+    EXPECT_EQ(checked.topology.creaseEdges, (std::vector<int>{0, 2, 2, 3, 4, 5}));
+    EXPECT_EQ(checked.topology.creaseSharpnesses, (std::vector<float>{2.0f, 2.0f, 5.0f}));
 
     mesh.creaseSharpnesses = {1.0f, 2.0f, 3.0f};  // per edge
-    topology = checkMeshTopology(mesh, diagnostics);
-    EXPECT_EQ(topology.creaseSharpnesses, (std::vector<float>{1.0f, 2.0f, 3.0f}));
+    EXPECT_EQ(check(mesh).topology.creaseSharpnesses, (std::vector<float>{1.0f, 2.0f, 3.0f}));
 
     mesh.creaseSharpnesses = {1.0f, 2.0f, 3.0f, 4.0f};
-    topology = checkMeshTopology(mesh, diagnostics);
-    EXPECT_TRUE(topology.creaseEdges.empty());
-    EXPECT_EQ(warningsText(diagnostics), "/cube.creaseSharpnesses: needs one sharpness per crease (2) or per crease "
+    checked = check(mesh);
+    EXPECT_TRUE(checked.topology.creaseEdges.empty());
+    EXPECT_EQ(checked.warnings, "/cube.creaseSharpnesses: needs one sharpness per crease (2) or per crease "
                                          "edge (3), found 4; creases ignored\n");
 }
 
@@ -162,26 +168,24 @@ TEST(MeshTopology, BadCreasesAndCornersAreReported) {
     mesh.creaseSharpnesses = {1.0f, -2.0f, 1.0f};
     mesh.cornerIndices = {7, 9};
     mesh.cornerSharpnesses = {3.0f, 3.0f};
-    Diagnostics diagnostics;
-    MeshTopology topology = checkMeshTopology(mesh, diagnostics);
-    EXPECT_EQ(topology.creaseEdges, (std::vector<int>{0, 2, 2, 3}));
-    EXPECT_EQ(topology.creaseSharpnesses, (std::vector<float>{1.0f, 0.0f}));
-    EXPECT_EQ(topology.corners, std::vector<int>{7});
-    EXPECT_EQ(warningsText(diagnostics),
-              "/cube.creaseIndices: 1 crease edge names a vertex outside the 8 points (first: edge 2); it is "
+    Checked checked = check(mesh);
+    EXPECT_EQ(checked.topology.creaseEdges, (std::vector<int>{0, 2, 2, 3}));
+    EXPECT_EQ(checked.topology.creaseSharpnesses, (std::vector<float>{1.0f, 0.0f}));
+    EXPECT_EQ(checked.topology.corners, std::vector<int>{7});
+    EXPECT_EQ(checked.warnings,
+              "/cube.creaseIndices: 1 crease edge names a vertex outside the 8 points (first: crease edge 2); it is "
               "ignored\n"
-              "/cube.creaseSharpnesses: 1 crease sharpness is negative or not finite (first: edge 1); using 0 "
-              "(smooth)\n"
-              "/cube.cornerIndices: 1 corner is outside the 8 points (first: cornerIndices[1]); it is ignored\n");
+              "/cube.creaseSharpnesses: 1 crease edge sharpness is negative or not finite (first: crease edge 1); "
+              "using 0 (smooth)\n"
+              "/cube.cornerIndices: 1 corner names a vertex outside the 8 points (first: corner 1); it is ignored\n");
 
     mesh.creaseLengths = {3};
-    Diagnostics lengths;
-    topology = checkMeshTopology(mesh, lengths);
-    EXPECT_TRUE(topology.creaseEdges.empty());
-    EXPECT_NE(warningsText(lengths).find(
+    checked = check(mesh);
+    EXPECT_TRUE(checked.topology.creaseEdges.empty());
+    EXPECT_NE(checked.warnings.find(
                   "/cube.creaseIndices: creaseLengths add up to 3 vertices, found 4; creases ignored\n"),
               std::string::npos)
-        << warningsText(lengths);
+        << checked.warnings;
 }
 
 TEST(MeshTopology, UnknownTokensFallBackWithAWarning) {
@@ -189,12 +193,11 @@ TEST(MeshTopology, UnknownTokensFallBackWithAWarning) {
     mesh.subdivisionScheme = "doo-sabin";
     mesh.interpolateBoundary = "sometimes";
     mesh.orientation = "sideways";
-    Diagnostics diagnostics;
-    const MeshTopology topology = checkMeshTopology(mesh, diagnostics);
+    const auto [topology, warnings] = check(mesh);
     EXPECT_EQ(topology.scheme, SubdivisionScheme::CatmullClark);
     EXPECT_EQ(topology.boundary, BoundaryInterpolation::EdgeAndCorner);
     EXPECT_EQ(topology.faceVertexIndices, cube().faceVertexIndices);
-    EXPECT_EQ(warningsText(diagnostics),
+    EXPECT_EQ(warnings,
               "/cube.subdivisionScheme: unknown value 'doo-sabin' (expected catmullClark, loop, bilinear, none); "
               "using catmullClark\n"
               "/cube.interpolateBoundary: unknown value 'sometimes' (expected none, edgeOnly, edgeAndCorner); "
@@ -205,8 +208,8 @@ TEST(MeshTopology, UnknownTokensFallBackWithAWarning) {
 TEST(MeshTopology, LoopOnQuadsIsDrawnAsPolygons) {
     MeshPrim mesh = cube();
     mesh.subdivisionScheme = "loop";
-    Diagnostics diagnostics;
-    EXPECT_EQ(checkMeshTopology(mesh, diagnostics).scheme, SubdivisionScheme::None);
-    EXPECT_EQ(warningsText(diagnostics),
+    const auto [topology, warnings] = check(mesh);
+    EXPECT_EQ(topology.scheme, SubdivisionScheme::None);
+    EXPECT_EQ(warnings,
               "/cube.subdivisionScheme: loop subdivision needs triangles only; drawn as polygons (none)\n");
 }
