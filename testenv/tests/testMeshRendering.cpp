@@ -14,6 +14,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
 
+#include "HorizontalStrands.h"
 #include "OrthographicView.h"
 #include "StageRendering.h"
 #include "hdHair/meshes/tests/TestMeshes.h"
@@ -33,27 +34,26 @@ namespace {
 constexpr int kPixels = 64;
 const std::vector<const char*> kModes = {"binSorted", "exact", "unsorted", "opaque"};
 
-// Linear strands along x across the whole view at heights `ys`, at depth z.
-CurvesPrim strands(const std::string& path, int primId, float z, const std::vector<float>& ys, float width,
+// Strands across the whole view at heights `ys` (HorizontalStrands.h).
+CurvesPrim strands(const std::string& path, int primId, float z, const std::vector<double>& ys, float width,
                    glm::vec3 color, float opacity) {
-    CurvesPrim prim;
-    prim.path = path;
-    prim.primId = primId;
-    prim.type = CurveType::Linear;
-    for (float y : ys) {
-        prim.curveVertexCounts.push_back(2);
-        prim.points.push_back({-5.0f, y, z});
-        prim.points.push_back({5.0f, y, z});
-    }
-    prim.primvars["widths"] = authoredPrimvar("widths", Interpolation::Constant, 1, {width});
-    prim.primvars["displayColor"] = authoredPrimvar("displayColor", Interpolation::Constant, 3, {color.r, color.g, color.b});
-    prim.primvars["displayOpacity"] = authoredPrimvar("displayOpacity", Interpolation::Constant, 1, {opacity});
-    return prim;
+    return horizontalStrands(path, primId, 0, z, ys, width, color, opacity);
 }
 
 MeshPrim withColor(MeshPrim mesh, glm::vec3 color) {
     mesh.primvars["displayColor"] = authoredPrimvar("displayColor", Interpolation::Constant, 3, {color.r, color.g, color.b});
     return mesh;
+}
+
+// An n x n grid of unit quads (faces numbered from the bottom left, row by
+// row) centred on the origin at depth z, facing the camera.
+MeshPrim centredGrid(int n, const std::string& path, double z = 0.0, const char* scheme = "none",
+                     int refineLevel = -1) {
+    MeshPrim grid = quadGrid(n, path);
+    grid.subdivisionScheme = scheme;
+    grid.refineLevel = refineLevel;
+    grid.worldTransform = glm::translate(glm::dmat4(1.0), glm::dvec3(-0.5 * n, -0.5 * n, z));
+    return grid;
 }
 
 RenderResult render(const Scene& scene, const CameraView& camera, const std::vector<std::string>& settings,
@@ -139,8 +139,7 @@ TEST(MeshRendering, ASphereHidesExactlyTheStrandsBehindIt) {
 // of it), depth and ids are the mesh's: primId, instanceId, the face.
 TEST(MeshRendering, DepthAndIdsAreTheMeshsWhereItIsNearest) {
     const CameraView camera = orthographicView(4.0, kPixels);
-    MeshPrim quads = withColor(quadGrid(2, "/quads"), {0.5f, 0.5f, 0.5f});  // (0, 0) to (2, 2): 4 faces
-    quads.worldTransform = glm::translate(glm::dmat4(1.0), glm::dvec3(-1.0, -1.0, 2.0));
+    MeshPrim quads = withColor(centredGrid(2, "/quads", 2.0), {0.5f, 0.5f, 0.5f});  // (-1, -1) to (1, 1): 4 faces
     quads.primId = 40;
     quads.instanceId = 3;
     Scene scene;
@@ -188,8 +187,7 @@ TEST(MeshRendering, DepthAndIdsAreTheMeshsWhereItIsNearest) {
 // linear in x interpolate to the centre's x exactly.
 TEST(MeshRendering, ColoursAtEveryInterpolationLandOnTheirPixels) {
     const CameraView camera = orthographicView(4.0, kPixels);
-    MeshPrim grid = quadGrid(2, "/grid");
-    grid.worldTransform = glm::translate(glm::dmat4(1.0), glm::dvec3(-1.0, -1.0, 0.0));
+    MeshPrim grid = centredGrid(2, "/grid");
     const std::vector<glm::vec3> faceColors = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {1, 1, 0}};
     auto centreColor = [&](const Scene& scene, double x, double y) {
         const RenderResult frame = render(scene, camera);
@@ -233,8 +231,7 @@ TEST(MeshRendering, ColoursAtEveryInterpolationLandOnTheirPixels) {
 TEST(MeshRendering, LambertUnderADistantLight) {
     const CameraView camera = orthographicView(4.0, kPixels);
     const glm::vec3 albedo(0.5f, 0.25f, 1.0f);
-    MeshPrim grid = withColor(quadGrid(2, "/grid"), albedo);
-    grid.worldTransform = glm::translate(glm::dmat4(1.0), glm::dvec3(-1.0, -1.0, 0.0));
+    const MeshPrim grid = withColor(centredGrid(2, "/grid"), albedo);
     for (double tilt : {0.0, 60.0}) {
         Scene scene;
         scene.setMesh(grid);
@@ -257,10 +254,7 @@ TEST(MeshRendering, LambertUnderADistantLight) {
 // centre shows nothing, its neighbours' centres are covered.
 TEST(MeshRendering, HolesLeaveHoles) {
     const CameraView camera = orthographicView(4.0, kPixels);
-    MeshPrim grid = withColor(quadGrid(4, "/grid"), {1, 1, 1});
-    grid.subdivisionScheme = "catmullClark";
-    grid.refineLevel = 2;
-    grid.worldTransform = glm::translate(glm::dmat4(1.0), glm::dvec3(-2.0, -2.0, 0.0));
+    MeshPrim grid = withColor(centredGrid(4, "/grid", 0.0, "catmullClark", 2), {1, 1, 1});
     grid.holeIndices = {5};  // column 1, row 1: the square (-1, -1) to (0, 0)
     Scene scene;
     scene.setMesh(grid);
@@ -400,10 +394,7 @@ TEST(MeshRendering, ExactFallingBackRedrawsTheMeshes) {
 // frame stays finite.
 TEST(MeshRendering, BadMeshesWarnAndStayFinite) {
     const CameraView camera = orthographicView(4.0, kPixels);
-    MeshPrim grid = withColor(quadGrid(3, "/grid"), {1, 1, 1});
-    grid.subdivisionScheme = "catmullClark";
-    grid.refineLevel = 2;
-    grid.worldTransform = glm::translate(glm::dmat4(1.0), glm::dvec3(-1.5, -1.5, 0.0));
+    MeshPrim grid = withColor(centredGrid(3, "/grid", 0.0, "catmullClark", 2), {1, 1, 1});
     grid.points[5] = glm::vec3(std::numeric_limits<float>::quiet_NaN());
     grid.points[15] = grid.points[11];  // face 8: (2, 2) (3, 2) (3, 2) (2, 2)
     grid.points[14] = grid.points[10];

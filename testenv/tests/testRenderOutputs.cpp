@@ -12,13 +12,12 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
 
+#include "HorizontalStrands.h"
 #include "StageRendering.h"
 #include "hdHair/render/CameraView.h"
 #include "hdHair/scene/Scene.h"
-#include "hdHair/scene/tests/AuthoredPrimvar.h"
 
 using namespace hdhair;
-using hdhair::test::authoredPrimvar;
 using namespace hdhair::testenv;
 
 namespace {
@@ -27,27 +26,6 @@ constexpr int kPixels = 64;
 constexpr int kColumn = 32;  // every strand crosses the whole image
 // Pixel rows (from the top) of the layers below; the strands are 8 px wide.
 constexpr int kFrontRow = 16, kFaintRow = 32, kThinRow = 48, kEmptyRow = 60;
-
-// Linear strands along x, one curve per height y, at depth z, of constant
-// width, colour and opacity. Curve i is elementId i.
-CurvesPrim horizontalStrands(const std::string& path, int primId, int instanceId, float z,
-                             const std::vector<double>& heights, double width, glm::vec3 color, float opacity) {
-    CurvesPrim prim;
-    prim.path = path;
-    prim.primId = primId;
-    prim.instanceId = instanceId;
-    prim.type = CurveType::Linear;
-    for (double y : heights) {
-        prim.curveVertexCounts.push_back(2);
-        prim.points.push_back({-5.0f, float(y), z});
-        prim.points.push_back({5.0f, float(y), z});
-    }
-    prim.primvars["widths"] = authoredPrimvar("widths", Interpolation::Constant, 1, {float(width)});
-    prim.primvars["displayColor"] =
-        authoredPrimvar("displayColor", Interpolation::Constant, 3, {color.r, color.g, color.b});
-    prim.primvars["displayOpacity"] = authoredPrimvar("displayOpacity", Interpolation::Constant, 1, {opacity});
-    return prim;
-}
 
 // Looking down -Z from z = 10 at [-1.2, 1.2]^2, clipping range [1, 21]: a
 // strand at z sits d = 10 - z in front of the camera and, orthographic, at
