@@ -28,6 +28,13 @@ find_package(OpenGL REQUIRED COMPONENTS EGL)      # libegl-dev
 find_library(OSMESA_LIBRARY NAMES OSMesa REQUIRED) # libosmesa6-dev
 find_path(OSMESA_INCLUDE_DIR GL/osmesa.h REQUIRED)
 find_program(GLSLANG_VALIDATOR glslangValidator REQUIRED) # glslang-tools
+# libosd-dev: OpenSubdiv refines meshes on the CPU (Far only). Debian 12's
+# OpenSubdivConfig.cmake lists static libraries the package does not ship,
+# so find_package(OpenSubdiv) fails there: the CPU library and the headers
+# are found directly.
+find_library(OPENSUBDIV_CPU_LIBRARY NAMES osdCPU REQUIRED)
+find_path(OPENSUBDIV_INCLUDE_DIR opensubdiv/far/topologyRefinerFactory.h REQUIRED)
+find_package(tinyobjloader CONFIG REQUIRED)       # libtinyobjloader-dev: .obj meshes for hdhair-convert
 if(HDHAIR_BUILD_TESTS)
   find_package(GTest REQUIRED)                    # libgtest-dev
 endif()
@@ -38,3 +45,7 @@ endif()
 add_library(hdhair_osmesa INTERFACE)
 target_include_directories(hdhair_osmesa SYSTEM INTERFACE ${OSMESA_INCLUDE_DIR})
 target_link_libraries(hdhair_osmesa INTERFACE ${OSMESA_LIBRARY})
+
+add_library(hdhair_opensubdiv INTERFACE)
+target_include_directories(hdhair_opensubdiv SYSTEM INTERFACE ${OPENSUBDIV_INCLUDE_DIR})
+target_link_libraries(hdhair_opensubdiv INTERFACE ${OPENSUBDIV_CPU_LIBRARY})

@@ -8,9 +8,9 @@ It does three things:
 * parses that text back with a small independent parser of the same USD
   subset, and composes it (subLayers, references, payloads, overs);
 * checks the composed stage: balanced brackets, valid curve vertex counts for
-  each basis and wrap, primvar sizes for each interpolation, xformOpOrder
-  entries that exist, and that every curve point is inside the main camera's
-  view and clipping range.
+  each basis and wrap, mesh faces and indices, primvar sizes for each
+  interpolation, xformOpOrder entries that exist, and that every curve and
+  mesh point is inside the main camera's view and clipping range.
 
 The generators render every file, check it through this round trip, and only
 then write it (or, with --check, compare it with the checked-in file).
@@ -263,6 +263,21 @@ def basis_curves(name, counts, points, widths, widths_interp, colors=None, color
         attrs.append(Attr("color3f[]", "primvars:displayColor", list(colors), interpolation=colors_interp))
     attrs += list(extra or [])
     return Prim("BasisCurves", name, attrs=attrs)
+
+
+def mesh(name, counts, indices, points, scheme="catmullClark", colors=None, colors_interp=None, extra=None):
+    """A Mesh prim; `extra` adds attributes (subdivision tags, more primvars)."""
+    attrs = [
+        Attr("float3[]", "extent", extent(points, [])),
+        Attr("int[]", "faceVertexCounts", list(counts)),
+        Attr("int[]", "faceVertexIndices", list(indices)),
+        Attr("point3f[]", "points", list(points)),
+        Attr("token", "subdivisionScheme", scheme, uniform=True),
+    ]
+    if colors is not None:
+        attrs.append(Attr("color3f[]", "primvars:displayColor", list(colors), interpolation=colors_interp))
+    attrs += list(extra or [])
+    return Prim("Mesh", name, attrs=attrs)
 
 
 def extent(points, widths):
@@ -832,6 +847,30 @@ def check_curves(path, prim):
     return len(counts), len(points)
 
 
+def check_mesh(path, prim):
+    """Face counts that use every index, indices inside the points, primvar
+    sizes for each interpolation, a known scheme. Returns (faces, points)."""
+    a = prim["attrs"]
+    counts = [int(c) for c in a["faceVertexCounts"]["value"]]
+    indices = [int(i) for i in a["faceVertexIndices"]["value"]]
+    points = a["points"]["value"]
+    assert all(c >= 3 for c in counts), "%s: a face with fewer than 3 vertices" % path
+    assert sum(counts) == len(indices), "%s: sum(faceVertexCounts) %d != %d indices" % (path, sum(counts), len(indices))
+    assert all(0 <= i < len(points) for i in indices), "%s: an index outside the points" % path
+    scheme = a["subdivisionScheme"]["value"] if "subdivisionScheme" in a else "catmullClark"
+    assert scheme in ("catmullClark", "loop", "bilinear", "none"), (path, scheme)
+    sizes = {"constant": 1, "uniform": len(counts), "varying": len(points), "vertex": len(points),
+             "faceVarying": len(indices)}
+    for name, attr in a.items():
+        if name.startswith("primvars:") and not name.endswith(":indices"):
+            interp = attr["meta"].get("interpolation", "constant")
+            indexed = name + ":indices" in a
+            size = len(a[name + ":indices"]["value"]) if indexed else len(attr["value"])
+            assert size == sizes[interp], "%s.%s: %d values for %s (expected %d)" % (path, name, size, interp,
+                                                                                    sizes[interp])
+    return len(counts), len(points)
+
+
 def check_stage(path, texts, camera_path="/World/main_cam", need_lights=True, margin=0.97):
     """Composes and checks a stage; returns a summary dictionary."""
     meta, prims = compose(path, texts)
@@ -839,7 +878,7 @@ def check_stage(path, texts, camera_path="/World/main_cam", need_lights=True, ma
     assert meta["upAxis"][1] == "Y" and meta["metersPerUnit"][1] == 0.01, path
     start = meta.get("startTimeCode", (None, 1.0))[1]
     end = meta.get("endTimeCode", (None, start))[1]
-    summary = {"curves": {}, "lights": [], "camera": None, "bounds": {}}
+    summary = {"curves": {}, "meshes": {}, "lights": [], "camera": None, "bounds": {}}
     world_points = {}
     for time in sorted({start, end}):
         for prim_path, prim, world in walk(prims, time):
@@ -850,6 +889,10 @@ def check_stage(path, texts, camera_path="/World/main_cam", need_lights=True, ma
                 summary["curves"][prim_path] = check_curves(prim_path, prim)
                 a = prim["attrs"]
                 pts = [transform_point(world, p) for p in a["points"]["value"]]
+                world_points.setdefault(prim_path, []).extend(pts)
+            elif prim["type"] == "Mesh":
+                summary["meshes"][prim_path] = check_mesh(prim_path, prim)
+                pts = [transform_point(world, p) for p in prim["attrs"]["points"]["value"]]
                 world_points.setdefault(prim_path, []).extend(pts)
             elif prim["type"] == "Camera" and prim_path == camera_path:
                 summary["camera"] = (prim, world)

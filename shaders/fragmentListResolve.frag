@@ -7,7 +7,12 @@
 // longer ones are walked in depth order by repeated selection, which is
 // O(k^2) but exact for any length: this pass is the ground truth.
 // Depth and ids come from the nearest fragment that definesDepthAndIds()
-// accepts, as in the other blended paths; none gives depth 1 and ids -1.
+// accepts, as in the other blended paths.
+// Opaque geometry drawn before (meshes) stays behind the lists: the pass
+// draws twice (hdHair/gl/FragmentListPass.cpp). resolveIds 0: the colour,
+// composited over what the frame holds, and the nearest depth, min-blended
+// with it; resolveIds 1: the ids, only where a listed fragment defines them
+// (elsewhere the frame keeps its ids: the mesh's, or -1).
 #include "include/frameUniforms.glsl"
 #include "include/fragmentLists.glsl"
 #include "include/strandGeometry.glsl"
@@ -22,18 +27,38 @@ layout(location = 2) out int outInstanceId;
 layout(location = 3) out int outElementId;
 layout(location = 4) out float outNearestDepth;  // hdHair/gl/RenderTarget.h kNearestDepthOutput
 
+layout(location = 0) uniform int resolveIds;
+
 // Orders fragments by depth, then by index, so ties resolve the same way
 // whatever order the GPU appended them in.
 bool nearer(float depthA, uint indexA, float depthB, uint indexB) {
     return depthA < depthB || (depthA == depthB && indexA < indexB);
 }
 
+// The ids of the nearest fragment that may define them; no sort needed.
+void writeIds(uint head) {
+    uint front = HDHAIR_LIST_END;
+    for (uint n = head; n != HDHAIR_LIST_END && n < capacity; n = nodes[n].next) {
+        if (!definesDepthAndIds(nodes[n].color.a)) continue;
+        if (front == HDHAIR_LIST_END || nearer(nodes[n].depth, n, nodes[front].depth, front)) front = n;
+    }
+    if (front == HDHAIR_LIST_END) discard;
+    int segment = nodes[front].segment;
+    outPrimId = segmentPrim[segment].x;
+    outInstanceId = segmentPrim[segment].y;
+    outElementId = segmentCurve[segment];
+}
+
 void main() {
     uint head = imageLoad(listHeads, ivec2(gl_FragCoord.xy)).r;
+    if (resolveIds != 0) {
+        writeIds(head);
+        return;
+    }
     vec4 color = vec4(0.0);
     float transmittance = 1.0;
-    // The nearest fragment that may define depth and ids: what a user picks.
-    int frontSegment = -1;
+    // The nearest fragment that may define depth: what a user picks.
+    bool front = false;
     float frontDepth = 1.0;
 
     // Gather first, sort afterwards, on copies of the depths held in
@@ -69,8 +94,8 @@ void main() {
     if (fits) {
         for (int i = 0; i < count; ++i) {
             FragmentNode node = nodes[local[i]];
-            if (frontSegment < 0 && definesDepthAndIds(node.color.a)) {
-                frontSegment = node.segment;
+            if (!front && definesDepthAndIds(node.color.a)) {
+                front = true;
                 frontDepth = node.depth;
             }
             color.rgb += transmittance * node.color.rgb;
@@ -89,8 +114,8 @@ void main() {
             }
             if (best == HDHAIR_LIST_END) break;
             FragmentNode node = nodes[best];
-            if (frontSegment < 0 && definesDepthAndIds(node.color.a)) {
-                frontSegment = node.segment;
+            if (!front && definesDepthAndIds(node.color.a)) {
+                front = true;
                 frontDepth = node.depth;
             }
             color.rgb += transmittance * node.color.rgb;
@@ -102,8 +127,5 @@ void main() {
     }
     color.a = 1.0 - transmittance;
     outColor = color;
-    outPrimId = frontSegment >= 0 ? segmentPrim[frontSegment].x : -1;
-    outInstanceId = frontSegment >= 0 ? segmentPrim[frontSegment].y : -1;
-    outElementId = frontSegment >= 0 ? segmentCurve[frontSegment] : -1;
     outNearestDepth = frontDepth;
 }

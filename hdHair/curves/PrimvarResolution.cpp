@@ -1,8 +1,7 @@
 #include "hdHair/curves/PrimvarResolution.h"
 
 #include <algorithm>
-#include <cassert>
-#include <cmath>
+#include <optional>
 
 #include <fmt/format.h>
 
@@ -11,13 +10,6 @@
 namespace hdhair {
 
 namespace {
-
-std::string formatValue(const std::vector<float>& value) {
-    if (value.size() == 1) return fmt::format("{}", value[0]);
-    return fmt::format("({})", fmt::join(value, ", "));
-}
-
-const char* plural(size_t count, const char* singular, const char* many) { return count == 1 ? singular : many; }
 
 // Where varying data's values for each curve start, in each accepted layout.
 enum class VaryingLayout {
@@ -90,107 +82,30 @@ std::vector<float> expandVarying(const std::vector<float>& elements, VaryingLayo
     return result;
 }
 
-// Replaces every element with a NaN or infinite component by the fallback.
-void replaceNonFinite(ResolvedPrimvar& resolved, const std::vector<float>& fallback, const std::string& where,
-                      Diagnostics& diagnostics) {
-    const size_t tuple = static_cast<size_t>(resolved.tupleSize);
-    size_t replaced = 0;
-    size_t first = 0;
-    for (size_t e = 0; e < resolved.elementCount(); ++e) {
-        float* element = resolved.values.data() + e * tuple;
-        if (std::all_of(element, element + tuple, [](float v) { return std::isfinite(v); })) continue;
-        if (replaced++ == 0) first = e;
-        std::copy(fallback.begin(), fallback.end(), element);
-    }
-    if (replaced == 0) return;
-    diagnostics.warn(where, fmt::format("{} {} not finite (first: element {}); using the fallback {} for {}", replaced,
-                                        plural(replaced, "element is", "elements are"), first, formatValue(fallback),
-                                        plural(replaced, "it", "them")));
-}
-
 }  // namespace
-
-ResolvedPrimvar constantPrimvar(const std::vector<float>& value) {
-    return ResolvedPrimvar{Interpolation::Constant, static_cast<int>(value.size()), value};
-}
-
-std::string attributeName(const std::string& primvarName) {
-    if (primvarName == "widths" || primvarName == "normals") return primvarName;
-    return "primvars:" + primvarName;
-}
 
 ResolvedPrimvar resolvePrimvar(const Primvar& primvar, const CurveTopology& topology,
                                const std::vector<float>& fallback, const std::string& primPath,
                                const std::string& primvarName, Diagnostics& diagnostics) {
-    assert(!fallback.empty() && "the fallback is one element and sets the tuple size");
     const std::string where = primPath + "." + attributeName(primvarName);
     const int tupleSize = static_cast<int>(fallback.size());
-    const size_t tuple = fallback.size();
-    auto useFallback = [&](const std::string& problem) {
-        diagnostics.warn(where, problem + "; using the fallback " + formatValue(fallback));
-        return constantPrimvar(fallback);
-    };
+    std::optional<FlattenedPrimvar> flattened = flattenPrimvar(primvar, fallback, where, diagnostics);
+    if (!flattened) return constantPrimvar(fallback);
+    std::vector<float>& elements = flattened->elements;
+    const size_t count = flattened->count;
 
-    if (primvar.tupleSize != tupleSize) {
-        return useFallback(fmt::format("expects {} {} per element, found {} ({})", tupleSize,
-                                       plural(tuple, "component", "components"), primvar.tupleSize,
-                                       primvar.typeName.empty() ? "untyped" : primvar.typeName));
-    }
-    const size_t available = primvar.values.size() / tuple;
-    if (primvar.values.size() % tuple != 0) {
-        diagnostics.warn(where, fmt::format("{} floats are not whole {}-component elements; ignoring the last {}",
-                                            primvar.values.size(), tuple, primvar.values.size() % tuple));
-    }
-
-    // Flatten through the indices (UsdGeomPrimvar::ComputeFlattened).
-    std::vector<float> elements;
-    if (primvar.indices.empty()) {
-        elements.assign(primvar.values.begin(),
-                        primvar.values.begin() + static_cast<std::ptrdiff_t>(available * tuple));
-    } else {
-        elements.resize(primvar.indices.size() * tuple);
-        size_t outOfRange = 0;
-        size_t firstBad = 0;
-        for (size_t i = 0; i < primvar.indices.size(); ++i) {
-            const int index = primvar.indices[i];
-            const bool valid = index >= 0 && static_cast<size_t>(index) < available;
-            const float* source = valid ? primvar.values.data() + static_cast<size_t>(index) * tuple : fallback.data();
-            std::copy(source, source + tuple, elements.begin() + static_cast<std::ptrdiff_t>(i * tuple));
-            if (!valid && outOfRange++ == 0) firstBad = i;
-        }
-        if (outOfRange > 0) {
-            diagnostics.warn(where,
-                             fmt::format("{} {} out of range for {} {} (first: indices[{}] = {}); using the "
-                                         "fallback {} for {}",
-                                         outOfRange, plural(outOfRange, "index is", "indices are"), available,
-                                         plural(available, "value", "values"), firstBad, primvar.indices[firstBad],
-                                         formatValue(fallback), plural(outOfRange, "it", "them")));
-        }
-    }
-    const size_t count = elements.size() / tuple;
-
-    // HdSt treats vertex/varying data of size 1 as constant; UsdImaging does
-    // the same for uniform, and one value without metadata can only be constant.
-    Interpolation interpolation =
-        primvar.interpolation == Interpolation::FaceVarying ? Interpolation::Varying : primvar.interpolation;
-    if (count == 1) interpolation = Interpolation::Constant;
-    const char* authoredName = toString(primvar.interpolation);
+    // Curves have no face-varying rate: it is read as varying, as Storm does.
+    Interpolation interpolation = flattened->interpolation == Interpolation::FaceVarying ? Interpolation::Varying
+                                                                                         : flattened->interpolation;
     auto mismatch = [&](size_t expected, const std::string& alternatives) {
-        return useFallback(fmt::format("{} interpolation needs {} {}{}, found {}", authoredName, expected,
-                                       plural(expected, "value", "values"), alternatives, count));
+        return primvarFallback(primvarCountProblem(primvar.interpolation, expected, alternatives, count), fallback,
+                               where, diagnostics);
     };
 
     ResolvedPrimvar resolved{interpolation, tupleSize, {}};
     switch (interpolation) {
     case Interpolation::Constant:
-        if (count == 0) return mismatch(1, "");
-        if (count > 1) {
-            diagnostics.warn(where,
-                             fmt::format("constant interpolation needs 1 value, found {}; using the first", count));
-        }
-        elements.resize(tuple);
-        resolved.values = std::move(elements);
-        break;
+        return resolveConstantPrimvar(std::move(*flattened), primvar.interpolation, fallback, where, diagnostics);
     case Interpolation::Uniform:
         if (count != topology.curveCount()) return mismatch(topology.curveCount(), "");
         resolved.values = std::move(elements);
@@ -198,9 +113,9 @@ ResolvedPrimvar resolvePrimvar(const Primvar& primvar, const CurveTopology& topo
     case Interpolation::Vertex: {
         const size_t expected = topology.vertexTotal();
         // HdSt truncates indexed vertex data that is too long.
-        const bool truncatable = !primvar.indices.empty() && count > expected;
+        const bool truncatable = flattened->indexed && count > expected;
         if (count != expected && !truncatable) return mismatch(expected, "");
-        elements.resize(expected * tuple);
+        elements.resize(expected * fallback.size());
         resolved.values = std::move(elements);
         break;
     }
@@ -225,7 +140,7 @@ ResolvedPrimvar resolvePrimvar(const Primvar& primvar, const CurveTopology& topo
         break;
     }
     }
-    replaceNonFinite(resolved, fallback, where, diagnostics);
+    replaceNonFiniteElements(resolved, fallback, where, diagnostics);
     return resolved;
 }
 

@@ -10,20 +10,13 @@
 #include <vector>
 
 #include "hdHair/curves/CurveTopology.h"
-#include "hdHair/scene/Primvar.h"
+#include "hdHair/scene/PrimvarFlattening.h"
 
 namespace hdhair {
 
 class Diagnostics;
 
-// Unauthored values: widths is Hydra's gprim fallback (VtFloatArray{1.0},
-// UsdImaging gprimAdapter.cpp); displayColor and displayOpacity are the
-// fallbacks UsdImaging reports when they are not authored.
-inline const std::vector<float> kFallbackWidth{1.0f};
-inline const std::vector<float> kFallbackDisplayColor{0.5f, 0.5f, 0.5f};
-inline const std::vector<float> kFallbackDisplayOpacity{1.0f};
-
-// A primvar with exactly as many elements as its interpolation needs:
+// Curves resolve to exactly as many elements as their interpolation needs:
 //  - Constant: 1;
 //  - Uniform: one per curve (topology.curveCount());
 //  - Varying: one per span end, topology.spanEndTotal() (= USD's varying
@@ -31,24 +24,7 @@ inline const std::vector<float> kFallbackDisplayOpacity{1.0f};
 //    curve: authored nonperiodic-size data is padded by repeating its end
 //    values, as HdsiPinnedCurveExpandingSceneIndex does);
 //  - Vertex: one per vertex, topology.vertexTotal().
-// FaceVarying never appears here: it resolves as Varying.
-struct ResolvedPrimvar {
-    Interpolation interpolation = Interpolation::Constant;
-    int tupleSize = 1;
-    std::vector<float> values;  // element-major
-
-    size_t elementCount() const { return tupleSize > 0 ? values.size() / static_cast<size_t>(tupleSize) : 0; }
-    const float* element(size_t i) const { return values.data() + i * static_cast<size_t>(tupleSize); }
-};
-
-// A constant primvar holding `value` (what an unauthored primvar resolves to).
-ResolvedPrimvar constantPrimvar(const std::vector<float>& value);
-
-// The attribute name as USD writes it, for messages: "widths" and "normals"
-// are attributes on Curves/PointBased (whether authored as attributes or as
-// primvars, CurvesPrim stores them under their bare name); every other name
-// gets its "primvars:" namespace back.
-std::string attributeName(const std::string& primvarName);
+// FaceVarying never appears in a ResolvedPrimvar of curves: it resolves as Varying.
 
 // Resolves `primvar` against `topology`. `fallback` is one element (its size
 // is the expected tuple size). Never reads out of bounds and never throws:

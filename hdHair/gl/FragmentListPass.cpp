@@ -1,8 +1,15 @@
 #include "hdHair/gl/FragmentListPass.h"
 
+#include "hdHair/gl/RenderTarget.h"
 #include "hdHair/gl/StrandPass.h"
 
 namespace hdhair::gl {
+
+namespace {
+
+constexpr GLint kResolveIds = 0;  // uniform location in shaders/fragmentListResolve.frag
+
+}  // namespace
 
 FragmentListPass::FragmentListPass()
     : listProgram_(createProgram({"strand.vert", "strand.tesc", "strand.tese", "strandFragmentList.frag"})),
@@ -14,7 +21,7 @@ FragmentListPass::FragmentListPass()
 }
 
 uint64_t FragmentListPass::render(const StrandGeometry& geometry, const std::vector<SegmentRange>& ranges, int width,
-                                  int height, size_t capacity, float maxSegmentsPerSpan) {
+                                  int height, size_t capacity, float maxSegmentsPerSpan, bool writeIds) {
     if (width != headsWidth_ || height != headsHeight_) {
         GLuint name = 0;
         glCreateTextures(GL_TEXTURE_2D, 1, &name);
@@ -54,11 +61,31 @@ uint64_t FragmentListPass::render(const StrandGeometry& geometry, const std::vec
     glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
 
-    // Pass 2: resolve every pixel (empty lists give transparent black, depth
-    // 1 and ids -1), unblended: it writes colour, ids and nearest depth.
+    // Pass 2: resolve every pixel over what the frame holds (opaque meshes,
+    // or nothing): colour composited (ONE, ONE_MINUS_SRC_ALPHA) and the
+    // nearest depth min-blended, then the ids where a listed fragment
+    // defines them (integer images cannot blend, so they take a draw of
+    // their own that discards elsewhere).
     glUseProgram(resolveProgram_.get());
     glDisable(GL_DEPTH_TEST);
+    glProgramUniform1i(resolveProgram_.get(), kResolveIds, 0);
+    for (int id = 0; id < 3; ++id) glColorMaski(GLuint(kFirstIdOutput + id), GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+    glEnablei(GL_BLEND, kColorOutput);
+    glBlendEquationi(kColorOutput, GL_FUNC_ADD);
+    glBlendFunci(kColorOutput, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+    glEnablei(GL_BLEND, kNearestDepthOutput);
+    glBlendEquationi(kNearestDepthOutput, GL_MIN);
     glDrawArrays(GL_TRIANGLES, 0, 3);
+    glDisable(GL_BLEND);
+    glBlendEquation(GL_FUNC_ADD);
+    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    if (writeIds) {
+        glProgramUniform1i(resolveProgram_.get(), kResolveIds, 1);
+        glColorMaski(kColorOutput, GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+        glColorMaski(kNearestDepthOutput, GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+        glDrawArrays(GL_TRIANGLES, 0, 3);
+        glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    }
     glEnable(GL_DEPTH_TEST);
     glDepthMask(GL_TRUE);
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);

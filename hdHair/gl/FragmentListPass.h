@@ -20,16 +20,19 @@ class FragmentListPass {
 public:
     FragmentListPass();  // compiles both programs
 
-    // Renders into the currently bound framebuffer (its colour, id and
-    // nearest-depth attachments are overwritten; the depth buffer is tested,
-    // not written). The frame and light uniform blocks must be bound
+    // Renders into the currently bound framebuffer, over what it holds: the
+    // strands' colour is composited over it, their nearest depth min-blended
+    // with it, and their ids (with `writeIds`, when the target has ids)
+    // written where a strand fragment defines them; the depth buffer is
+    // tested, not written, so opaque geometry drawn before hides what is
+    // behind it. The frame and light uniform blocks must be bound
     // (StrandPass::setUniforms). Depth and ids follow
     // hdHair/render/NearestStrandRule.h.
     // Returns how many fragments the strands produced; more than
     // `capacity` means the image is incomplete and must not be used.
     // `ranges`: the drawn prims' segments.
     uint64_t render(const StrandGeometry& geometry, const std::vector<SegmentRange>& ranges, int width, int height,
-                    size_t capacity, float maxSegmentsPerSpan);
+                    size_t capacity, float maxSegmentsPerSpan, bool writeIds);
 
 private:
     Program listProgram_, resolveProgram_;

@@ -57,12 +57,17 @@ void RenderTarget::create(Attachments& a, int samples) {
                                  " samples; status " + std::to_string(status) + ")");
 }
 
-void RenderTarget::bindAndClear(const glm::vec4& clearColor) {
+void RenderTarget::bind() {
     GLuint framebuffer = draw_.framebuffer.get();
     glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
     // Light batches may have left the framebuffer drawing colour only.
     glNamedFramebufferDrawBuffers(framebuffer, kOutputCount, drawBuffers().data());
     glViewport(0, 0, width_, height_);
+}
+
+void RenderTarget::bindAndClear(const glm::vec4& clearColor) {
+    bind();
+    GLuint framebuffer = draw_.framebuffer.get();
     glClearNamedFramebufferfv(framebuffer, GL_COLOR, kColorOutput, &clearColor[0]);
     const float farthest = 1.0f;
     glClearNamedFramebufferfv(framebuffer, GL_DEPTH, 0, &farthest);

@@ -11,7 +11,8 @@
 // or in no order at all), so blended frames take their depth from the
 // nearest-depth image instead: R32F, cleared to 1 and min-blended, written by
 // the strand shaders at output kNearestDepthOutput with the window depth of
-// each fragment that may define it (hdHair/render/NearestStrandRule.h).
+// each fragment that may define it, and by the meshes, drawn before them
+// (hdHair/render/NearestStrandRule.h).
 
 #include <array>
 #include <cstdint>
@@ -26,7 +27,7 @@ namespace hdhair::gl {
 // Fragment shader outputs (layout locations) and the attachments they draw to.
 constexpr int kColorOutput = 0;
 constexpr int kFirstIdOutput = 1;          // prim, instance, element: 1, 2, 3
-constexpr int kNearestDepthOutput = 4;     // strand.frag and fragmentListResolve.frag
+constexpr int kNearestDepthOutput = 4;     // strand.frag, mesh.frag and fragmentListResolve.frag
 constexpr int kOutputCount = 5;
 
 // Which images a render target has besides colour and depth.
@@ -48,8 +49,10 @@ public:
     int width() const { return width_; }
     int height() const { return height_; }
     const RenderTargetImages& images() const { return images_; }
-    // Binds for drawing, sets the viewport and clears colour, depth and the
-    // nearest depth to 1, and the ids to -1 (Hydra's "nothing here").
+    // Binds for drawing into every image it has, and sets the viewport.
+    void bind();
+    // bind(), then clears colour, depth and the nearest depth to 1, and the
+    // ids to -1 (Hydra's "nothing here").
     void bindAndClear(const glm::vec4& clearColor);
     // After drawing: resolves multisampled images (nothing to do otherwise).
     void resolve();

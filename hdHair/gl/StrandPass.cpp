@@ -83,9 +83,12 @@ void StrandPass::draw(const StrandGeometry& geometry, const std::vector<SegmentR
         glBlendEquation(GL_FUNC_ADD);
         glBlendFunc(GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
         // The nearest depth keeps the least depth written, in any drawing
-        // order (MIN ignores the blend factors; integer id images ignore
-        // blending altogether).
+        // order (MIN ignores the blend factors).
         glBlendEquationi(kNearestDepthOutput, GL_MIN);
+        // Integer id images cannot blend: unmasked, they would keep the
+        // last fragment drawn, faint or not. The ids pass writes them.
+        for (int i = 0; i < 3; ++i)
+            glColorMaski(GLuint(kFirstIdOutput + i), GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
         break;
     }
     if (blending == StrandBlending::IdsOnly) {

@@ -35,7 +35,7 @@ struct LightUniforms {  // binding 1, shaders/include/lights.glsl
     glm::vec4 lightVector[kMaxLightsPerPass]{};
     glm::vec4 lightScale[kMaxLightsPerPass]{};
     glm::vec4 lightAxis[kMaxLightsPerPass]{};
-    glm::ivec4 lightCount{0};
+    glm::ivec4 lightCount{0};  // x: lights in use; y: the light batch (0 for the first)
     glm::vec4 ambient{0.0f};
     // Spot shaping: x cos(cone angle), y cos(angle * (1 - softness)), z 1 when shaped.
     glm::vec4 lightCone[kMaxLightsPerPass]{};

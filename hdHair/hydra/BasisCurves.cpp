@@ -7,24 +7,12 @@
 #include "pxr/imaging/hd/tokens.h"
 
 #include "hdHair/hydra/HydraCamera.h"
-#include "hdHair/hydra/Instancer.h"
 #include "hdHair/hydra/RenderParam.h"
-#include "hdHair/hydra/VtValueConversion.h"
+#include "hdHair/hydra/RprimSync.h"
 
 PXR_NAMESPACE_OPEN_SCOPE
 
 namespace {
-
-hdhair::Interpolation toEngine(HdInterpolation interpolation) {
-    switch (interpolation) {
-    case HdInterpolationConstant: return hdhair::Interpolation::Constant;
-    case HdInterpolationUniform: return hdhair::Interpolation::Uniform;
-    case HdInterpolationVarying: return hdhair::Interpolation::Varying;
-    case HdInterpolationVertex: return hdhair::Interpolation::Vertex;
-    case HdInterpolationFaceVarying: return hdhair::Interpolation::FaceVarying;
-    default: return hdhair::Interpolation::Constant;
-    }
-}
 
 // Topology indices make vertex-rate data indirect (HdBasisCurvesTopology's
 // curveIndices); the engine wants one element per curve vertex.
@@ -120,90 +108,48 @@ void HdHairBasisCurves::_SyncTopology(HdSceneDelegate* sceneDelegate) {
 void HdHairBasisCurves::_SyncInstances(HdSceneDelegate* sceneDelegate, HdDirtyBits* dirtyBits) {
     HdDirtyBits const bits = *dirtyBits;
     _UpdateInstancer(sceneDelegate, dirtyBits);
-    SdfPath const& instancerId = GetInstancerId();
-    if (instancerId.IsEmpty()) {
-        _instanceTransforms.reset();
-        return;
-    }
-    // Syncs the instancer and its parents if dirty; Hydra leaves that to rprims.
-    HdInstancer::_SyncInstancerAndParents(sceneDelegate->GetRenderIndex(), instancerId);
-    SdfPath const& id = GetId();
-    if (_instanceTransforms && !HdChangeTracker::IsInstancerDirty(bits, id) &&
-        !HdChangeTracker::IsInstanceIndexDirty(bits, id) && !HdChangeTracker::IsTransformDirty(bits, id))
-        return;
-    auto* instancer = static_cast<HdHairInstancer*>(sceneDelegate->GetRenderIndex().GetInstancer(instancerId));
-    if (!instancer) {
-        TF_WARN("hdHair: %s: instancer %s is missing; prim not drawn", id.GetText(), instancerId.GetText());
-        _instanceTransforms.emplace();
-        return;
-    }
-    std::vector<glm::dmat4> transforms;
-    for (GfMatrix4d const& instance : instancer->ComputeInstanceTransforms(id)) {
-        GfMatrix4d const toWorld = _primTransform * instance;  // the prim's transform applies first
-        transforms.push_back(hdhair::hydra::matrixFromGf(toWorld.data()));
-    }
-    _instanceTransforms = std::move(transforms);
+    HdHairSyncInstanceTransforms(sceneDelegate, GetId(), GetInstancerId(), bits, _primTransform, _instanceTransforms);
 }
 
 void HdHairBasisCurves::_SyncPrimvars(HdSceneDelegate* sceneDelegate, HdDirtyBits bits) {
     SdfPath const& id = GetId();
-    std::set<std::string> present;
-    for (int i = HdInterpolationConstant; i < HdInterpolationCount; ++i) {
-        HdInterpolation interpolation = HdInterpolation(i);
-        if (interpolation == HdInterpolationInstance) continue;
-        for (HdPrimvarDescriptor const& descriptor : GetPrimvarDescriptors(sceneDelegate, interpolation)) {
-            std::string name = descriptor.name.GetString();
-            present.insert(name);
-            if (!HdChangeTracker::IsPrimvarDirty(bits, id, descriptor.name)) continue;
-            VtIntArray indices;
-            VtValue value = descriptor.indexed ? GetIndexedPrimvar(sceneDelegate, descriptor.name, &indices)
-                                               : GetPrimvar(sceneDelegate, descriptor.name);
-            if (name == "hdHair:shadingModel") {
-                // The one token primvar hdHair reads (HdHairAPI, constant only).
-                _curves.shadingModel = value.IsHolding<TfToken>() ? value.UncheckedGet<TfToken>().GetString()
-                                       : value.IsHolding<std::string>() ? value.UncheckedGet<std::string>()
-                                       : value.IsHolding<VtTokenArray>() && value.UncheckedGet<VtTokenArray>().size() == 1
-                                           ? value.UncheckedGet<VtTokenArray>()[0].GetString()
-                                           : std::string();
-                continue;
-            }
-            HdHairFloats floats;
-            if (!HdHairToFloats(value, &floats)) {
-                // Other token and string primvars serve materials, which hdHair does not read yet.
-                _curves.primvars.erase(name);
-                continue;
-            }
-            if (descriptor.name == HdTokens->points) {
-                if (floats.tupleSize != 3) {
-                    TF_WARN("hdHair: %s.points: expected 3 components a point, got %s; prim not drawn", id.GetText(),
-                            floats.typeName.c_str());
-                    floats.values.clear();
-                }
-                if (!_curveIndices.empty()) floats.values = expandThroughIndices(floats.values, _curveIndices, 3);
-                _curves.points.resize(floats.values.size() / 3);
-                for (size_t p = 0; p < _curves.points.size(); ++p)
-                    _curves.points[p] = glm::vec3(floats.values[3 * p], floats.values[3 * p + 1], floats.values[3 * p + 2]);
-                continue;
-            }
-            hdhair::Primvar primvar;
-            primvar.name = name;
-            primvar.typeName = floats.typeName;
-            primvar.tupleSize = floats.tupleSize;
-            primvar.interpolation = toEngine(interpolation);
-            // Hydra always states the interpolation (UsdImaging fills in USD's defaults).
-            primvar.interpolationAuthored = true;
-            primvar.values = std::move(floats.values);
-            primvar.indices.assign(indices.begin(), indices.end());
-            if (!_curveIndices.empty() && primvar.interpolation == hdhair::Interpolation::Vertex &&
-                primvar.indices.empty())
-                primvar.values = expandThroughIndices(primvar.values, _curveIndices, size_t(primvar.tupleSize));
-            _curves.primvars[name] = std::move(primvar);
+    std::set<std::string> const present = HdHairPullPrimvars(sceneDelegate, id, bits, [&](HdHairPulledPrimvar& pulled) {
+        VtValue const& value = pulled.value;
+        if (pulled.name == "hdHair:shadingModel") {
+            // The one token primvar hdHair reads (HdHairAPI, constant only).
+            _curves.shadingModel = value.IsHolding<TfToken>() ? value.UncheckedGet<TfToken>().GetString()
+                                   : value.IsHolding<std::string>() ? value.UncheckedGet<std::string>()
+                                   : value.IsHolding<VtTokenArray>() && value.UncheckedGet<VtTokenArray>().size() == 1
+                                       ? value.UncheckedGet<VtTokenArray>()[0].GetString()
+                                       : std::string();
+            return;
         }
-    }
+        hdhair::Primvar primvar;
+        if (!HdHairToEnginePrimvar(pulled, &primvar)) {
+            // Other token and string primvars serve materials, which hdHair does not read yet.
+            _curves.primvars.erase(pulled.name);
+            return;
+        }
+        if (pulled.name == HdTokens->points.GetString()) {
+            if (primvar.tupleSize != 3) {
+                TF_WARN("hdHair: %s.points: expected 3 components a point, got %s; prim not drawn", id.GetText(),
+                        primvar.typeName.c_str());
+                primvar.values.clear();
+            }
+            if (!_curveIndices.empty()) primvar.values = expandThroughIndices(primvar.values, _curveIndices, 3);
+            _curves.points.resize(primvar.values.size() / 3);
+            for (size_t p = 0; p < _curves.points.size(); ++p)
+                _curves.points[p] =
+                    glm::vec3(primvar.values[3 * p], primvar.values[3 * p + 1], primvar.values[3 * p + 2]);
+            return;
+        }
+        if (!_curveIndices.empty() && primvar.interpolation == hdhair::Interpolation::Vertex && primvar.indices.empty())
+            primvar.values = expandThroughIndices(primvar.values, _curveIndices, size_t(primvar.tupleSize));
+        _curves.primvars[pulled.name] = std::move(primvar);
+    });
     if (!present.count("hdHair:shadingModel")) _curves.shadingModel.clear();
     // Primvars that are gone (removed, or no longer in any descriptor).
-    for (auto it = _curves.primvars.begin(); it != _curves.primvars.end();)
-        it = present.count(it->first) ? std::next(it) : _curves.primvars.erase(it);
+    HdHairEraseMissingPrimvars(_curves.primvars, present);
 }
 
 void HdHairBasisCurves::Finalize(HdRenderParam* renderParam) {

@@ -23,14 +23,27 @@ std::string HdHairRenderParam::InstancePath(std::string const& path, size_t inst
 
 void HdHairRenderParam::SetCurves(HdRprim const* rprim, hdhair::CurvesPrim prim, int refineLevel,
                                   std::optional<std::vector<glm::dmat4>> const& instanceTransforms) {
+    _SetInstanced(rprim, std::move(prim), refineLevel, instanceTransforms, &hdhair::Scene::setCurves);
+}
+
+void HdHairRenderParam::SetMesh(HdRprim const* rprim, hdhair::MeshPrim prim,
+                                std::optional<std::vector<glm::dmat4>> const& instanceTransforms) {
+    const int refineLevel = std::max(prim.refineLevel, 0);
+    _SetInstanced(rprim, std::move(prim), refineLevel, instanceTransforms, &hdhair::Scene::setMesh);
+}
+
+template <typename Prim>
+void HdHairRenderParam::_SetInstanced(HdRprim const* rprim, Prim prim, int refineLevel,
+                                      std::optional<std::vector<glm::dmat4>> const& instanceTransforms,
+                                      void (hdhair::Scene::*set)(Prim)) {
     std::string const path = prim.path;
     // The instances' copies are made before locking: prims sync in
     // parallel, and a large groom's points take a while to copy.
-    std::vector<hdhair::CurvesPrim> instances;
+    std::vector<Prim> instances;
     if (instanceTransforms) {
         instances.reserve(instanceTransforms->size());
         for (size_t i = 0; i < instanceTransforms->size(); ++i) {
-            hdhair::CurvesPrim& instance = instances.emplace_back(prim);
+            Prim& instance = instances.emplace_back(prim);
             instance.path = InstancePath(path, i);
             instance.worldTransform = (*instanceTransforms)[i];
             instance.instanceId = int(i);
@@ -41,14 +54,14 @@ void HdHairRenderParam::SetCurves(HdRprim const* rprim, hdhair::CurvesPrim prim,
     _RemoveEnginePrims(path);
     if (!instanceTransforms) {
         _rprims[path] = Rprim{rprim, refineLevel};
-        _scene.setCurves(std::move(prim));
+        (_scene.*set)(std::move(prim));
         return;
     }
     std::vector<std::string>& paths = _instancePaths[path];
-    for (hdhair::CurvesPrim& instance : instances) {
+    for (Prim& instance : instances) {
         paths.push_back(instance.path);
         _rprims[instance.path] = Rprim{rprim, refineLevel};
-        _scene.setCurves(std::move(instance));
+        (_scene.*set)(std::move(instance));
     }
 }
 
@@ -63,14 +76,6 @@ void HdHairRenderParam::_RemoveEnginePrims(std::string const& path) {
     }
     _rprims.erase(path);
     _scene.remove(path);
-}
-
-void HdHairRenderParam::SetMesh(HdRprim const* rprim, hdhair::MeshPrim prim) {
-    std::lock_guard<std::mutex> lock(_mutex);
-    std::string path = prim.path;
-    _rprims[path] = Rprim{rprim, 0};
-    ++_syncCounts[path];
-    _scene.setMesh(std::move(prim));
 }
 
 void HdHairRenderParam::SetLight(hdhair::LightPrim light) {

@@ -33,7 +33,9 @@ public:
     // grow with the instance count; GPU instancing would share them).
     void SetCurves(HdRprim const* rprim, hdhair::CurvesPrim prim, int refineLevel,
                    std::optional<std::vector<glm::dmat4>> const& instanceTransforms);
-    void SetMesh(HdRprim const* rprim, hdhair::MeshPrim prim);
+    // The same for a mesh; its refine level is the prim's own (MeshPrim::refineLevel).
+    void SetMesh(HdRprim const* rprim, hdhair::MeshPrim prim,
+                 std::optional<std::vector<glm::dmat4>> const& instanceTransforms);
     void SetLight(hdhair::LightPrim light);
     void SetMaterial(hdhair::MaterialPrim material);
     void Remove(std::string const& path);
@@ -42,7 +44,7 @@ public:
 
     // The prims a render pass draws: rprims whose render tag is among
     // `renderTags` (all when empty), every light; versions intact. Also the
-    // highest refine level among the curves drawn.
+    // highest refine level among the curves and meshes drawn.
     hdhair::Scene Snapshot(TfTokenVector const& renderTags, int* maxRefineLevel) const;
     uint64_t GetSceneVersion() const;
 
@@ -65,6 +67,11 @@ public:
 private:
     // Drops the engine prims of an rprim (itself, or its instances). Locked by the caller.
     void _RemoveEnginePrims(std::string const& path);
+    // SetCurves and SetMesh: the prim, or one copy per instance, set with `set`.
+    template <typename Prim>
+    void _SetInstanced(HdRprim const* rprim, Prim prim, int refineLevel,
+                       std::optional<std::vector<glm::dmat4>> const& instanceTransforms,
+                       void (hdhair::Scene::*set)(Prim));
 
     struct Rprim {
         HdRprim const* rprim = nullptr;

@@ -8,6 +8,7 @@
 #include <glm/matrix.hpp>
 
 #include "hdHair/base/Diagnostics.h"
+#include "hdHair/meshes/PreparedMesh.h"
 #include "hdHair/render/FrameResources.h"
 #include "hdHair/render/RenderSettings.h"
 #include "hdHair/render/Renderer.h"
@@ -29,7 +30,7 @@ gl::LightUniforms lightUniforms(const RenderPlan& plan, size_t batch) {
         uniforms.lightAxis[i] = glm::vec4(light.emissionAxis, light.oneSided ? 1.0f : 0.0f);
         uniforms.lightCone[i] = glm::vec4(light.coneCosOuter, light.coneCosInner, light.shaped ? 1.0f : 0.0f, 0.0f);
     }
-    uniforms.lightCount = glm::ivec4(int(count), 0, 0, 0);
+    uniforms.lightCount = glm::ivec4(int(count), int(batch), 0, 0);
     uniforms.ambient = glm::vec4(batch == 0 ? plan.lights.ambient : glm::vec3(0.0f), 0.0f);
     return uniforms;
 }
@@ -68,6 +69,25 @@ void upload(FrameContext& context) {
                                            inputs.materials->tableHeight);
 }
 
+// preparedMeshes -> meshGeometry: every drawn mesh, when one changed.
+void meshUpload(FrameContext& context) {
+    const MeshUpload& meshes = context.inputs.meshes;
+    if (!meshes.changed) return;
+    gl::MeshGeometry& geometry = context.resources.meshes;
+    geometry.reserve(meshes.vertices);
+    for (size_t i = 0; i < meshes.meshes.size(); ++i) geometry.write(meshes.draws[i].first, meshes.meshes[i]->vertices);
+}
+
+// Draws the meshes lit by the lights of one batch into `target`, before the
+// strands: their depth is what every strand path tests against.
+void drawMeshes(FrameContext& context, gl::RenderTarget& target, size_t batch) {
+    target.bind();
+    context.resources.strandPass.setUniforms(context.inputs.frame, lightUniforms(context.plan, batch));
+    context.resources.meshPass.draw(context.resources.meshes, context.inputs.meshes.draws,
+                                    context.inputs.frame.viewProjection,
+                                    context.plan.meshesLit ? gl::MeshShading::Lit : gl::MeshShading::Unlit);
+}
+
 void clear(FrameContext& context) {
     const CameraView& camera = *context.inputs.camera;
     // Blended frames take their depth from the strand pass's min-blended
@@ -80,21 +100,23 @@ void clear(FrameContext& context) {
     context.target->bindAndClear(glm::vec4(0.0f));
 }
 
-// Draws the strands with the lights of one batch into `target`, as the plan
-// says. Exact transparency over its memory budget warns, falls back to the
-// finest bin sort (this batch and those after it) and draws again.
+// Draws the strands with the lights of one batch into `target`, over what
+// it holds (the meshes of that batch, or nothing), as the plan says. Exact
+// transparency over its memory budget warns, falls back to the finest bin
+// sort (this batch and those after it) and draws again, meshes first.
 void drawStrands(FrameContext& context, gl::RenderTarget& target, size_t batch) {
     FrameInputs& inputs = context.inputs;
     RenderPlan& plan = context.plan;
     FrameResources& resources = context.resources;
-    target.bindAndClear(glm::vec4(0.0f));
+    target.bind();
     resources.materials.bind();
     resources.strandPass.setUniforms(inputs.frame, lightUniforms(plan, batch));
     if (plan.transparency == TransparencyPath::Exact) {
         const CameraView& camera = *inputs.camera;
         uint64_t fragments = resources.fragmentLists.render(resources.strands, inputs.uploads.drawRanges,
                                                             camera.imageWidth, camera.imageHeight,
-                                                            inputs.fragmentListCapacity, inputs.frame.maxSegmentsPerSpan);
+                                                            inputs.fragmentListCapacity, inputs.frame.maxSegmentsPerSpan,
+                                                            target.images().ids);
         context.result.stats.fragments = fragments;
         if (fragments <= inputs.fragmentListCapacity) return;
         const int memoryMB = inputs.settings->getInt("exactMemoryMB");
@@ -107,6 +129,9 @@ void drawStrands(FrameContext& context, gl::RenderTarget& target, size_t batch) 
         sortAndSend(context);
         inputs.frame.orderedDraw = 1;
         target.bindAndClear(glm::vec4(0.0f));
+        if (plan.isEnabled("meshes")) drawMeshes(context, target, batch);
+        target.bind();
+        resources.materials.bind();
         resources.strandPass.setUniforms(inputs.frame, lightUniforms(plan, batch));
     }
     resources.strandPass.draw(resources.strands, inputs.uploads.drawRanges,
@@ -123,13 +148,15 @@ void ids(FrameContext& context) {
                                       gl::StrandBlending::IdsOnly);
 }
 
-// "lightBatch k": the strands again with lights of batch k - 1 (0-based),
-// added onto the frame's resolved colour.
+// "lightBatch k": the meshes and strands again with lights of batch k - 1
+// (0-based), added onto the frame's resolved colour.
 void lightBatch(FrameContext& context, size_t batch) {
     const CameraView& camera = *context.inputs.camera;
     gl::RenderTarget& batchTarget =
         context.resources.lightBatchTarget(camera.imageWidth, camera.imageHeight, context.inputs.samples);
-    drawStrands(context, batchTarget, batch);
+    batchTarget.bindAndClear(glm::vec4(0.0f));
+    if (context.plan.isEnabled("meshes")) drawMeshes(context, batchTarget, batch);
+    if (context.plan.isEnabled("strands")) drawStrands(context, batchTarget, batch);
     batchTarget.resolve();
     context.resources.lightBatchAccumulation.add(*context.target, batchTarget);
 }
@@ -164,8 +191,10 @@ bool isCpuPass(const FramePass& pass) { return pass.name == "sort"; }
 void runFramePass(const FramePass& pass, FrameContext& context) {
     const std::string& name = pass.name;
     if (name == "upload") return upload(context);
+    if (name == "meshUpload") return meshUpload(context);
     if (name == "sort") return sortAndSend(context);
     if (name == "clear") return clear(context);
+    if (name == "meshes") return drawMeshes(context, *context.target, 0);
     if (name == "strands") return drawStrands(context, *context.target, 0);
     if (name == "ids") return ids(context);
     if (name == "resolve") return context.target->resolve();

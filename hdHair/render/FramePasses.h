@@ -5,11 +5,13 @@
 // each through runFramePass().
 
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <vector>
 
 #include <glm/vec4.hpp>
 
+#include "hdHair/gl/MeshPass.h"
 #include "hdHair/gl/UniformBlocks.h"
 #include "hdHair/image/DisplayShader.h"
 #include "hdHair/render/BinSort.h"
@@ -21,6 +23,7 @@ namespace hdhair {
 
 class Diagnostics;
 class RenderSettings;
+struct PreparedMesh;
 struct FrameResources;
 struct RenderResult;
 
@@ -37,6 +40,15 @@ struct MaterialUpload {
     int tableWidth = 1, tableHeight = 1;
 };
 
+// The frame's meshes as the GPU draws them: one range of the mesh buffer
+// each, all sent again when `changed`.
+struct MeshUpload {
+    std::vector<std::shared_ptr<const PreparedMesh>> meshes;  // drawn, in draw order
+    std::vector<gl::MeshDraw> draws;                           // their ranges and ids
+    size_t vertices = 0;
+    bool changed = false;
+};
+
 // Everything a frame's passes need, gathered on the CPU before any GL work.
 struct FrameInputs {
     const CameraView* camera = nullptr;
@@ -48,6 +60,7 @@ struct FrameInputs {
     StrandUploadPlan uploads;                // their GPU ranges and what to send
     std::vector<SortSpan> sortSpans;         // their segments for the bin sort
     std::optional<MaterialUpload> materials;
+    MeshUpload meshes;
     gl::FrameUniforms frame;
     int samples = 0;                         // multisampling the driver gives
     size_t fragmentListCapacity = 0;         // exact transparency's budget, in fragments

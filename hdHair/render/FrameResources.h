@@ -1,9 +1,9 @@
 #pragma once
 // The GL objects a frame's passes use (FramePasses.h), made once and kept
-// between frames: the compiled passes, the strand geometry and hair
-// materials on the GPU, and the frame's render targets, remade only when the
-// image size or the images a frame needs change. Created, used and destroyed
-// on the GL thread only.
+// between frames: the compiled passes, the strand and mesh geometry and the
+// hair materials on the GPU, and the frame's render targets, remade only
+// when the image size or the images a frame needs change. Created, used and
+// destroyed on the GL thread only.
 
 #include <memory>
 
@@ -11,6 +11,8 @@
 #include "hdHair/gl/FragmentListPass.h"
 #include "hdHair/gl/HairMaterialTable.h"
 #include "hdHair/gl/LightBatchAccumulation.h"
+#include "hdHair/gl/MeshGeometry.h"
+#include "hdHair/gl/MeshPass.h"
 #include "hdHair/gl/RenderTarget.h"
 #include "hdHair/gl/StrandGeometry.h"
 #include "hdHair/gl/StrandPass.h"
@@ -26,11 +28,13 @@ struct FrameResources {
     gl::RenderTarget& lightBatchTarget(int width, int height, int samples);
 
     gl::StrandPass strandPass;
+    gl::MeshPass meshPass;
     gl::FragmentListPass fragmentLists;
     gl::LightBatchAccumulation lightBatchAccumulation;
     gl::HairMaterialTable materials;
     gl::StrandGeometry strands;
     gl::DisplayTransformPass displayTransform;
+    gl::MeshGeometry meshes;
     int maxSamples = 0;  // the driver's GL_MAX_SAMPLES
 
 private:

@@ -37,12 +37,12 @@ std::string depthSource(TransparencyPath path) {
 
 // Ids need a pass of their own only where blending draws strands in an
 // order that is not nearest-last (integer images cannot be min-blended).
-FramePass idsPass(TransparencyPath path, bool idsRequested, bool anyStrands) {
+FramePass idsPass(TransparencyPath path, bool idsRequested, bool anyStrands, bool anyMeshes) {
     FramePass ids{"ids", {"strands", "depth"}, {"ids"}, false, ""};
     if (!idsRequested) {
         ids.reason = "no ids asked for";
     } else if (!anyStrands) {
-        ids.reason = "no visible curves: ids are -1 everywhere";
+        ids.reason = anyMeshes ? "no visible curves: the meshes pass writes the ids" : "no visible curves: ids are -1 everywhere";
     } else if (path == TransparencyPath::Opaque) {
         ids.reason = "the strand pass writes them, with depth";
     } else if (path == TransparencyPath::Exact) {
@@ -50,8 +50,8 @@ FramePass idsPass(TransparencyPath path, bool idsRequested, bool anyStrands) {
     } else {
         ids.wanted = true;
         ids.reason = fmt::format("the host asked for ids: the nearest strand with alpha >= {}, the fragment the "
-                                 "strand pass's depth comes from",
-                                 kNearestStrandMinAlpha);
+                                 "strand pass's depth comes from{}",
+                                 kNearestStrandMinAlpha, anyMeshes ? ", where it is nearer than the meshes" : "");
     }
     return ids;
 }
@@ -65,24 +65,36 @@ std::vector<FrameResource> strandReads(TransparencyPath path, std::vector<FrameR
     return reads;
 }
 
+// A later light batch draws what the first drew, with its own lights: the
+// strands (when there are any) and the meshes (when there are any).
+std::vector<FrameResource> lightBatchReads(TransparencyPath path, bool anyStrands, bool anyMeshes) {
+    std::vector<FrameResource> reads = anyStrands ? strandReads(path, {}) : std::vector<FrameResource>{};
+    if (anyMeshes) reads.push_back("meshGeometry");
+    reads.push_back("color");
+    return reads;
+}
+
 }  // namespace
 
 void RenderPlan::fallBackToBinSorted(uint32_t bins, bool idsRequested) {
     transparency = TransparencyPath::BinSorted;
     sortBins = bins;
     const bool anyStrands = graph.find("strands")->wanted;
+    const bool anyMeshes = graph.find("meshes")->wanted;
     for (FramePass& pass : graph.passes()) {
         if (pass.name == "sort") {
             pass.wanted = true;
             pass.reason = fmt::format("exact fell back: segments into {} depth bins on the CPU", bins);
         } else if (pass.name == "ids") {
-            FramePass replacement = idsPass(transparency, idsRequested, anyStrands);
+            FramePass replacement = idsPass(transparency, idsRequested, anyStrands, anyMeshes);
             pass.wanted = replacement.wanted;
             pass.reason = replacement.reason;
-        } else if (pass.name == "strands" || pass.name.rfind("lightBatch", 0) == 0) {
+        } else if (pass.name == "strands") {
             std::vector<FrameResource> inPlace(pass.reads.begin() + 1, pass.reads.end());
             inPlace.erase(std::remove(inPlace.begin(), inPlace.end(), "drawOrder"), inPlace.end());
             pass.reads = strandReads(transparency, inPlace);
+        } else if (pass.name.rfind("lightBatch", 0) == 0) {
+            pass.reads = lightBatchReads(transparency, anyStrands, anyMeshes);
         }
     }
     graph.compile();
@@ -91,7 +103,8 @@ void RenderPlan::fallBackToBinSorted(uint32_t bins, bool idsRequested) {
 nlohmann::json RenderPlan::toJson() const { return graph.toJson(); }
 
 RenderPlan makeRenderPlan(const Scene& scene, const RenderSettings& settings, const CameraView& camera,
-                          const StrandSummary& strands, bool idsRequested, bool displayOnGpu) {
+                          const StrandSummary& strands, bool idsRequested, const MeshSummary& meshes,
+                          bool displayOnGpu) {
     RenderPlan plan;
     std::vector<const LightPrim*> stageLights;
     const LightPrim* hostCameraLight = nullptr;
@@ -103,7 +116,11 @@ RenderPlan makeRenderPlan(const Scene& scene, const RenderSettings& settings, co
         }
     }
     plan.lights = toShadingLights(stageLights);
-    plan.flatShading = !strands.anyLit;
+    const bool anyMeshes = meshes.meshes > 0;
+    // Meshes are lit unless the shadingModel setting asks for flat
+    // displayColor (hair prims may still choose their own model).
+    plan.meshesLit = anyMeshes && settings.getToken("shadingModel") != "flat";
+    plan.flatShading = !strands.anyLit && !plan.meshesLit;
 
     std::string cameraLight = settings.getToken("cameraLight");
     bool stageHasLight = !plan.lights.lights.empty() || glm::length(plan.lights.ambient) > 0.0f;
@@ -161,6 +178,17 @@ RenderPlan makeRenderPlan(const Scene& scene, const RenderSettings& settings, co
                                : "no visible curves";
     graph.add(upload);
 
+    graph.input("preparedMeshes");
+    // Why the mesh passes are off, when they are.
+    const std::string noMeshes = scene.meshes().empty() ? "no meshes" : "no visible meshes";
+    FramePass meshUpload{"meshUpload", {"preparedMeshes"}, {"meshGeometry"}, anyMeshes, ""};
+    meshUpload.reason = !anyMeshes       ? noMeshes
+                        : meshes.changed ? fmt::format("{} mesh(es), {} triangles to the GPU: a mesh changed since the "
+                                                       "last frame",
+                                                       meshes.meshes, meshes.triangles)
+                                         : "the meshes on the GPU are current: nothing to send";
+    graph.add(meshUpload);
+
     FramePass sort{"sort", {"preparedStrands"}, {"drawOrder"},
                    plan.transparency == TransparencyPath::BinSorted && anyStrands, ""};
     sort.reason = sort.wanted ? fmt::format("{} segments into {} depth bins on the CPU, O(n)", strands.segments,
@@ -171,6 +199,24 @@ RenderPlan makeRenderPlan(const Scene& scene, const RenderSettings& settings, co
     std::vector<FrameResource> frameImages{"color", "depth"};
     if (idsRequested) frameImages.push_back("ids");
     graph.add(FramePass{"clear", {}, frameImages, true, "the frame's images, empty (transparent black, depth 1, ids -1)"});
+
+    std::vector<FrameResource> meshReads{"meshGeometry"};
+    meshReads.insert(meshReads.end(), frameImages.begin(), frameImages.end());
+    FramePass meshPass{"meshes", meshReads, frameImages, anyMeshes, ""};
+    if (anyMeshes) {
+        const std::string levels = meshes.minRefineLevel == meshes.maxRefineLevel
+                                       ? fmt::format("refine level {}", meshes.minRefineLevel)
+                                       : fmt::format("refine levels {}-{}", meshes.minRefineLevel,
+                                                     meshes.maxRefineLevel);
+        meshPass.reason = fmt::format("{} mesh(es), {} triangles ({}), opaque, {}; drawn before the strands: depth "
+                                      "{}written, strands behind them hidden",
+                                      meshes.meshes, meshes.triangles, levels,
+                                      plan.meshesLit ? "Lambert under the lights" : "flat displayColor",
+                                      idsRequested ? "and ids " : "");
+    } else {
+        meshPass.reason = noMeshes;
+    }
+    graph.add(meshPass);
 
     std::string models = strands.shadingModels.empty() ? std::string("kajiyaKay") : strands.shadingModels;
     if (strands.perPointPrims > 0)
@@ -195,7 +241,7 @@ RenderPlan makeRenderPlan(const Scene& scene, const RenderSettings& settings, co
                                    : "no visible curves: background only";
     graph.add(strandPass);
 
-    graph.add(idsPass(plan.transparency, idsRequested, anyStrands));
+    graph.add(idsPass(plan.transparency, idsRequested, anyStrands, anyMeshes));
 
     // Light batches add onto the frame's resolved colour, and readback reads
     // it: a multisampled frame is resolved once, here.
@@ -210,22 +256,19 @@ RenderPlan makeRenderPlan(const Scene& scene, const RenderSettings& settings, co
     for (size_t begin = 0; begin < lightCount; begin += perPass)
         plan.lightBatches.emplace_back(begin, std::min(begin + perPass, lightCount));
     if (plan.lightBatches.empty()) plan.lightBatches.emplace_back(0, 0);
+    const std::string drawnAgain = anyStrands && anyMeshes ? "the meshes and the strands"
+                                   : anyMeshes                ? "the meshes"
+                                                              : "the strands";
     for (size_t batch = 1; batch < plan.lightBatches.size(); ++batch) {
-        FramePass lights{fmt::format("lightBatch {}", batch + 1), strandReads(plan.transparency, {"color"}), {"color"},
-                         anyStrands, ""};
-        lights.reason = fmt::format("lights {}-{} of {} (lightsPerPass {}): the strands again, colour added, alpha "
+        FramePass lights{fmt::format("lightBatch {}", batch + 1),
+                         lightBatchReads(plan.transparency, anyStrands, anyMeshes), {"color"},
+                         anyStrands || anyMeshes, ""};
+        lights.reason = fmt::format("lights {}-{} of {} (lightsPerPass {}): {} again, colour added, alpha "
                                     "counted once",
                                     plan.lightBatches[batch].first + 1, plan.lightBatches[batch].second, lightCount,
-                                    perPass);
+                                    perPass, drawnAgain);
         graph.add(lights);
     }
-
-    FramePass meshes{"meshes", {}, {"color", "depth"}, false, ""};
-    meshes.reason = scene.meshes().empty() ? "no meshes"
-                                           : fmt::format("{} mesh(es) kept in the scene; drawing them as occluders "
-                                                         "is not implemented yet",
-                                                         scene.meshes().size());
-    graph.add(meshes);
 
     graph.add(FramePass{"readback", frameImages, {"aovs"}, true, "the frame's images to the CPU"});
     graph.output("aovs");

@@ -39,17 +39,29 @@ struct StrandSummary {
     size_t analyticPrims = 0;    // Marschner prims shaded with per-fragment azimuthal terms
 };
 
+// What the frame's meshes need, measured on the prepared meshes.
+struct MeshSummary {
+    size_t meshes = 0;        // visible meshes with at least one triangle
+    uint64_t triangles = 0;   // after refinement
+    int minRefineLevel = 0, maxRefineLevel = 0;  // the levels drawn
+    bool changed = false;     // the GPU copy must be sent again
+};
+
 // The passes, in the order they run:
 //   upload        preparedStrands -> strands        GPU copy of the changed prims
+//   meshUpload    preparedMeshes -> meshGeometry    GPU copy of the meshes, when one changed
 //   sort          preparedStrands -> drawOrder      binSorted only
 //   clear         -> color, depth[, ids]            the frame's targets, empty
+//   meshes        meshGeometry, color, depth[, ids] -> color, depth[, ids]   opaque, lights of batch 1
 //   strands       strands[, drawOrder], color, depth -> color, depth[, ids]   lights of batch 1
 //   ids           strands, depth -> ids             blended paths, when a host asks for ids
 //   resolve       color, depth[, ids] (in place)    multisampled frames
-//   lightBatch k  strands[, drawOrder], color -> color   lights of batch k (k >= 2)
-//   meshes        (not drawn yet)
+//   lightBatch k  [strands[, drawOrder],] [meshGeometry,] color -> color   lights of batch k (k >= 2)
 //   readback      color, depth[, ids] -> aovs       the frame's images, to the CPU
 //   displayTransform  color -> displayImage         the display image on the GPU, when asked for
+// Meshes are drawn first and write depth, so every strand path tests
+// against them (NearestStrandRule.h: how their depth and ids combine with
+// the strands').
 struct RenderPlan {
     FrameGraph graph;
     ShadingLights lights;       // the stage's lights, plus the camera light when used
@@ -58,6 +70,7 @@ struct RenderPlan {
     uint32_t sortBins = 0;      // for BinSorted
     int msaaSamples = 0;        // for Opaque
     bool flatShading = false;   // every prim flat: no lights needed
+    bool meshesLit = false;     // meshes shaded with the lights (Lambert), else displayColor unlit
     // Light passes: [begin, end) ranges of `lights.lights`, at most
     // lightsPerPass each; always at least one (ambient and unlit shading
     // need a pass too).
@@ -75,6 +88,7 @@ struct RenderPlan {
 // produced; with blending, by the strand pass (NearestStrandRule.h).
 // displayOnGpu: the frame also delivers its display image, made on the GPU.
 RenderPlan makeRenderPlan(const Scene& scene, const RenderSettings& settings, const CameraView& camera,
-                          const StrandSummary& strands, bool idsRequested = false, bool displayOnGpu = false);
+                          const StrandSummary& strands, bool idsRequested = false, const MeshSummary& meshes = {},
+                          bool displayOnGpu = false);
 
 }  // namespace hdhair

@@ -39,6 +39,10 @@ const std::vector<SettingDescriptor>& RenderSettings::descriptors() {
          "Most segments one curve span is cut into, however close it is (complexity: low 8, "
          "medium 16, high 32, veryhigh 64)",
          1, 64, {}},
+        {"meshRefineLevel", SettingType::Int, "0",
+         "Uniform subdivision level of catmullClark, loop and bilinear meshes that do not set their own "
+         "(complexity: low 0, medium 1, high 2, veryhigh 3, as Storm's refine levels; 0 draws the cage)",
+         0, 8, {}},
         {"transparency", SettingType::Token, "binSorted",
          "How strands are composited: binSorted (depth bins, far to near), exact (per-pixel sorted "
          "fragment lists: the slow ground truth), unsorted, or opaque; stages whose strands are all "
@@ -173,6 +177,8 @@ std::string RenderSettings::effectiveText(const std::string& name) const {
     int level = static_cast<int>(complexity_);
     if (name == "pixelsPerSegment") return std::to_string(8 >> level);
     if (name == "maxSegmentsPerSpan") return std::to_string(8 << level);
+    // usdview's and usdrecord's complexities are Storm's refine levels 0-3.
+    if (name == "meshRefineLevel") return std::to_string(level);
     const SettingDescriptor* descriptor = find(name);
     if (!descriptor) throw std::invalid_argument(fmt::format("unknown setting '{}'", name));
     return descriptor->defaultValue;

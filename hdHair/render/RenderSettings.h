@@ -23,7 +23,8 @@ struct SettingDescriptor {
     std::vector<std::string> tokens;  // Token (or Int): the only values allowed
 };
 
-// usdrecord's --complexity levels; they set the tessellation density.
+// usdrecord's --complexity levels; they set the tessellation density and
+// the meshes' refine level.
 enum class Complexity { Low, Medium, High, VeryHigh };
 bool parseComplexity(const std::string& name, Complexity* out);
 const char* toString(Complexity complexity);

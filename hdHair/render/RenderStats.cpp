@@ -15,6 +15,7 @@ nlohmann::json RenderStats::toJson() const {
     json["prims"] = {{"basisCurves", curvesPrims}, {"meshes", meshPrims}, {"lights", lights}};
     json["curves"] = curves;
     json["segments"] = segments;
+    json["meshTriangles"] = meshTriangles;
     nlohmann::json passList = nlohmann::json::array();
     for (const PassTiming& pass : passes) passList.push_back({{"name", pass.name}, {"milliseconds", pass.milliseconds}});
     json["passes"] = passList;
@@ -26,6 +27,7 @@ nlohmann::json RenderStats::toJson() const {
     json["transparency"] = transparency;
     json["lightPasses"] = lightPasses;
     json["preparedPrims"] = preparedPrims;
+    json["preparedMeshes"] = preparedMeshes;
     json["uploadedSegments"] = uploadedSegments;
     json["passTiming"] = passTiming;
     if (fragments > 0) json["fragments"] = fragments;

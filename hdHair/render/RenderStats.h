@@ -21,6 +21,8 @@ struct RenderStats {
     double time = 0.0;            // time code; NaN: UsdTimeCode::Default(), -inf: EarliestTime()
     size_t curvesPrims = 0, meshPrims = 0, lights = 0;
     uint64_t curves = 0, segments = 0;
+    uint64_t meshTriangles = 0;   // of the meshes drawn, after refinement
+    size_t preparedMeshes = 0;    // meshes refined and triangulated this frame (changed ones only)
     std::vector<PassTiming> passes;
     double totalMilliseconds = 0.0;
     std::string glRenderer;

@@ -18,6 +18,7 @@
 #include "hdHair/render/FrameScheduler.h"
 #include "hdHair/render/NearestStrandRule.h"
 #include "hdHair/scene/Scene.h"
+#include "hdHair/scene/MeshPrim.h"
 #include "hdHair/shading/MarschnerTables.h"
 
 namespace hdhair {
@@ -76,10 +77,11 @@ double minProjectedWidthPixels(const CameraView& camera, const PreparedCurves& c
 }
 
 // The instances of an instanced prim are copies of its first instance but for
-// the transform (HdHairRenderParam::SetCurves), so whatever their data needs
-// repaired is the first instance's again: only the first reports it, and a
-// PointInstancer of 10,000 strands warns once, not 10,000 times.
-Diagnostics& reportingFor(const CurvesPrim& prim, Diagnostics& diagnostics, Diagnostics& repeated) {
+// the transform (HdHairRenderParam::SetCurves, SetMesh), so whatever their
+// data needs repaired is the first instance's again: only the first reports
+// it, and a PointInstancer of 10,000 strands warns once, not 10,000 times.
+template <typename Prim>
+Diagnostics& reportingFor(const Prim& prim, Diagnostics& diagnostics, Diagnostics& repeated) {
     return prim.instanceId == 0 ? diagnostics : repeated;
 }
 
@@ -101,15 +103,6 @@ SceneBounds Renderer::prepare(const Scene& scene, Diagnostics& diagnostics) {
     Clock::time_point start = Clock::now();
     for (auto it = curves_.begin(); it != curves_.end();)
         it = scene.curves().count(it->first) ? std::next(it) : curves_.erase(it);
-    // Meshes count for framing but are not drawn: say so once per mesh, the
-    // first time it is visible, whichever reader brought it.
-    for (auto it = reportedMeshes_.begin(); it != reportedMeshes_.end();)
-        it = scene.meshes().count(*it) ? std::next(it) : reportedMeshes_.erase(it);
-    for (const auto& [path, entry] : scene.meshes()) {
-        if (entry.prim->visible && reportedMeshes_.insert(path).second)
-            diagnostics.warn(path, "mesh not drawn: hdHair draws curves only (meshes as occluders are not "
-                                   "implemented yet)");
-    }
     // Prepare changed prims in parallel: curve preparation is CPU work
     // without GL, thread-safe across prims.
     struct Change {
@@ -169,6 +162,55 @@ SceneBounds Renderer::prepare(const Scene& scene, Diagnostics& diagnostics) {
         }
     }
     return bounds;
+}
+
+void Renderer::prepareMeshes(const Scene& scene, const RenderSettings& settings, Diagnostics& diagnostics) {
+    for (auto it = meshes_.begin(); it != meshes_.end();)
+        it = scene.meshes().count(it->first) ? std::next(it) : meshes_.erase(it);
+    struct Change {
+        const MeshPrim* prim;
+        CachedMesh* cached;
+    };
+    std::vector<Change> changed;
+    const int settingLevel = settings.getInt("meshRefineLevel");
+    for (const auto& [path, entry] : scene.meshes()) {
+        CachedMesh& cached = meshes_[path];
+        const int level = entry.prim->refineLevel >= 0 ? entry.prim->refineLevel : settingLevel;
+        if (cached.prepared && cached.version == entry.version && cached.refineLevel == level) continue;
+        cached.version = entry.version;
+        cached.refineLevel = level;
+        changed.push_back({entry.prim.get(), &cached});
+    }
+    Diagnostics repeated;  // later instances' repairs (reportingFor)
+    tbb::parallel_for(size_t(0), changed.size(), [&](size_t i) {
+        Diagnostics& report = reportingFor(*changed[i].prim, diagnostics, repeated);
+        changed[i].cached->prepared =
+            std::make_shared<PreparedMesh>(prepareMesh(*changed[i].prim, changed[i].cached->refineLevel, report));
+    });
+    pendingPreparedMeshes_ += changed.size();
+}
+
+MeshUpload Renderer::meshUpload(const Scene& scene, MeshSummary& summary) {
+    MeshUpload upload;
+    std::vector<std::pair<std::shared_ptr<const PreparedMesh>, glm::ivec2>> drawn;
+    for (const auto& [path, entry] : scene.meshes()) {
+        const std::shared_ptr<const PreparedMesh>& prepared = meshes_.at(path).prepared;
+        if (!entry.prim->visible || prepared->empty()) continue;
+        const glm::ivec2 ids(entry.prim->primId, entry.prim->instanceId);
+        upload.draws.push_back(gl::MeshDraw{upload.vertices, prepared->vertices.size(), ids});
+        upload.vertices += prepared->vertices.size();
+        upload.meshes.push_back(prepared);
+        drawn.emplace_back(prepared, ids);
+        summary.minRefineLevel = summary.meshes == 0 ? prepared->refineLevel
+                                                     : std::min(summary.minRefineLevel, prepared->refineLevel);
+        summary.maxRefineLevel = std::max(summary.maxRefineLevel, prepared->refineLevel);
+        summary.meshes += 1;
+        summary.triangles += prepared->triangleCount();
+    }
+    upload.changed = drawn != uploadedMeshes_;
+    summary.changed = upload.changed;
+    uploadedMeshes_ = std::move(drawn);
+    return upload;
 }
 
 std::optional<MaterialUpload> Renderer::materialUpload(const std::vector<HairMaterial>& materials,
@@ -234,6 +276,13 @@ RenderResult Renderer::render(const Scene& scene, const CameraView& camera, cons
     stats.preparedPrims = pendingPreparedPrims_;
     pendingPrepareMilliseconds_ = 0.0;
     pendingPreparedPrims_ = 0;
+    if (!scene.meshes().empty() || !meshes_.empty()) {
+        Clock::time_point meshStart = Clock::now();
+        prepareMeshes(scene, settings, diagnostics);
+        stats.passes.push_back({"prepareMeshes", millisecondsSince(meshStart)});
+        stats.preparedMeshes = pendingPreparedMeshes_;
+        pendingPreparedMeshes_ = 0;
+    }
 
     // The drawn prims, their materials, and what the plan needs to know of them.
     FrameInputs inputs;
@@ -280,7 +329,10 @@ RenderResult Renderer::render(const Scene& scene, const CameraView& camera, cons
                                             curves.segmentCount(), inputs.uploads.ranges[i].first});
     }
 
-    result.plan = makeRenderPlan(scene, settings, camera, summary, outputs.ids, outputs.gpuDisplay != nullptr);
+    MeshSummary meshSummary;
+    inputs.meshes = meshUpload(scene, meshSummary);
+    result.plan =
+        makeRenderPlan(scene, settings, camera, summary, outputs.ids, meshSummary, outputs.gpuDisplay != nullptr);
     RenderPlan& plan = result.plan;
     inputs.camera = &camera;
     inputs.settings = &settings;
@@ -310,6 +362,7 @@ RenderResult Renderer::render(const Scene& scene, const CameraView& camera, cons
     stats.lights = scene.lights().size();
     stats.curves = curveCount;
     stats.segments = summary.segments;
+    stats.meshTriangles = meshSummary.triangles;
     stats.transparency = toString(plan.transparency);
     stats.glRenderer = glDescription();
     stats.settings = settings.toJson();

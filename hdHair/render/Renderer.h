@@ -3,16 +3,15 @@
 // linear, pre-multiplied RGBA image and a depth image. Used by hdhair-record
 // and (later) the Hydra render pass.
 //
-// Flow per frame: prepare changed curves on the CPU (in parallel, cached by
-// prim version) -> the frame graph (RenderPlan) -> its passes on the render
-// thread (FrameScheduler, FramePasses), which upload only what changed and
-// read the images back.
+// Flow per frame: prepare changed curves and meshes on the CPU (in parallel,
+// cached by prim version) -> the frame graph (RenderPlan) -> its passes on
+// the render thread (FrameScheduler, FramePasses), which upload only what
+// changed and read the images back.
 
 #include <cstdint>
 #include <map>
 #include <memory>
 #include <optional>
-#include <set>
 #include <string>
 #include <vector>
 
@@ -25,6 +24,7 @@
 #include "hdHair/render/HairMaterial.h"
 #include "hdHair/image/DisplayShader.h"
 #include "hdHair/image/Image.h"
+#include "hdHair/meshes/PreparedMesh.h"
 #include "hdHair/render/CameraView.h"
 #include "hdHair/render/FramePasses.h"
 #include "hdHair/render/RenderPlan.h"
@@ -83,7 +83,9 @@ public:
     Renderer& operator=(const Renderer&) = delete;
 
     // Prepares every changed curves prim (repairs are reported to
-    // diagnostics) and returns the world bounds of what is visible.
+    // diagnostics) and returns the world bounds of what is visible, meshes
+    // included (their authored points: meshes are refined when rendered,
+    // at the refine level the settings give).
     SceneBounds prepare(const Scene& scene, Diagnostics& diagnostics);
 
     RenderResult render(const Scene& scene, const CameraView& camera, const RenderSettings& settings,
@@ -127,10 +129,24 @@ private:
     };
     std::vector<CachedTables> marschnerTables_;
     std::map<std::string, CachedCurves> curves_;
-    std::set<std::string> reportedMeshes_;  // meshes already warned about as not drawn
+
+    struct CachedMesh {
+        uint64_t version = 0;
+        int refineLevel = 0;  // the level asked for: the prim's, or the meshRefineLevel setting
+        std::shared_ptr<const PreparedMesh> prepared;
+    };
+    // Refines and triangulates every changed mesh (in parallel), cached per
+    // prim version and refine level.
+    void prepareMeshes(const Scene& scene, const RenderSettings& settings, Diagnostics& diagnostics);
+    // The meshes a frame draws and whether the GPU's copy is stale.
+    MeshUpload meshUpload(const Scene& scene, MeshSummary& summary);
+    std::map<std::string, CachedMesh> meshes_;
+    // What the mesh buffer holds: each mesh drawn last, with its ids.
+    std::vector<std::pair<std::shared_ptr<const PreparedMesh>, glm::ivec2>> uploadedMeshes_;
     // Preparation since the last render (framing may prepare first).
     double pendingPrepareMilliseconds_ = 0.0;
     size_t pendingPreparedPrims_ = 0;
+    size_t pendingPreparedMeshes_ = 0;
 };
 
 }  // namespace hdhair

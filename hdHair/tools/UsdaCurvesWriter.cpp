@@ -235,16 +235,20 @@ struct CameraFraming {
     double nearClip, farClip;
 };
 
-CameraFraming frameCamera(const std::vector<CurvesInput>& inputs, const Bounds& bounds, const glm::dvec3& from,
+// Frames every point of `pointSets` (the strands' and the meshes').
+CameraFraming frameCamera(const std::vector<const std::vector<Float3>*>& pointSets, const glm::dvec3& from,
                           const glm::dvec3& up) {
+    Bounds bounds;
+    for (const std::vector<Float3>* points : pointSets)
+        for (const Float3& p : *points) bounds.add(p);
     const glm::dvec3 target = 0.5 * (toVec(bounds.min) + toVec(bounds.max));
     CameraFraming c;
     c.rotation = lookRotation(-from, up);
     const glm::dvec3 right = c.rotation[0], camUp = c.rotation[1], forward = -c.rotation[2];
     const double kx = kFocalLength / (kHorizontalAperture / 2), ky = kFocalLength / (kVerticalAperture / 2);
     double dist = 0.0, minDepth = 0.0, maxDepth = 0.0;
-    for (const CurvesInput& input : inputs) {
-        for (const Float3& p : input.strands.points) {
+    for (const std::vector<Float3>* points : pointSets) {
+        for (const Float3& p : *points) {
             const glm::dvec3 rel = toVec(p) - target;
             const double a = glm::dot(rel, right), b = glm::dot(rel, camUp), e = glm::dot(rel, forward);
             dist = std::max({dist, std::abs(a) * kx / kFrameFill - e, std::abs(b) * ky / kFrameFill - e});
@@ -259,6 +263,55 @@ CameraFraming frameCamera(const std::vector<CurvesInput>& inputs, const Bounds& 
     c.nearClip = std::max(0.5 * (dist + minDepth), 1e-4 * dist);
     c.farClip = 2.0 * (dist + maxDepth);
     return c;
+}
+
+void checkMesh(const MeshInput& input) {
+    const PolygonMesh& m = input.mesh;
+    static const std::set<std::string> schemes = {"catmullClark", "loop", "bilinear", "none"};
+    if (!schemes.count(input.subdivisionScheme))
+        throw std::invalid_argument(fmt::format("{}: unknown subdivision scheme '{}' (catmullClark, loop, bilinear "
+                                                "or none)",
+                                                m.source, input.subdivisionScheme));
+    size_t corners = 0;
+    for (size_t f = 0; f < m.faceVertexCounts.size(); ++f) {
+        if (m.faceVertexCounts[f] < 3)
+            throw std::invalid_argument(fmt::format("{}: face {} has {} vertices", m.source, f, m.faceVertexCounts[f]));
+        corners += size_t(m.faceVertexCounts[f]);
+    }
+    if (corners != m.faceVertexIndices.size())
+        throw std::invalid_argument(fmt::format("{}: the faces need {} vertex indices, found {}", m.source, corners,
+                                                m.faceVertexIndices.size()));
+    for (int index : m.faceVertexIndices)
+        if (index < 0 || size_t(index) >= m.points.size())
+            throw std::invalid_argument(fmt::format("{}: vertex index {} is outside the {} points", m.source, index,
+                                                    m.points.size()));
+}
+
+void appendMesh(std::string& out, const std::string& name, const MeshInput& input, WrittenMesh& written) {
+    const PolygonMesh& m = input.mesh;
+    const char* in = "        ";
+    Bounds bounds;
+    for (const Float3& p : m.points) bounds.add(p);
+    out += fmt::format("    def Mesh \"{}\"\n    {{\n", name);
+    out += fmt::format("{}float3[] extent = [", in);
+    appendTuple(out, bounds.min);
+    out += ", ";
+    appendTuple(out, bounds.max);
+    out += "]\n";
+    out += fmt::format("{}int[] faceVertexCounts = ", in);
+    appendArray(out, m.faceVertexCounts, [](std::string& o, int v) { o += std::to_string(v); });
+    out += fmt::format("\n{}int[] faceVertexIndices = ", in);
+    appendArray(out, m.faceVertexIndices, [](std::string& o, int v) { o += std::to_string(v); });
+    out += fmt::format("\n{}point3f[] points = ", in);
+    appendArray(out, m.points, [](std::string& o, const Float3& p) { appendTuple(o, p); });
+    out += fmt::format("\n{}color3f[] primvars:displayColor = [", in);
+    appendTuple(out, input.color);
+    out += "]";
+    appendInterpolation(out, in, "constant");
+    out += fmt::format("{}uniform token subdivisionScheme = \"{}\"\n", in, input.subdivisionScheme);
+    out += "    }\n";
+    written.points = m.points.size();
+    written.faces = m.faceVertexCounts.size();
 }
 
 void appendCamera(std::string& out, const CameraFraming& c) {
@@ -356,8 +409,9 @@ std::string usdIdentifier(const std::string& text) {
     return out;
 }
 
-CurvesUsda buildCurvesUsda(const std::vector<CurvesInput>& inputs, const UsdaWriteOptions& options) {
-    if (inputs.empty()) throw std::invalid_argument("no hair to write");
+CurvesUsda buildCurvesUsda(const std::vector<CurvesInput>& inputs, const UsdaWriteOptions& options,
+                           const std::vector<MeshInput>& meshes) {
+    if (inputs.empty() && meshes.empty()) throw std::invalid_argument("no hair to write");
     if (options.upAxis != 'Y' && options.upAxis != 'Z')
         throw std::invalid_argument(fmt::format("the up axis must be Y or Z, not '{}'", options.upAxis));
     if (options.rootWidth && !(std::isfinite(*options.rootWidth) && *options.rootWidth > 0))
@@ -379,6 +433,7 @@ CurvesUsda buildCurvesUsda(const std::vector<CurvesInput>& inputs, const UsdaWri
         checkStrands(input.strands);
         for (const Float3& p : input.strands.points) result.bounds.add(p);
     }
+    for (const MeshInput& mesh : meshes) checkMesh(mesh);
     Taper autoTaper;
     autoTaper.root = options.rootWidth.value_or(kAutoRootWidthPerDiagonal * result.bounds.diagonal());
     if (!(autoTaper.root > 0)) autoTaper.root = 1e-3f;  // every point in one place
@@ -390,14 +445,16 @@ CurvesUsda buildCurvesUsda(const std::vector<CurvesInput>& inputs, const UsdaWri
     // Unique prim names.
     std::set<std::string> used;
     if (options.camera) used = {"main_cam", "key_light"};
-    std::vector<std::string> names;
-    for (const CurvesInput& input : inputs) {
-        const std::string base = usdIdentifier(input.name);
+    auto uniqueName = [&](const std::string& wanted) {
+        const std::string base = usdIdentifier(wanted);
         std::string name = base;
         for (int k = 2; used.count(name); ++k) name = fmt::format("{}_{}", base, k);
         used.insert(name);
-        names.push_back(name);
-    }
+        return name;
+    };
+    std::vector<std::string> names, meshNames;
+    for (const CurvesInput& input : inputs) names.push_back(uniqueName(input.name));
+    for (const MeshInput& mesh : meshes) meshNames.push_back(uniqueName(mesh.name));
 
     size_t totalPoints = 0;
     for (const CurvesInput& input : inputs) totalPoints += input.strands.pointCount();
@@ -413,7 +470,10 @@ CurvesUsda buildCurvesUsda(const std::vector<CurvesInput>& inputs, const UsdaWri
 
     std::optional<CameraFraming> framing;
     if (options.camera) {
-        framing = frameCamera(inputs, result.bounds, from, up);
+        std::vector<const std::vector<Float3>*> pointSets;
+        for (const CurvesInput& input : inputs) pointSets.push_back(&input.strands.points);
+        for (const MeshInput& mesh : meshes) pointSets.push_back(&mesh.mesh.points);
+        framing = frameCamera(pointSets, from, up);
         appendCamera(out, *framing);
     }
     for (size_t i = 0; i < inputs.size(); ++i) {
@@ -425,6 +485,13 @@ CurvesUsda buildCurvesUsda(const std::vector<CurvesInput>& inputs, const UsdaWri
         written.path = "/World/" + names[i];
         appendCurves(out, names[i], s, options, taper, written);
         result.curves.push_back(written);
+    }
+    for (size_t i = 0; i < meshes.size(); ++i) {
+        if (framing || i > 0 || !inputs.empty()) out += '\n';
+        WrittenMesh written;
+        written.path = "/World/" + meshNames[i];
+        appendMesh(out, meshNames[i], meshes[i], written);
+        result.meshes.push_back(written);
     }
     if (framing) {
         out += '\n';

@@ -9,6 +9,7 @@
 //   def Xform "World" (kind = "component")
 //       def Camera "main_cam"          (unless UsdaWriteOptions::camera is false)
 //       def BasisCurves "<name>"       (one per input)
+//       def Mesh "<name>"              (one per mesh input, e.g. a head)
 //       def DistantLight "key_light"   (with the camera)
 //
 // Curves: type cubic, basis catmullRom, wrap pinned. Pinned catmullRom curves
@@ -33,8 +34,14 @@
 // only when the file has opacities.
 // extent: the points' bounds grown by half the largest width.
 //
+// Meshes: the points as read, in the hair's units and space (no transform),
+// faceVertexCounts and faceVertexIndices as authored, subdivisionScheme
+// "none" unless asked for (the head is drawn as its polygons), a constant
+// displayColor, extent. Normals are not written: hdHair (and Storm) compute
+// them from the surface.
+//
 // Camera (perspective, focalLength 50, apertures 20.955 x 15.2908): looks at
-// the centre of the bounds of every point from `cameraFrom` (default +Z with
+// the centre of the bounds of every point (hair and meshes) from `cameraFrom` (default +Z with
 // upAxis Y, -Y with upAxis Z), no roll (the stage's up axis stays up), far
 // enough that every point lies inside 85% of the frame; clippingRange from
 // half the distance to the nearest point to twice the distance to the
@@ -47,6 +54,7 @@
 #include <string>
 #include <vector>
 
+#include "hdHair/tools/ObjMeshReader.h"
 #include "hdHair/tools/TressFxReader.h"
 
 namespace hdhair::convert {
@@ -54,6 +62,13 @@ namespace hdhair::convert {
 struct CurvesInput {
     std::string name;  // wanted prim name; usdIdentifier() and made unique by the writer
     HairStrands strands;
+};
+
+struct MeshInput {
+    std::string name;  // wanted prim name, as for curves
+    PolygonMesh mesh;
+    std::string subdivisionScheme = "none";
+    Float3 color{0.72f, 0.56f, 0.48f};  // displayColor
 };
 
 struct UsdaWriteOptions {
@@ -79,18 +94,26 @@ struct WrittenCurves {
     std::string widths;        // how widths were chosen: "taper 0.075 -> 0.015", "from the file", ...
 };
 
+struct WrittenMesh {
+    std::string path;  // "/World/sintel"
+    size_t points = 0, faces = 0;
+};
+
 struct CurvesUsda {
     std::string text;                  // the whole layer
     std::vector<WrittenCurves> curves;
-    Bounds bounds;                     // of every point
+    std::vector<WrittenMesh> meshes;
+    Bounds bounds;                     // of every hair point (automatic widths follow it)
     float rootWidth = 0, tipWidth = 0; // the taper used where one was (automatic or given)
 };
 
 // Builds the layer. Throws std::invalid_argument for unusable input (no
 // inputs, a strand with fewer than 2 points, attribute arrays whose sizes do
 // not match the points, a non-positive width option, an up axis other than
-// Y or Z, a zero cameraFrom).
-CurvesUsda buildCurvesUsda(const std::vector<CurvesInput>& inputs, const UsdaWriteOptions& options);
+// Y or Z, a zero cameraFrom, a mesh face of fewer than 3 vertices or naming
+// a point that does not exist, a subdivision scheme USD does not know).
+CurvesUsda buildCurvesUsda(const std::vector<CurvesInput>& inputs, const UsdaWriteOptions& options,
+                           const std::vector<MeshInput>& meshes = {});
 
 // Writes text to path through a temporary file beside it and a rename, so a
 // reader never sees half a file. Throws std::runtime_error naming the path.

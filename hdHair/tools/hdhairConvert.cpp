@@ -1,11 +1,12 @@
 // hdhair-convert: converts hair assets (AMD TressFX .tfx 3.0/4.0, Cem Yuksel
 // .hair) into a BasisCurves .usda stage that hdhair-record and OpenUSD render
-// as it is (see tools/README.md "Converting hair assets").
+// as it is, with the head they were made on (.obj) as a Mesh beside them
+// (see tools/README.md "Converting hair assets").
 //
-//   hdhair-convert [options] input.(tfx|hair)... output.usda
+//   hdhair-convert [options] input.(tfx|hair|obj)... output.usda
 //
-// Several inputs merge into one stage, one BasisCurves prim per input named
-// after the file. Exit status: 0 on success; 1 with one line
+// Several inputs merge into one stage, one BasisCurves (or Mesh) prim per
+// input named after the file. Exit status: 0 on success; 1 with one line
 // "hdhair-convert: error: ..." on any failure (bad arguments, unreadable or
 // malformed input, unwritable output). Nothing is written on failure.
 
@@ -23,6 +24,7 @@
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
+#include "hdHair/tools/ObjMeshReader.h"
 #include "hdHair/tools/TressFxReader.h"
 #include "hdHair/tools/UsdaCurvesWriter.h"
 #include "hdHair/tools/YukselHairReader.h"
@@ -34,8 +36,10 @@ using Clock = std::chrono::steady_clock;
 
 struct Options {
     std::vector<std::string> files;  // inputs..., output
+    std::vector<std::string> meshes;  // --mesh
     std::optional<float> rootWidth, tipWidth, followRadius;
     std::string color, cameraFrom, upAxis = "Y";
+    std::string meshScheme = "none", meshColor;
     size_t maxStrands = 0;
     int followStrands = 0;
     float followTipSeparation = 1.0f;
@@ -79,12 +83,12 @@ HairStrands readAsset(const std::string& path) {
     const std::string ext = lowerExtension(path);
     if (ext == ".tfx") return readTressFx(path);
     if (ext == ".hair") return readYukselHair(path);
-    throw std::invalid_argument(fmt::format("{}: unknown input format '{}' (reads .tfx and .hair)", path, ext));
+    throw std::invalid_argument(fmt::format("{}: unknown input format '{}' (reads .tfx, .hair and .obj)", path, ext));
 }
 
 int run(const Options& options) {
     const Clock::time_point start = Clock::now();
-    if (options.files.size() < 2)
+    if (options.files.size() < 2 && !(options.files.size() == 1 && !options.meshes.empty()))
         throw std::invalid_argument("give at least one input file and the output .usda (see --help)");
     const std::string output = options.files.back();
     if (lowerExtension(output) != ".usda")
@@ -102,9 +106,29 @@ int run(const Options& options) {
     if (options.followStrands < 0) throw std::invalid_argument("--followStrands must be >= 0");
 
     std::vector<CurvesInput> inputs;
+    std::vector<MeshInput> meshes;
     std::vector<std::string> sources;
+    std::vector<std::string> meshFiles = options.meshes;
+    for (size_t i = 0; i + 1 < options.files.size(); ++i)
+        if (lowerExtension(options.files[i]) == ".obj") meshFiles.push_back(options.files[i]);
+    for (const std::string& path : meshFiles) {
+        const Clock::time_point readStart = Clock::now();
+        MeshInput mesh;
+        mesh.mesh = readObjMesh(path);
+        mesh.name = std::filesystem::path(path).stem().string();
+        mesh.subdivisionScheme = options.meshScheme;
+        if (!options.meshColor.empty()) mesh.color = parseTriple(options.meshColor, "--meshColor");
+        for (const std::string& warning : mesh.mesh.warnings)
+            std::fprintf(stderr, "hdhair-convert: warning: %s: %s\n", path.c_str(), warning.c_str());
+        if (options.verbose)
+            std::printf("hdhair-convert: read %s: %zu faces, %zu points in %.1f ms\n", path.c_str(),
+                        mesh.mesh.faceVertexCounts.size(), mesh.mesh.points.size(), millisecondsSince(readStart));
+        sources.push_back(fmt::format("{} (mesh, {} faces)", path, mesh.mesh.faceVertexCounts.size()));
+        meshes.push_back(std::move(mesh));
+    }
     for (size_t i = 0; i + 1 < options.files.size(); ++i) {
         const std::string& path = options.files[i];
+        if (lowerExtension(path) == ".obj") continue;
         const Clock::time_point readStart = Clock::now();
         CurvesInput input;
         input.strands = readAsset(path);
@@ -145,12 +169,15 @@ int run(const Options& options) {
     std::string doc = "Converted by hdhair-convert from ";
     for (size_t i = 0; i < sources.size(); ++i) doc += (i ? ", " : "") + sources[i];
     write.doc = doc;
-    CurvesUsda usda = buildCurvesUsda(inputs, write);
+    CurvesUsda usda = buildCurvesUsda(inputs, write, meshes);
     writeFileAtomically(output, usda.text);
     if (options.verbose) {
         for (const WrittenCurves& curves : usda.curves)
             std::printf("hdhair-convert: %s: %zu strands, %zu points, widths %s\n", curves.path.c_str(),
                         curves.strands, curves.points, curves.widths.c_str());
+        for (const WrittenMesh& mesh : usda.meshes)
+            std::printf("hdhair-convert: %s: a mesh of %zu faces, %zu points\n", mesh.path.c_str(), mesh.faces,
+                        mesh.points);
         std::printf("hdhair-convert: wrote %s (%.1f MB) in %.1f ms\n", output.c_str(),
                     double(usda.text.size()) / (1024.0 * 1024.0), millisecondsSince(start));
     }
@@ -162,9 +189,19 @@ int run(const Options& options) {
 int main(int argc, char** argv) {
     Options options;
     CLI::App app{"Converts hair assets (AMD TressFX .tfx 3.0/4.0, Cem Yuksel .hair) into a BasisCurves .usda "
-                 "stage with a camera (/World/main_cam) and a key light.",
+                 "stage with a camera (/World/main_cam) and a key light; .obj inputs (the head) become Mesh prims "
+                 "beside the hair.",
                  "hdhair-convert"};
-    app.add_option("files", options.files, "input.(tfx|hair)... output.usda")->required();
+    app.add_option("files", options.files, "input.(tfx|hair|obj)... output.usda")->required();
+    app.add_option("--mesh", options.meshes,
+                   "A Wavefront .obj mesh to write as a Mesh prim beside the hair, in the same units and space "
+                   "(repeatable; an .obj among the inputs does the same)")
+        ->allow_extra_args(false);
+    app.add_option("--meshScheme", options.meshScheme,
+                   "subdivisionScheme of the written meshes: none (drawn as their polygons), catmullClark, loop or "
+                   "bilinear")
+        ->capture_default_str();
+    app.add_option("--meshColor", options.meshColor, "displayColor r,g,b of the written meshes (default 0.72,0.56,0.48)");
     app.add_option("--rootWidth", options.rootWidth,
                    "Curve width at the root, in scene units (default 0.0015 x the bounding box diagonal)");
     app.add_option("--tipWidth", options.tipWidth, "Curve width at the tip (default 0.2 x the root width)");

@@ -96,6 +96,7 @@ private:
     std::optional<std::string> readToken(const Prim& prim, const std::string& name) const;
     std::vector<glm::vec3> readVec3Array(const Prim& prim, const std::string& name) const;
     std::vector<int> readIntArray(const Prim& prim, const std::string& name) const;
+    std::vector<float> readFloatArray(const Prim& prim, const std::string& name) const;
 
     // primvars:NAME (and its indices) as a Primvar; nullopt when it has no
     // value or a non-numeric one. requiredTupleSize 0 accepts any.
@@ -222,6 +223,16 @@ std::vector<int> Reader::readIntArray(const Prim& prim, const std::string& name)
                                                                prim.path, name, i, number)};
         result.push_back(static_cast<int>(number));
     }
+    return result;
+}
+
+std::vector<float> Reader::readFloatArray(const Prim& prim, const std::string& name) const {
+    std::vector<float> result;
+    std::optional<Value> value = valueOf(prim, name);
+    if (!value) return result;
+    if (!value->isNumeric() || !value->isArray || value->tupleSize != 1) typeError(prim, name, "float[]", *value);
+    result.reserve(value->numbers.size());
+    for (double number : value->numbers) result.push_back(static_cast<float>(number));
     return result;
 }
 
@@ -377,15 +388,20 @@ void Reader::readMesh(const Prim& prim, const Inherited& state) {
     mesh.points = readVec3Array(prim, "points");
     mesh.faceVertexCounts = readIntArray(prim, "faceVertexCounts");
     mesh.faceVertexIndices = readIntArray(prim, "faceVertexIndices");
-    if (auto scheme = readToken(prim, "subdivisionScheme")) {
-        if (*scheme == "catmullClark" || *scheme == "loop" || *scheme == "bilinear" ||
-            *scheme == "none") {
-            mesh.subdivisionScheme = *scheme;
-        } else {
-            warn(prim, "subdivisionScheme",
-                 "unknown subdivision scheme '" + *scheme + "'; using catmullClark");
-        }
-    }
+    // Tokens are kept as authored: mesh preparation checks them, for every
+    // front end alike (hdHair/meshes/MeshTopology.h).
+    if (auto scheme = readToken(prim, "subdivisionScheme")) mesh.subdivisionScheme = *scheme;
+    if (auto orientation = readToken(prim, "orientation")) mesh.orientation = *orientation;
+    if (auto boundary = readToken(prim, "interpolateBoundary")) mesh.interpolateBoundary = *boundary;
+    if (auto faceVarying = readToken(prim, "faceVaryingLinearInterpolation"))
+        mesh.faceVaryingLinearInterpolation = *faceVarying;
+    if (auto triangles = readToken(prim, "triangleSubdivisionRule")) mesh.triangleSubdivisionRule = *triangles;
+    mesh.holeIndices = readIntArray(prim, "holeIndices");
+    mesh.cornerIndices = readIntArray(prim, "cornerIndices");
+    mesh.cornerSharpnesses = readFloatArray(prim, "cornerSharpnesses");
+    mesh.creaseIndices = readIntArray(prim, "creaseIndices");
+    mesh.creaseLengths = readIntArray(prim, "creaseLengths");
+    mesh.creaseSharpnesses = readFloatArray(prim, "creaseSharpnesses");
     mesh.primvars = readPrimvars(prim, false);
     scene_.setMesh(std::move(mesh));
 }

@@ -45,7 +45,11 @@
 //    asset primvars are skipped: they only matter to materials, which are not
 //    read yet.
 //  - Mesh: points, faceVertexCounts, faceVertexIndices, subdivisionScheme
-//    (fallback catmullClark), normals and primvars as for curves.
+//    (fallback catmullClark), orientation, interpolateBoundary,
+//    faceVaryingLinearInterpolation, triangleSubdivisionRule (tokens kept as
+//    authored, checked when the mesh is prepared), holeIndices,
+//    cornerIndices and cornerSharpnesses, creaseIndices, creaseLengths and
+//    creaseSharpnesses, normals and primvars as for curves.
 //  - Camera: projection, focalLength, horizontal/verticalAperture and their
 //    offsets, clippingRange, with UsdGeomCamera's fallbacks.
 //  - Lights: UsdLux inputs (`inputs:intensity`, `inputs:exposure`,

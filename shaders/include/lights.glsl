@@ -9,7 +9,7 @@ layout(std140, binding = 1) uniform LightUniforms {
     vec4 lightScale[HDHAIR_MAX_LIGHTS];
     // xyz: emission axis of one-sided emitters (rect, disk); w = 1 when one-sided.
     vec4 lightAxis[HDHAIR_MAX_LIGHTS];
-    ivec4 lightCount;   // x: lights in use
+    ivec4 lightCount;   // x: lights in use; y: the light batch (0 for the first)
     vec4 ambient;       // rgb: dome light radiance, applied as a constant ambient term
     // UsdLuxShapingAPI cone about lightAxis[i].xyz (ShadingLight::coneCosOuter,
     // coneCosInner, shaped): x = cos(cone angle), y = cos(angle * (1 - softness)),

@@ -8,7 +8,9 @@
 // marschnerAnalytic.glsl, catmullRom.glsl and hairMaterials.glsl.
 vec3 strandRadiance(vec3 worldPosition, vec3 worldTangent, vec3 hairColor, int materialIndex, int segment, float u) {
     HairShading shading = hairShadingAt(materialIndex, segment, u);
-    if (shading.model == 0) return hairColor;
+    // Flat colour is unlit: it belongs to the first light batch alone, so
+    // that summing batches counts it once.
+    if (shading.model == 0) return lights.lightCount.y == 0 ? hairColor : vec3(0.0);
     vec3 t = normalize(worldTangent);
     vec3 e = directionToEye(worldPosition);
     vec3 radiance = lights.ambient.rgb * hairColor;

@@ -459,6 +459,76 @@ def instancing():
     return texts
 
 
+# ---------------------------------------------------------------------------
+# meshes.usda: hair on a head-like sphere
+# ---------------------------------------------------------------------------
+
+HEAD_RADIUS = 5.0
+
+
+def head_mesh(rings=8, segments=12):
+    """A UV sphere of HEAD_RADIUS (poles on Y, triangles at the poles, quads
+    between) refined as catmullClark, its displayColor per vertex from a
+    lighter skin at the top to a darker one at the bottom."""
+    points = [(0.0, HEAD_RADIUS, 0.0)]
+    for r in range(1, rings):
+        theta = math.pi * r / rings
+        for k in range(segments):
+            phi = 2 * math.pi * k / segments
+            points.append(rp((HEAD_RADIUS * math.sin(theta) * math.cos(phi), HEAD_RADIUS * math.cos(theta),
+                              -HEAD_RADIUS * math.sin(theta) * math.sin(phi))))
+    points.append((0.0, -HEAD_RADIUS, 0.0))
+    south = len(points) - 1
+
+    def ring(r, k):
+        return 1 + (r - 1) * segments + k % segments
+    counts, indices = [], []
+    for k in range(segments):
+        counts.append(3)
+        indices += [0, ring(1, k), ring(1, k + 1)]
+    for r in range(1, rings - 1):
+        for k in range(segments):
+            counts.append(4)
+            indices += [ring(r, k), ring(r + 1, k), ring(r + 1, k + 1), ring(r, k + 1)]
+    for k in range(segments):
+        counts.append(3)
+        indices += [south, ring(rings - 1, k + 1), ring(rings - 1, k)]
+    top, bottom = (0.85, 0.68, 0.58), (0.6, 0.44, 0.36)
+    colors = [rp(tuple(b + (t - b) * (p[1] / HEAD_RADIUS + 1) / 2 for t, b in zip(top, bottom))) for p in points]
+    return u.mesh("head", counts, indices, points, scheme="catmullClark", colors=colors, colors_interp="vertex")
+
+
+def scalp_hair(count=80, real=6):
+    """Strands rooted on the upper half of the head (golden-angle azimuths),
+    each running down over the head at a growing distance from it: those on
+    the far side are hidden by the head."""
+    points, counts, widths = [], [], []
+    golden = math.pi * (3 - math.sqrt(5))
+    for i in range(count):
+        theta0 = math.radians(75) * math.sqrt((i + 0.5) / count)
+        phi = golden * i
+        pts = []
+        for j in range(real):
+            t = j / (real - 1)
+            theta, r = theta0 + math.radians(55) * t, HEAD_RADIUS + 0.15 + 1.2 * t
+            pts.append((r * math.sin(theta) * math.cos(phi), r * math.cos(theta), r * math.sin(theta) * math.sin(phi)))
+        full = u.add_phantoms(pts)
+        points += [rp(p) for p in full]
+        counts.append(len(full))
+        widths += [u.rnd(0.16 - 0.1 * t) for t in [0.0] + [j / (real - 1) for j in range(real)] + [1.0]]
+    return u.basis_curves("hair", counts, points, widths, "vertex", colors=[(0.3, 0.16, 0.08)],
+                          colors_interp="constant")
+
+
+def meshes():
+    head, hair = head_mesh(), scalp_hair()
+    points = head.attrs[3].value + hair.attrs[3].value
+    cam, _, _ = u.frame_camera(points, (0, 0, -1), fill=0.85, round_to=5)
+    layer = u.Layer(doc=DOC, default_prim="World")
+    layer.add(world(cam, head, hair, key_light()))
+    return layer
+
+
 def main():
     texts = {
         "empty.usda": empty().text(),
@@ -466,6 +536,7 @@ def main():
         "interpolations.usda": interpolations().text(),
         "hair_parameters.usda": hair_parameters().text(),
         "materials.usda": materials().text(),
+        "meshes.usda": meshes().text(),
         "xforms.usda": xforms().text(),
         "widths.usda": widths_stage(1).text(),
         "widths_doubled.usda": widths_stage(2).text(),
@@ -480,7 +551,9 @@ def main():
             continue
         s = u.check_stage(name, texts, need_lights=name != "empty.usda")
         curves = ", ".join("%s %d/%d" % (p, c[0], c[1]) for p, c in s["curves"].items())
-        print("%s: curves/points %s; lights %s" % (name, curves or "none", ", ".join(s["lights"]) or "none"))
+        meshes_ = "".join("; mesh faces/points %s %d/%d" % (p, m[0], m[1]) for p, m in s["meshes"].items())
+        print("%s: curves/points %s%s; lights %s" % (name, curves or "none", meshes_,
+                                                     ", ".join(s["lights"]) or "none"))
 
     # Stage-specific expectations.
     _, prims = u.compose("composition/root.usda", texts)
@@ -495,6 +568,8 @@ def main():
     assert a1["points"] == a2["points"] and w1["main_cam"] == w2["main_cam"]
     assert all(2 * x == y for x, y in zip(a1["widths"]["value"], a2["widths"]["value"]))
     assert texts["empty.usda"].count("BasisCurves") == 0
+    summary = u.check_stage("meshes.usda", texts)
+    assert summary["meshes"] == {"/World/head": (96, 86)}, summary["meshes"]
     looks = u.parse(texts["materials.usda"], "materials.usda")["prims"]["World"]["children"]["Looks"]
     assert set(looks["children"]) == {"auburn", "from_display_color", "blonde"}
     _, prims = u.compose("instancing/root.usda", texts)

@@ -39,6 +39,7 @@ inline const std::vector<TestStage>& testStages() {
         {"composition", "testenv/stages/composition/root.usda", "/World/main_cam", 256, {0.0}},
         {"materials", "testenv/stages/materials.usda", "/World/main_cam", 256, {0.0}},
         {"instancing", "testenv/stages/instancing/root.usda", "/World/main_cam", 256, {0.0}},
+        {"meshes", "testenv/stages/meshes.usda", "/World/main_cam", 256, {0.0}},
     };
     return stages;
 }

@@ -94,6 +94,39 @@ TEST_F(HdhairRecord, RendersAnExampleWithItsCameraAndReportsStats) {
     EXPECT_TRUE(graphStrands) << frame["plan"].dump(2);
 }
 
+// The plan in --stats: a stage without meshes builds neither mesh pass; the
+// meshes stage builds both, and reports its triangles and refine level.
+TEST_F(HdhairRecord, StatsShowTheMeshPassesOnlyForStagesWithMeshes) {
+    auto framesOf = [&](const std::string& stage) {
+        RecordRun run = record("--camera /World/main_cam --imageWidth 96 --complexity medium --stats " +
+                               file("s.json") + " " + stage + " " + file("out.png"));
+        EXPECT_EQ(run.exitCode, 0) << run.output;
+        return nlohmann::json::parse(std::ifstream(file("s.json")))["frames"][0];
+    };
+    auto passNamed = [](const nlohmann::json& frame, const std::string& name) {
+        for (const auto& pass : frame["plan"])
+            if (pass["pass"] == name) return pass;
+        return nlohmann::json();
+    };
+    const nlohmann::json hair = framesOf(example("straight_strands.usda"));
+    for (const char* name : {"meshUpload", "meshes"}) {
+        EXPECT_EQ(passNamed(hair, name)["enabled"], false) << name;
+        EXPECT_EQ(passNamed(hair, name)["reason"], "no meshes") << name;
+    }
+    EXPECT_EQ(hair["meshTriangles"], 0);
+    const nlohmann::json meshes =
+        framesOf(std::string(HDHAIR_SOURCE_DIR) + "/testenv/stages/meshes.usda");
+    EXPECT_EQ(passNamed(meshes, "meshUpload")["enabled"], true);
+    EXPECT_EQ(passNamed(meshes, "meshes")["enabled"], true);
+    // 96 triangles and quads: 12 + 12 triangles (3 quads each at level 1),
+    // 72 quads (4 each): 360 quads, 720 triangles.
+    EXPECT_EQ(meshes["meshTriangles"], 720);
+    EXPECT_EQ(meshes["preparedMeshes"], 1);
+    EXPECT_NE(passNamed(meshes, "meshes")["reason"].get<std::string>().find("720 triangles (refine level 1)"),
+              std::string::npos)
+        << passNamed(meshes, "meshes").dump();
+}
+
 // --frames reads the stage at every frame, but a prim that does not change
 // keeps what was prepared and uploaded for it: a static stage sends nothing
 // after its first frame, an animated one only its moving prims.

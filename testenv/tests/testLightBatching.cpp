@@ -85,6 +85,23 @@ TEST_P(LightBatching, ImageDoesNotDependOnHowLightsAreSplit) {
 
 INSTANTIATE_TEST_SUITE_P(Transparency, LightBatching, ::testing::Values("binSorted", "opaque", "exact"));
 
+// A flat prim next to lit ones: its displayColor belongs to the first batch
+// only, so five lights one at a time give the image of all five at once.
+TEST(LightBatchingExtra, FlatPrimsAreCountedOnceAcrossBatches) {
+    LitStage stage = litStage(5);
+    const std::string flatPath = stage.scene.curves().begin()->first;
+    CurvesPrim flat = *stage.scene.curves().begin()->second.prim;
+    flat.shadingModel = "flat";
+    stage.scene.setCurves(flat);
+    for (const char* transparency : {"transparency=binSorted", "transparency=opaque", "transparency=exact"}) {
+        Image allAtOnce = render(stage, {transparency, "lightsPerPass=16"}).color;
+        RenderResult batched = render(stage, {transparency, "lightsPerPass=1"});
+        EXPECT_EQ(batched.stats.lightPasses, 5u);
+        ImageComparison comparison = compareImages(batched.color, allAtOnce, exactWithin(kOneStep));
+        EXPECT_TRUE(comparison.passed) << transparency << ", flat " << flatPath << ": " << comparison.description;
+    }
+}
+
 TEST(LightBatchingExtra, ALightOfZeroIntensityChangesNothing) {
     LitStage stage = litStage(4);
     Image before = render(stage, {}).color;

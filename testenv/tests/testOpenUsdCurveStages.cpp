@@ -17,9 +17,11 @@
 // 2. Coverage agrees with Storm's where the two should draw the same pixels.
 //    Storm's coverage is where the baseline differs from its clear colour
 //    (OpenUSD's test clears to (1, 0.5, 0.1)), hdHair's where its alpha is
-//    not zero. Prims hdHair does not draw (meshes, warned) are left out of
-//    both, through their projected bounds. How much agreement a case demands
-//    depends on what Storm draws there (Agreement below).
+//    not zero. Meshes (and the implicit surfaces UsdImaging hands over as
+//    meshes) are drawn by both and compared with the curves; gprims hdHair
+//    does not draw would be left out of both, through their projected
+//    bounds. How much agreement a case demands depends on what Storm draws
+//    there (Agreement below).
 
 #include <algorithm>
 #include <cmath>
@@ -44,7 +46,14 @@
 #include "pxr/usd/usd/stage.h"
 #include "pxr/usd/usdGeom/bboxCache.h"
 #include "pxr/usd/usdGeom/camera.h"
+#include "pxr/usd/usdGeom/capsule.h"
+#include "pxr/usd/usdGeom/cone.h"
+#include "pxr/usd/usdGeom/cube.h"
 #include "pxr/usd/usdGeom/curves.h"
+#include "pxr/usd/usdGeom/cylinder.h"
+#include "pxr/usd/usdGeom/mesh.h"
+#include "pxr/usd/usdGeom/plane.h"
+#include "pxr/usd/usdGeom/sphere.h"
 #include "pxr/usd/usdGeom/gprim.h"
 #include "pxr/usd/usdGeom/metrics.h"
 #include "pxr/usd/usdGeom/tokens.h"
@@ -121,8 +130,6 @@ struct CurveStageCase {
 // fails here too: users and scripts read them.
 
 const std::string kNormalsNotUsed = "not used: hdHair draws camera-facing strands, not ribbons oriented by normals";
-const std::string kMeshNotDrawn =
-    "mesh not drawn: hdHair draws curves only (meshes as occluders are not implemented yet)";
 const std::string kScreenSpaceWidths = "not supported: widths are drawn as object-space diameters, not pixels";
 const std::string kMinScreenSpaceWidths =
     "not supported: strands thinner than the minPixelWidth setting (default 1 pixel) are drawn that wide, with "
@@ -145,10 +152,8 @@ const std::vector<ExpectedWarning> kBasicCurvesWarnings = {
 // on. `int ri:attributes:dice:roundcurve` is a RenderMan attribute that
 // never reaches a Hydra delegate.
 const std::vector<ExpectedWarning> kMoreCurvesWarnings = {
-    // UsdImaging turns the Sphere and the Cylinder into meshes, which Storm
-    // draws and hdHair does not.
-    {"/World/ReferenceSphere", kMeshNotDrawn},
-    {"/World/ReferenceCylinder", kMeshNotDrawn},
+    // UsdImaging turns the Sphere and the Cylinder into meshes, which both
+    // draw: no warning.
     // The seven *_ribbon* / Lines_Ribbon curves author normals: Storm orients
     // its ribbons by them (complexity medium and up), hdHair faces the camera.
     {"/World/Lines/Lines_Ribbon.normals", kNormalsNotUsed},
@@ -181,7 +186,6 @@ const std::vector<ExpectedWarning> kPinnedCurvesWarnings = {
 // curve-authored-normals.usd (a binary crate): a bezier curve with vertex
 // normals beside a reference mesh.
 const std::vector<ExpectedWarning> kAuthoredNormalsWarnings = {
-    {"/Geom/ref", kMeshNotDrawn},
     {"/Geom/curvewithnormals.normals", kNormalsNotUsed},
 };
 
@@ -455,17 +459,22 @@ std::string describe(const Box& box) {
     return out.str();
 }
 
+// The gprims UsdImaging hands a delegate as meshes, which hdHair draws.
+bool drawnAsMesh(const UsdPrim& prim) {
+    return prim.IsA<UsdGeomMesh>() || prim.IsA<UsdGeomSphere>() || prim.IsA<UsdGeomCylinder>() ||
+           prim.IsA<UsdGeomCube>() || prim.IsA<UsdGeomCone>() || prim.IsA<UsdGeomCapsule>() ||
+           prim.IsA<UsdGeomPlane>();
+}
+
 // Clears, in every mask, the screen rectangle (grown by 2 pixels) of each
-// gprim that is not a curve: UsdImaging hands hdHair those as meshes, which
-// it does not draw (and warns about), so Storm's pixels there are not for
-// hdHair to match.
-void leaveOutNonCurveGprims(const UsdStageRefPtr& stage, const FrameAllCamera& camera,
-                            std::vector<Mask*> masks) {
+// gprim hdHair does not draw (neither a curve nor a mesh): Storm's pixels
+// there are not for hdHair to match. None of the stages has one today.
+void leaveOutGprimsNotDrawn(const UsdStageRefPtr& stage, const FrameAllCamera& camera, std::vector<Mask*> masks) {
     UsdGeomBBoxCache bboxCache(UsdTimeCode::Default(), {UsdGeomTokens->default_, UsdGeomTokens->proxy}, true);
     const GfMatrix4d toClip = camera.view * camera.projection;
     const int width = masks[0]->width, height = masks[0]->height;
     for (const UsdPrim& prim : stage->Traverse()) {
-        if (!prim.IsA<UsdGeomGprim>() || prim.IsA<UsdGeomCurves>()) continue;
+        if (!prim.IsA<UsdGeomGprim>() || prim.IsA<UsdGeomCurves>() || drawnAsMesh(prim)) continue;
         GfRange3d range = bboxCache.ComputeWorldBound(prim).ComputeAlignedRange();
         double x0 = width, y0 = height, x1 = 0, y1 = 0;
         for (int corner = 0; corner < 8; ++corner) {
@@ -575,7 +584,7 @@ TEST_P(OpenUsdCurveStages, WarnsAsExpectedAndCoversWhatStormCovers) {
     ASSERT_EQ(render.height, baseline.height);
     Mask storm = stormCoverage(baseline);
     Mask hdHair = hdHairCoverage(render);
-    leaveOutNonCurveGprims(stage, camera, {&storm, &hdHair});
+    leaveOutGprimsNotDrawn(stage, camera, {&storm, &hdHair});
     const double stormShare = shareCoveredBy(storm, dilate(hdHair, 1));
     const double hdHairShare = shareCoveredBy(hdHair, dilate(storm, 1));
     const Box stormBox = bounds(storm), hdHairBox = bounds(hdHair);

@@ -12,13 +12,12 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
 
+#include "HorizontalStrands.h"
 #include "StageRendering.h"
 #include "hdHair/render/CameraView.h"
 #include "hdHair/scene/Scene.h"
-#include "hdHair/scene/tests/AuthoredPrimvar.h"
 
 using namespace hdhair;
-using hdhair::test::authoredPrimvar;
 using namespace hdhair::testenv;
 
 namespace {
@@ -27,27 +26,6 @@ constexpr int kPixels = 64;
 constexpr int kColumn = 32;  // every strand crosses the whole image
 // Pixel rows (from the top) of the layers below; the strands are 8 px wide.
 constexpr int kFrontRow = 16, kFaintRow = 32, kThinRow = 48, kEmptyRow = 60;
-
-// Linear strands along x, one curve per height y, at depth z, of constant
-// width, colour and opacity. Curve i is elementId i.
-CurvesPrim horizontalStrands(const std::string& path, int primId, int instanceId, float z,
-                             const std::vector<double>& heights, double width, glm::vec3 color, float opacity) {
-    CurvesPrim prim;
-    prim.path = path;
-    prim.primId = primId;
-    prim.instanceId = instanceId;
-    prim.type = CurveType::Linear;
-    for (double y : heights) {
-        prim.curveVertexCounts.push_back(2);
-        prim.points.push_back({-5.0f, float(y), z});
-        prim.points.push_back({5.0f, float(y), z});
-    }
-    prim.primvars["widths"] = authoredPrimvar("widths", Interpolation::Constant, 1, {float(width)});
-    prim.primvars["displayColor"] =
-        authoredPrimvar("displayColor", Interpolation::Constant, 3, {color.r, color.g, color.b});
-    prim.primvars["displayOpacity"] = authoredPrimvar("displayOpacity", Interpolation::Constant, 1, {opacity});
-    return prim;
-}
 
 // Looking down -Z from z = 10 at [-1.2, 1.2]^2, clipping range [1, 21]: a
 // strand at z sits d = 10 - z in front of the camera and, orthographic, at
@@ -182,6 +160,26 @@ TEST(RenderOutputs, EveryOutputInEveryTransparencyModeWithAndWithoutIds) {
             expectOutputs(result, *mode.expected, ids,
                           std::string(mode.transparency) + (ids ? " with ids" : " without ids"));
         }
+    }
+}
+
+// A pixel that only faint strands cover has nothing to pick: depth 1 and ids
+// -1 under blending, however many faint strands are drawn over it.
+TEST(RenderOutputs, PixelsUnderOnlyFaintStrandsHaveNoIds) {
+    CameraView camera = orthographicCamera();
+    const double width = 8.0 / pixelsPerUnit(camera);
+    Scene scene;
+    scene.setCurves(horizontalStrands("/faint", 3, 0, 4.0f, {heightAtPixel(camera, kFaintRow + 0.5)}, width, {0, 1, 0},
+                                      0.05f));
+    scene.setCurves(horizontalStrands("/fainter", 5, 0, 2.0f, {heightAtPixel(camera, kFaintRow + 0.5)}, width,
+                                      {0, 0, 1}, 0.02f));
+    // Sorted: green 0.05 (z = 4, in front) over blue 0.02; unsorted draws by
+    // path, /faint then /fainter over it: blue 0.02 over green 0.05.
+    const ExpectedPixel sorted{kFaintRow, {0.0f, 0.05f, 0.95f * 0.02f, 0.05f + 0.95f * 0.02f}, 1.0f, -1, -1, -1};
+    const ExpectedPixel unsorted{kFaintRow, {0.0f, 0.98f * 0.05f, 0.02f, 0.02f + 0.98f * 0.05f}, 1.0f, -1, -1, -1};
+    for (const char* mode : {"binSorted", "exact", "unsorted"}) {
+        RenderResult result = render(scene, camera, {std::string("transparency=") + mode}, true);
+        expectOutputs(result, {std::string(mode) == "unsorted" ? unsorted : sorted}, true, mode);
     }
 }
 

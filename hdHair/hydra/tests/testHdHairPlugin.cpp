@@ -26,6 +26,7 @@
 #include "pxr/usd/usd/stage.h"
 #include "pxr/usd/usdGeom/basisCurves.h"
 #include "pxr/usd/usdGeom/camera.h"
+#include "pxr/usd/usdGeom/mesh.h"
 #include "pxr/usd/usdGeom/pointInstancer.h"
 #include "pxr/usd/usdGeom/xformable.h"
 #include "pxr/usd/usdLux/distantLight.h"
@@ -130,9 +131,13 @@ public:
         _engine.SetFraming(CameraUtilFraming(GfRect2i(GfVec2i(0, 0), 64, 48)));
     }
 
+    // usdview's complexity (1.0 low to 1.3 veryhigh): Storm's refine levels 0 to 3.
+    void setComplexity(float complexity) { _complexity = complexity; }
+
     Frame render(double time = 0.0) {
         UsdImagingGLRenderParams params;
         params.frame = UsdTimeCode(time);
+        params.complexity = _complexity;
         params.clearColor = GfVec4f(0.0f);
         do {
             _engine.Render(_stage->GetPseudoRoot(), params);
@@ -176,6 +181,7 @@ private:
     }
     UsdStageRefPtr _stage;
     UsdImagingGLEngine _engine;
+    float _complexity = 1.0f;
 };
 
 int syncs(Frame const& frame, std::string const& path) {
@@ -316,6 +322,134 @@ TEST_F(HdHairPlugin, EveryAovHoldsTheNearestQualifyingStrandInEveryTransparencyM
             EXPECT_EQ(frame.elementIds[index], pixel.elementId) << where << ", elementId";
         }
     }
+}
+
+namespace {
+
+// A mesh of `counts` faces over `points`, as a Mesh prim at `path`.
+UsdGeomMesh defineMesh(UsdStageRefPtr const& stage, std::string const& path, VtVec3fArray const& points,
+                       VtIntArray const& counts, VtIntArray const& indices, TfToken const& scheme) {
+    UsdGeomMesh mesh = UsdGeomMesh::Define(stage, SdfPath(path));
+    mesh.CreatePointsAttr(VtValue(points));
+    mesh.CreateFaceVertexCountsAttr(VtValue(counts));
+    mesh.CreateFaceVertexIndicesAttr(VtValue(indices));
+    mesh.CreateSubdivisionSchemeAttr(VtValue(scheme));
+    return mesh;
+}
+
+// A 2 x 2 grid of `size`-unit quads centred on the origin in the z = 0
+// plane, faces counter-clockwise from +z: 0 bottom left, 1 bottom right,
+// 2 top left, 3 top right.
+UsdGeomMesh defineGrid(UsdStageRefPtr const& stage, std::string const& path, float size) {
+    VtVec3fArray points;
+    for (int y = 0; y < 3; ++y)
+        for (int x = 0; x < 3; ++x) points.push_back(GfVec3f(size * float(x - 1), size * float(y - 1), 0.0f));
+    return defineMesh(stage, path, points, {4, 4, 4, 4}, {0, 1, 4, 3, 1, 2, 5, 4, 3, 4, 7, 6, 4, 5, 8, 7},
+                      UsdGeomTokens->none);
+}
+
+// The cube [-1, 1]^3, right-handed, catmullClark.
+UsdGeomMesh defineCube(UsdStageRefPtr const& stage, std::string const& path) {
+    VtVec3fArray points;
+    for (int i = 0; i < 8; ++i)
+        points.push_back(GfVec3f((i & 1) ? 1.0f : -1.0f, (i & 2) ? 1.0f : -1.0f, (i & 4) ? 1.0f : -1.0f));
+    return defineMesh(stage, path, points, {4, 4, 4, 4, 4, 4},
+                      {0, 2, 3, 1, 4, 5, 7, 6, 0, 1, 5, 4, 2, 6, 7, 3, 0, 4, 6, 2, 1, 3, 7, 5},
+                      UsdGeomTokens->catmullClark);
+}
+
+// The frame's pixel (bottom-up, as Hydra's buffers run) nearest to where the
+// world point (x, y, z) projects through cameraAndLightStage's camera
+// (z = 10, aperture 20.955 x 15.2908 mm, focal length 50, 64 x 48 pixels).
+size_t pixelOf(Frame const& frame, double x, double y, double z) {
+    const double d = 10.0 - z;
+    const double column = 32.0 + x * 64.0 / (d * 20.955 / 50.0);
+    const double row = 24.0 + y * 64.0 / (d * 20.955 / 50.0);  // square pixels
+    return size_t(int(row) * frame.width + int(column));
+}
+
+}  // namespace
+
+// A mesh through Hydra, in every transparency mode: drawn over the strand
+// behind it with its faces' uniform colours, its depth, its primId and the
+// face as elementId; the strand off the mesh as before.
+TEST_F(HdHairPlugin, MeshesHideHairAndNameTheirFacesInEveryAov) {
+    UsdStageRefPtr stage = cameraAndLightStage();
+    UsdGeomMesh grid = defineGrid(stage, "/Grid", 1.0f);
+    grid.AddTranslateOp().Set(GfVec3d(0, 0, 2));
+    const VtVec3fArray faceColors = {GfVec3f(1, 0, 0), GfVec3f(0, 1, 0), GfVec3f(0, 0, 1), GfVec3f(1, 1, 0)};
+    grid.CreateDisplayColorPrimvar(UsdGeomTokens->uniform).Set(faceColors);
+    defineStrand(stage, "/Behind", GfVec3f(-3, 0.5f, 0), GfVec3f(3, 0.5f, 0), 0.25f);
+    Recorder recorder(stage);
+    recorder.setSetting("shadingModel", "flat");
+    // Window depth at distance d with clipping range [1, 1e6]: f / (f - n) (1 - n / d).
+    auto windowDepth = [](double d) { return float(1e6 / (1e6 - 1.0) * (1.0 - 1.0 / d)); };
+    for (char const* mode : {"binSorted", "exact", "unsorted", "opaque"}) {
+        recorder.setSetting("transparency", mode);
+        Frame frame = recorder.render();
+        ASSERT_EQ(frame.primIds.size(), frame.color.size() / 4) << mode;
+        const double centres[4][2] = {{-0.5, -0.5}, {0.5, -0.5}, {-0.5, 0.5}, {0.5, 0.5}};
+        for (int face = 0; face < 4; ++face) {
+            // Faces 2 and 3 lie over the strand at y = 0.5: it is hidden.
+            const size_t i = pixelOf(frame, centres[face][0], centres[face][1], 2.0);
+            const std::string where = std::string(mode) + ", face " + std::to_string(face);
+            for (int c = 0; c < 3; ++c) EXPECT_NEAR(frame.color[4 * i + size_t(c)], faceColors[size_t(face)][c], 2e-3) << where;
+            EXPECT_NEAR(frame.color[4 * i + 3], 1.0f, 2e-3) << where;
+            EXPECT_NEAR(frame.depth[i], windowDepth(8.0), 1e-5) << where;
+            EXPECT_EQ(recorder.primPath(frame.primIds[i]), SdfPath("/Grid")) << where;
+            EXPECT_EQ(frame.instanceIds[i], 0) << where;
+            EXPECT_EQ(frame.elementIds[i], face) << where;
+        }
+        const size_t offMesh = pixelOf(frame, 1.6, 0.5, 0.0);
+        EXPECT_EQ(recorder.primPath(frame.primIds[offMesh]), SdfPath("/Behind")) << mode;
+        // The strand's own depth (its camera-facing ribbon tilts off-axis
+        // by about 1e-5): well behind the mesh's plane.
+        EXPECT_NEAR(frame.depth[offMesh], windowDepth(10.0), 1e-4) << mode;
+    }
+}
+
+// Instanced meshes become one engine prim per instance, as curves do; the
+// refine level follows the host's complexity (low: the cage), and holes and
+// creases come through the topology and its subdivision tags.
+TEST_F(HdHairPlugin, MeshInstancesRefineLevelsHolesAndCreases) {
+    UsdStageRefPtr stage = cameraAndLightStage();
+    UsdGeomMesh quad = defineGrid(stage, "/Instancer/Prototypes/quad", 0.25f);
+    defineInstancer(stage, "/Instancer", {quad.GetPath()}, {0, 0}, {GfVec3f(-1.2f, 0, 0), GfVec3f(1.2f, 0, 0)});
+    Recorder instancing(stage);
+    Frame instanced = instancing.render();
+    const size_t left = pixelOf(instanced, -1.2, 0.1, 0.0), right = pixelOf(instanced, 1.2, 0.1, 0.0);
+    EXPECT_EQ(instanced.alpha(int(left % 64), int(left / 64)), 1.0f);
+    EXPECT_EQ(instanced.instanceIds[left], 0);
+    EXPECT_EQ(instanced.instanceIds[right], 1);
+    EXPECT_EQ(instanced.primIds[left], instanced.primIds[right]);
+    EXPECT_EQ(instanced.alpha(32, 24), 0.0f) << "the prototype itself was drawn";
+
+    // A catmullClark cube seen face on: the cage at low complexity covers the
+    // corner of its square; refined (high), its limit surface does not; with
+    // every edge infinitely sharp it keeps its corner; a hole shows nothing.
+    UsdStageRefPtr cubes = cameraAndLightStage();
+    UsdGeomMesh cube = defineCube(cubes, "/Cube");
+    Recorder recorder(cubes);
+    auto cornerCovered = [&](float complexity) {
+        recorder.setComplexity(complexity);
+        Frame frame = recorder.render();
+        const size_t i = pixelOf(frame, 0.93, 0.93, 1.0);
+        return frame.color[4 * i + 3] > 0.0f;
+    };
+    EXPECT_TRUE(cornerCovered(1.0f));
+    EXPECT_FALSE(cornerCovered(1.2f));
+    VtIntArray edges = {0, 1, 1, 3, 3, 2, 2, 0, 4, 5, 5, 7, 7, 6, 6, 4, 0, 4, 1, 5, 2, 6, 3, 7};
+    cube.CreateCreaseIndicesAttr(VtValue(edges));
+    cube.CreateCreaseLengthsAttr(VtValue(VtIntArray(12, 2)));
+    cube.CreateCreaseSharpnessesAttr(VtValue(VtFloatArray(12, 10.0f)));
+    EXPECT_TRUE(cornerCovered(1.2f));
+    cube.CreateHoleIndicesAttr(VtValue(VtIntArray{1}));  // +z, the face towards the camera
+    recorder.setComplexity(1.2f);
+    Frame holed = recorder.render();
+    const size_t centre = pixelOf(holed, 0.0, 0.0, 1.0);
+    // Through the hole: the inside of the -z face, farther away.
+    EXPECT_GT(holed.depth[centre], float(1e6 / (1e6 - 1.0) * (1.0 - 1.0 / 10.0)));
+    EXPECT_EQ(holed.elementIds[centre], 0);
 }
 
 TEST_F(HdHairPlugin, EditsResyncOnlyTheTouchedPrimAndChangeTheImage) {

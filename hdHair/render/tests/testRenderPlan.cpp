@@ -134,3 +134,68 @@ TEST(RenderPlan, SaysWhichPassProducesDepthAndIds) {
     exactWithoutIds.fallBackToBinSorted(1024, false);
     EXPECT_FALSE(exactWithoutIds.isEnabled("ids"));
 }
+
+// A stage without meshes builds neither mesh pass; one with visible meshes
+// draws them before the strands, sends them only when one changed, and has
+// later light batches draw them again.
+TEST(RenderPlan, MeshPassesRunOnlyForVisibleMeshes) {
+    RenderSettings settings;
+    settings.set("transparency", "binSorted");
+    settings.set("lightsPerPass", "1");
+    Scene scene;
+    for (const char* path : {"/key", "/fill"}) {
+        LightPrim light;
+        light.path = path;
+        scene.setLight(light);
+    }
+    StrandSummary thin = wideOpaqueStrands(10);
+    thin.allOpaque = false;
+    const RenderPlan hairOnly = makeRenderPlan(scene, settings, cameraAtPlusZ(), thin, true);
+    for (const char* pass : {"meshUpload", "meshes"}) {
+        ASSERT_NE(hairOnly.graph.find(pass), nullptr);
+        EXPECT_FALSE(hairOnly.graph.find(pass)->wanted) << pass;
+        EXPECT_FALSE(hairOnly.isEnabled(pass)) << pass;
+    }
+    EXPECT_EQ(hairOnly.graph.find("meshes")->reason, "no meshes");
+    EXPECT_EQ(hairOnly.graph.find("lightBatch 2")->reads, (std::vector<FrameResource>{"strands", "drawOrder", "color"}));
+
+    MeshSummary meshes;
+    meshes.meshes = 2;
+    meshes.triangles = 960;
+    meshes.minRefineLevel = 0;
+    meshes.maxRefineLevel = 2;
+    meshes.changed = true;
+    MeshPrim mesh;
+    mesh.path = "/head";
+    scene.setMesh(mesh);
+    const RenderPlan withMeshes = makeRenderPlan(scene, settings, cameraAtPlusZ(), thin, true, meshes);
+    EXPECT_TRUE(withMeshes.isEnabled("meshUpload"));
+    EXPECT_TRUE(withMeshes.isEnabled("meshes"));
+    EXPECT_TRUE(withMeshes.meshesLit);
+    EXPECT_EQ(withMeshes.graph.find("meshes")->reason,
+              "2 mesh(es), 960 triangles (refine levels 0-2), opaque, Lambert under the lights; drawn before the "
+              "strands: depth and ids written, strands behind them hidden");
+    std::vector<std::string> order;
+    for (const FramePass& pass : withMeshes.graph.passes())
+        if (pass.enabled) order.push_back(pass.name);
+    EXPECT_EQ(order, (std::vector<std::string>{"upload", "meshUpload", "sort", "clear", "meshes", "strands", "ids",
+                                               "lightBatch 2", "readback"}));
+    EXPECT_EQ(withMeshes.graph.find("lightBatch 2")->reads,
+              (std::vector<FrameResource>{"strands", "drawOrder", "meshGeometry", "color"}));
+
+    // Meshes alone: no strand pass, the meshes still lit in both batches.
+    const RenderPlan meshesOnly = makeRenderPlan(scene, settings, cameraAtPlusZ(), StrandSummary{}, false, meshes);
+    EXPECT_FALSE(meshesOnly.isEnabled("strands"));
+    EXPECT_TRUE(meshesOnly.isEnabled("meshes"));
+    EXPECT_TRUE(meshesOnly.isEnabled("lightBatch 2"));
+    EXPECT_EQ(meshesOnly.graph.find("lightBatch 2")->reads, (std::vector<FrameResource>{"meshGeometry", "color"}));
+
+    // shadingModel=flat: meshes unlit, and without lit hair no lights at all.
+    settings.set("shadingModel", "flat");
+    StrandSummary flatHair = thin;
+    flatHair.anyLit = false;
+    const RenderPlan flat = makeRenderPlan(scene, settings, cameraAtPlusZ(), flatHair, false, meshes);
+    EXPECT_FALSE(flat.meshesLit);
+    EXPECT_TRUE(flat.flatShading);
+    EXPECT_EQ(flat.lightBatches.size(), 1u);
+}

@@ -198,12 +198,17 @@ TEST(Renderer, AnInstancedPrimsRepairsAreReportedOnceNotPerInstance) {
     EXPECT_EQ(diagnostics.warnings()[0].where, "/proto{0}.widths");
 }
 
-TEST(Renderer, AVisibleMeshIsReportedAsNotDrawnOnce) {
+// A visible mesh is drawn (over the strands' background), prepared once per
+// version and refine level and sent once; a hidden one is neither drawn nor
+// counted; an edit prepares and sends it again.
+TEST(Renderer, MeshesArePreparedAndSentOnlyWhenTheyChange) {
     Scene scene;
-    scene.setCurves(horizontalStrands("/a", 1, {0.0f}));
+    scene.setCurves(horizontalStrands("/a", 1, {0.8f}));
     MeshPrim mesh;
     mesh.path = "/ground";
-    mesh.points = {{-1.0f, -1.0f, 0.0f}, {1.0f, -1.0f, 0.0f}, {0.0f, 1.0f, 0.0f}};
+    mesh.primId = 4;
+    mesh.subdivisionScheme = "none";
+    mesh.points = {{-1.0f, -1.0f, 0.0f}, {1.0f, -1.0f, 0.0f}, {0.0f, 0.5f, 0.0f}};
     mesh.faceVertexCounts = {3};
     mesh.faceVertexIndices = {0, 1, 2};
     MeshPrim hidden = mesh;
@@ -213,12 +218,30 @@ TEST(Renderer, AVisibleMeshIsReportedAsNotDrawnOnce) {
     scene.setMesh(hidden);
     Renderer renderer(gl::GlBackend::Egl);
     Diagnostics diagnostics;
-    renderer.render(scene, squareCamera(32), RenderSettings{}, diagnostics);
-    renderer.render(scene, squareCamera(32), RenderSettings{}, diagnostics);  // a second frame: no repeat
-    ASSERT_EQ(diagnostics.warningCount(), 1u);
-    EXPECT_EQ(diagnostics.warnings()[0].where, "/ground");
-    EXPECT_EQ(diagnostics.warnings()[0].message,
-              "mesh not drawn: hdHair draws curves only (meshes as occluders are not implemented yet)");
+    const CameraView camera = squareCamera(32);
+    RenderResult first = renderer.render(scene, camera, RenderSettings{}, diagnostics, RenderOutputs{true});
+    EXPECT_EQ(first.stats.preparedMeshes, 2u);
+    EXPECT_EQ(first.stats.meshTriangles, 1u);
+    EXPECT_TRUE(first.plan.isEnabled("meshes"));
+    EXPECT_EQ(first.plan.graph.find("meshUpload")->reason, "1 mesh(es), 1 triangles to the GPU: a mesh changed since "
+                                                           "the last frame");
+    const size_t centre = size_t(pixelRow(camera, -0.5f)) * 32 + 16;
+    EXPECT_EQ(first.primIds[centre], 4);
+    EXPECT_EQ(first.elementIds[centre], 0);
+    EXPECT_EQ(first.color.pixels[4 * centre + 3], 1.0f);
+
+    RenderResult second = renderer.render(scene, camera, RenderSettings{}, diagnostics, RenderOutputs{true});
+    EXPECT_EQ(second.stats.preparedMeshes, 0u);
+    EXPECT_EQ(second.plan.graph.find("meshUpload")->reason, "the meshes on the GPU are current: nothing to send");
+    EXPECT_EQ(second.color.pixels, first.color.pixels);
+
+    mesh.points[2].y = -0.2f;  // the triangle no longer covers y = -0.1
+    scene.setMesh(mesh);
+    RenderResult third = renderer.render(scene, camera, RenderSettings{}, diagnostics, RenderOutputs{true});
+    EXPECT_EQ(third.stats.preparedMeshes, 1u);
+    EXPECT_EQ(third.primIds[size_t(pixelRow(camera, -0.1f)) * 32 + 16], -1);
+    EXPECT_EQ(first.primIds[size_t(pixelRow(camera, -0.1f)) * 32 + 16], 4);
+    EXPECT_TRUE(diagnostics.warnings().empty());
 }
 
 // Frames after the first send only what changed (per-prim GPU ranges), and

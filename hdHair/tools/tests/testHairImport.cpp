@@ -24,6 +24,7 @@
 
 #include "hdHair/base/Diagnostics.h"
 #include "hdHair/scene/Scene.h"
+#include "hdHair/tools/ObjMeshReader.h"
 #include "hdHair/tools/TressFxReader.h"
 #include "hdHair/tools/UsdaCurvesWriter.h"
 #include "hdHair/tools/YukselHairReader.h"
@@ -672,6 +673,84 @@ std::pair<uint32_t, uint32_t> headerCounts(const std::string& path) {
     uint32_t words[3] = {};
     in.read(reinterpret_cast<char*>(words), sizeof words);
     return {words[1], words[2]};
+}
+
+// A tiny .obj (a quad and a triangle, one object, one group, relative and
+// v/vt/vn indices) becomes a Mesh prim beside the hair, in the same space,
+// with its faces as authored; the camera frames hair and mesh together.
+TEST_F(HairImport, ObjMeshesBecomeMeshPrims) {
+    const std::string obj = "# two faces\no head\nv 0 0 0\nv 2 0 0\nv 2 2 0\nv 0 2 0\nv 1 3 -1\n"
+                            "vt 0 0\nvn 0 0 1\ng skin\ns 1\nf 1/1/1 2/1/1 3/1/1 4/1/1\nf -2 -3 -1\n";
+    const std::string path = write("head.obj", std::vector<uint8_t>(obj.begin(), obj.end()));
+    const PolygonMesh mesh = readObjMesh(path);
+    EXPECT_EQ(mesh.faceVertexCounts, (std::vector<int>{4, 3}));
+    EXPECT_EQ(mesh.faceVertexIndices, (std::vector<int>{0, 1, 2, 3, 3, 2, 4}));
+    ASSERT_EQ(mesh.points.size(), 5u);
+    expectPoint(mesh.points[4], {1, 3, -1});
+
+    MeshInput head;
+    head.name = "head";
+    head.mesh = mesh;
+    head.subdivisionScheme = "catmullClark";
+    const CurvesUsda usda = buildCurvesUsda({{"two", twoStrands()}}, {}, {head});
+    ASSERT_EQ(usda.meshes.size(), 1u);
+    EXPECT_EQ(usda.meshes[0].path, "/World/head");
+    auto r = readBack(usda.text);
+    EXPECT_EQ(r->diagnostics.warningCount(), 0u);
+    ASSERT_EQ(r->scene.meshes().count("/World/head"), 1u);
+    const hdhair::MeshPrim& prim = *r->scene.meshes().at("/World/head").prim;
+    EXPECT_EQ(prim.faceVertexCounts, mesh.faceVertexCounts);
+    EXPECT_EQ(prim.faceVertexIndices, mesh.faceVertexIndices);
+    EXPECT_EQ(prim.subdivisionScheme, "catmullClark");
+    EXPECT_EQ(prim.worldTransform, glm::dmat4(1.0));
+    ASSERT_EQ(prim.points.size(), 5u);
+    EXPECT_EQ(prim.points[2], glm::vec3(2, 2, 0));
+    ASSERT_NE(prim.findPrimvar("displayColor"), nullptr);
+    EXPECT_EQ(prim.findPrimvar("displayColor")->values, (std::vector<float>{0.72f, 0.56f, 0.48f}));
+    std::vector<Float3> everything = twoStrands().points;
+    everything.insert(everything.end(), mesh.points.begin(), mesh.points.end());
+    expectInView(*r->scene.findCamera("/World/main_cam"), everything);
+    // Default: the polygons as authored.
+    head.subdivisionScheme = "none";
+    auto plain = readBack(buildCurvesUsda({}, {}, {head}).text);
+    EXPECT_EQ(plain->scene.meshes().at("/World/head").prim->subdivisionScheme, "none");
+    EXPECT_TRUE(plain->scene.curves().empty());
+}
+
+TEST_F(HairImport, MalformedObjFilesNameTheFileAndTheProblem) {
+    auto objError = [&](const std::string& name, const std::string& text) {
+        const std::string path = write(name, std::vector<uint8_t>(text.begin(), text.end()));
+        try {
+            readObjMesh(path);
+        } catch (const std::invalid_argument& e) {
+            return std::string(e.what()).substr(path.size());
+        }
+        return std::string("no error");
+    };
+    EXPECT_EQ(objError("far.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n"),
+              ": face 1 of '' names vertex 9, outside the 3 vertices");
+    EXPECT_EQ(objError("empty.obj", "v 0 0 0\n"), ": no faces");
+    const std::string missing = (dir_ / "nothere.obj").string();
+    try {
+        readObjMesh(missing);
+        ADD_FAILURE() << "a missing file was read";
+    } catch (const std::invalid_argument& e) {
+        EXPECT_EQ(std::string(e.what()).rfind(missing + ": ", 0), 0u) << e.what();
+    }
+    MeshInput bad;
+    bad.name = "bad";
+    bad.mesh.source = "bad.obj";
+    bad.mesh.points = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+    bad.mesh.faceVertexCounts = {3};
+    bad.mesh.faceVertexIndices = {0, 1, 2};
+    bad.subdivisionScheme = "butterfly";
+    try {
+        buildCurvesUsda({}, {}, {bad});
+        ADD_FAILURE() << "an unknown scheme was written";
+    } catch (const std::invalid_argument& e) {
+        EXPECT_EQ(std::string(e.what()),
+                  "bad.obj: unknown subdivision scheme 'butterfly' (catmullClark, loop, bilinear or none)");
+    }
 }
 
 TEST_F(HairImport, RealTressFxAssets) {

@@ -765,12 +765,48 @@ def Mesh "ground"
         interpolation = "faceVarying"
     )
 }
+def Mesh "tagged"
+{
+    int[] faceVertexCounts = [4]
+    int[] faceVertexIndices = [0, 3, 2, 1]
+    point3f[] points = [(-1, 0, -1), (1, 0, -1), (1, 0, 1), (-1, 0, 1)]
+    uniform token orientation = "leftHanded"
+    uniform token interpolateBoundary = "edgeOnly"
+    uniform token faceVaryingLinearInterpolation = "all"
+    uniform token triangleSubdivisionRule = "smooth"
+    int[] holeIndices = [0]
+    int[] cornerIndices = [1]
+    float[] cornerSharpnesses = [2.5]
+    int[] creaseIndices = [0, 1, 2]
+    int[] creaseLengths = [3]
+    float[] creaseSharpnesses = [10]
+    color3f[] primvars:displayColor = [(1, 0, 0), (0, 1, 0)] (
+        interpolation = "faceVarying"
+    )
+    int[] primvars:displayColor:indices = [0, 1, 1, 0]
+}
 def Mesh "smooth"
 {
     uniform token purpose = "guide"
 }
 )");
-    ASSERT_EQ(r->scene.meshes().size(), 1u);
+    ASSERT_EQ(r->scene.meshes().size(), 2u);
+    const MeshPrim& tagged = *r->scene.meshes().at("/tagged").prim;
+    EXPECT_EQ(tagged.subdivisionScheme, "catmullClark");
+    EXPECT_EQ(tagged.orientation, "leftHanded");
+    EXPECT_EQ(tagged.interpolateBoundary, "edgeOnly");
+    EXPECT_EQ(tagged.faceVaryingLinearInterpolation, "all");
+    EXPECT_EQ(tagged.triangleSubdivisionRule, "smooth");
+    EXPECT_EQ(tagged.holeIndices, std::vector<int>{0});
+    EXPECT_EQ(tagged.cornerIndices, std::vector<int>{1});
+    EXPECT_EQ(tagged.cornerSharpnesses, std::vector<float>{2.5f});
+    EXPECT_EQ(tagged.creaseIndices, (std::vector<int>{0, 1, 2}));
+    EXPECT_EQ(tagged.creaseLengths, std::vector<int>{3});
+    EXPECT_EQ(tagged.creaseSharpnesses, std::vector<float>{10.0f});
+    EXPECT_EQ(tagged.refineLevel, -1);
+    ASSERT_EQ(tagged.primvars.count("displayColor"), 1u);
+    EXPECT_EQ(tagged.primvars.at("displayColor").interpolation, Interpolation::FaceVarying);
+    EXPECT_EQ(tagged.primvars.at("displayColor").indices, (std::vector<int>{0, 1, 1, 0}));
     const MeshPrim& mesh = *r->scene.meshes().at("/ground").prim;
     EXPECT_EQ(mesh.faceVertexCounts, std::vector<int>{4});
     EXPECT_EQ(mesh.faceVertexIndices, (std::vector<int>{0, 1, 2, 3}));
