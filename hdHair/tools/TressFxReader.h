@@ -59,6 +59,10 @@ struct HairStrands {
     std::optional<float> defaultWidth;
     std::optional<Float3> defaultColor;
     std::optional<float> defaultOpacity;
+    // Values outside their range that were clamped (a transparency beyond
+    // [0, 1], a negative colour), one sentence each, for the converter to
+    // print as warnings.
+    std::vector<std::string> repairs;
 
     size_t strandCount() const { return vertexCounts.size(); }
     size_t pointCount() const { return points.size(); }

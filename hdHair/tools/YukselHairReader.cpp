@@ -60,6 +60,20 @@ Float3 finiteVec3(const std::vector<uint8_t>& bytes, uint64_t at, const std::str
             finite(name, readValue<float>(bytes, at + 8), what, point)};
 }
 
+// Clamps values to [minimum, maximum], counting those it moved.
+struct RangeRepair {
+    const char* what;
+    float minimum, maximum;
+    size_t count = 0;
+    float example = 0.0f;
+
+    float clamp(float value) {
+        if (value >= minimum && value <= maximum) return value;
+        if (count++ == 0) example = value;
+        return std::min(std::max(value, minimum), maximum);
+    }
+};
+
 }  // namespace
 
 HairStrands parseYukselHair(const std::vector<uint8_t>& bytes, const std::string& name) {
@@ -127,24 +141,33 @@ HairStrands parseYukselHair(const std::vector<uint8_t>& bytes, const std::string
     } else if (std::isfinite(defaultThickness) && defaultThickness > 0.0f) {
         out.defaultWidth = defaultThickness;
     }
+    // Transparency is a fraction and colour is linear light: values beyond
+    // [0, 1] or below 0 are clamped, with one repair noted per array.
+    RangeRepair transparency{"transparency", 0.0f, 1.0f}, color{"colour component", 0.0f, INFINITY};
     if (arrays & kTransparencyBit) {
         const uint64_t at = cursor.take("transparencies", pointCount, 4);
         out.opacities.resize(pointCount);
         for (uint64_t i = 0; i < pointCount; ++i)
-            out.opacities[i] = 1.0f - finite(name, readValue<float>(bytes, at + i * 4), "transparency", i);
+            out.opacities[i] =
+                1.0f - transparency.clamp(finite(name, readValue<float>(bytes, at + i * 4), "transparency", i));
     } else if (std::isfinite(defaultTransparency) && defaultTransparency > 0.0f) {
-        out.defaultOpacity = 1.0f - defaultTransparency;
+        out.defaultOpacity = 1.0f - transparency.clamp(defaultTransparency);
     }
     if (arrays & kColorsBit) {
         const uint64_t at = cursor.take("colors", pointCount, 12);
         out.colors.resize(pointCount);
         for (uint64_t i = 0; i < pointCount; ++i) {
-            out.colors[i] = finiteVec3(bytes, at + i * 12, name, "color", i);
+            const Float3 c = finiteVec3(bytes, at + i * 12, name, "color", i);
+            out.colors[i] = {color.clamp(c.x), color.clamp(c.y), color.clamp(c.z)};
         }
     } else if (std::isfinite(defaultColor.x) && std::isfinite(defaultColor.y) && std::isfinite(defaultColor.z) &&
                !(defaultColor == Float3{})) {
-        out.defaultColor = defaultColor;
+        out.defaultColor = Float3{color.clamp(defaultColor.x), color.clamp(defaultColor.y), color.clamp(defaultColor.z)};
     }
+    for (const RangeRepair* repair : {&transparency, &color})
+        if (repair->count > 0)
+            out.repairs.push_back(fmt::format("{} {} value(s) outside [{}, {}] (e.g. {}); clamped", repair->count,
+                                              repair->what, repair->minimum, repair->maximum, repair->example));
     return out;
 }
 

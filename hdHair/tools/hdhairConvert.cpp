@@ -133,6 +133,8 @@ int run(const Options& options) {
         CurvesInput input;
         input.strands = readAsset(path);
         input.name = std::filesystem::path(path).stem().string();
+        for (const std::string& repair : input.strands.repairs)
+            std::fprintf(stderr, "hdhair-convert: warning: %s: %s\n", path.c_str(), repair.c_str());
         if (options.verbose) {
             const HairStrands& s = input.strands;
             std::printf("hdhair-convert: read %s: %s, %zu strands, %zu points in %.1f ms\n", path.c_str(),

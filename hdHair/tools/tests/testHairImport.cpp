@@ -382,6 +382,23 @@ TEST_F(HairImport, YukselHairErrors) {
               "header.hair: the 127-byte file is too small for a .hair header (128 bytes)");
 }
 
+// Transparencies beyond [0, 1] and negative colours are clamped, each array
+// noting one repair the converter prints.
+TEST_F(HairImport, YukselOutOfRangeOpacityAndColourAreClampedAndNoted) {
+    Bytes file = HairFile{}.bytes();
+    // 128 header + 4 segments + 60 points + 20 thickness: transparency of point 1, then colour of point 0.
+    const float transparency = 1.5f, red = -0.25f;
+    std::memcpy(file.data.data() + 128 + 4 + 60 + 20 + 4, &transparency, 4);
+    std::memcpy(file.data.data() + 128 + 4 + 60 + 20 + 20, &red, 4);
+    const HairStrands s = readYukselHair(write("range.hair", file));
+    EXPECT_FLOAT_EQ(s.opacities[1], 0.0f);
+    EXPECT_FLOAT_EQ(s.colors[0].x, 0.0f);
+    EXPECT_FLOAT_EQ(s.colors[0].y, HairFile::color(0).y);
+    EXPECT_EQ(s.repairs, (std::vector<std::string>{"1 transparency value(s) outside [0, 1] (e.g. 1.5); clamped",
+                                                   "1 colour component value(s) outside [0, inf] (e.g. -0.25); clamped"}));
+    EXPECT_TRUE(readYukselHair(write("fine.hair", HairFile{}.bytes())).repairs.empty());
+}
+
 // A header's counts are checked against the bytes present before anything
 // is sized by them: four billion hairs in a 192-byte file (16 GB of vertex
 // counts, had they been allocated first) is a one-line error.
