@@ -264,6 +264,8 @@ PreparedCurves prepareCurves(const CurvesPrim& prim, Diagnostics& diagnostics,
     for (const ShadingPrimvarRequest& request : shadingPrimvars) {
         if (!prim.findPrimvar(request.name)) continue;
         ResolvedPrimvar resolved = resolvePrimvar(prim, topology, request.name, request.fallback, diagnostics);
+        // A prim of no curves has no elements to carry (found by fuzzCurvePreparation).
+        if (resolved.values.empty()) continue;
         clampToDocumentedRange(prim, request, resolved, diagnostics);
         PreparedShadingPrimvar prepared;
         prepared.name = request.name;

@@ -495,3 +495,21 @@ TEST(CurvePreparation, RequestedShadingPrimvarsTravelWithTheControlPointsLikeCol
         }
     }
 }
+
+// Found by fuzzCurvePreparation (hdHair/fuzz/regressions): a hair primvar on
+// a prim whose curves all vanish resolves to no elements, and preparing it
+// read past an empty array.
+TEST(CurvePreparation, AHairPrimvarOnAPrimOfNoCurvesCarriesNothing) {
+    CurvesPrim prim;
+    prim.path = "/none";
+    prim.type = CurveType::Linear;
+    Primvar melanin;
+    melanin.name = "hdHair:melanin";
+    melanin.interpolation = Interpolation::Uniform;
+    melanin.interpolationAuthored = true;
+    prim.primvars["hdHair:melanin"] = melanin;
+    Diagnostics diagnostics;
+    PreparedCurves prepared = prepareCurves(prim, diagnostics, {{"hdHair:melanin", {0.3f}, 0.0f, 1.0f}});
+    EXPECT_TRUE(prepared.empty());
+    EXPECT_TRUE(prepared.shadingPrimvars.empty());
+}
