@@ -7,7 +7,9 @@
 # it builds twice: build/ with the Hydra plugin, whose tests (plugin, usdrecord,
 # usdview, OpenUSD's own curve stages) run with everything else, and
 # build-engine/ without OpenUSD, as users without it get hdHair. Without an
-# OpenUSD, build/ alone, without the plugin.
+# OpenUSD, build/ alone, without the plugin. Then build-sanitize/: clang with
+# AddressSanitizer and UndefinedBehaviorSanitizer, the engine's and tools'
+# tests under them, and the libFuzzer targets for a bounded time each.
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 bash "$root/scripts/install-dependencies.sh"
@@ -46,6 +48,8 @@ else
   bash "$root/scripts/build.sh" --no-openusd
   run_suite "without OpenUSD (no plugin)" "$root/build" "$@"
 fi
+bash "$root/scripts/build.sh" --build-dir "$root/build-sanitize" --no-openusd --sanitize
+run_suite "under AddressSanitizer and UndefinedBehaviorSanitizer, with the fuzzers" "$root/build-sanitize" "$@"
 echo "hdHair: built and tested in $((SECONDS - start)) s"
 echo "tests: $passed passed, $failed failed"
 exit $status
