@@ -9,6 +9,7 @@
 // read the images back.
 
 #include <cstdint>
+#include <deque>
 #include <map>
 #include <memory>
 #include <optional>
@@ -117,7 +118,9 @@ private:
         std::vector<uint16_t> halfTexels;
         int width = 0, height = 0;
     };
-    std::vector<CachedTables> marschnerTables_;
+    // A deque: material uploads keep pointers to the texels of earlier entries
+    // while later ones are added (a vector would move them).
+    std::deque<CachedTables> marschnerTables_;
     std::map<std::string, CachedCurves> curves_;
     std::set<std::string> reportedMeshes_;  // meshes already warned about as not drawn
     // Preparation since the last render (framing may prepare first).
