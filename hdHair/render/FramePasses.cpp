@@ -1,5 +1,6 @@
 #include "hdHair/render/FramePasses.h"
 
+#include <algorithm>
 #include <stdexcept>
 #include <string>
 
@@ -11,6 +12,7 @@
 #include "hdHair/render/FrameResources.h"
 #include "hdHair/render/RenderSettings.h"
 #include "hdHair/render/Renderer.h"
+#include "hdHair/render/ShadowPassUniforms.h"
 
 namespace hdhair {
 
@@ -34,15 +36,9 @@ gl::LightUniforms lightUniforms(const RenderPlan& plan, size_t batch) {
     return uniforms;
 }
 
-glm::dvec3 cameraPositionOf(const CameraView& camera) { return glm::dvec3(glm::inverse(camera.view)[3]); }
-
-glm::dvec3 viewDirectionOf(const CameraView& camera) {
-    return glm::normalize(glm::dvec3(glm::inverse(camera.view) * glm::dvec4(0.0, 0.0, -1.0, 0.0)));
-}
-
 void sortAndSend(FrameContext& context) {
     const CameraView& camera = *context.inputs.camera;
-    binSortSegments(context.inputs.sortSpans, cameraPositionOf(camera), viewDirectionOf(camera),
+    binSortSegments(context.inputs.sortSpans, camera.position(), camera.forward(),
                     context.plan.sortBins, context.drawOrder);
     // Once a frame: every light batch draws with the same order.
     context.resources.strandPass.setDrawOrder(context.drawOrder);
@@ -89,7 +85,9 @@ void drawStrands(FrameContext& context, gl::RenderTarget& target, size_t batch) 
     FrameResources& resources = context.resources;
     target.bindAndClear(glm::vec4(0.0f));
     resources.materials.bind();
-    resources.strandPass.setUniforms(inputs.frame, lightUniforms(plan, batch));
+    resources.shadowMaps.bindForLookup();
+    resources.shadowReference.bindForLookup();
+    resources.strandPass.setUniforms(inputs.frame, lightUniforms(plan, batch), batchShadowUniforms(plan, batch));
     if (plan.transparency == TransparencyPath::Exact) {
         const CameraView& camera = *inputs.camera;
         uint64_t fragments = resources.fragmentLists.render(resources.strands, inputs.uploads.drawRanges,
@@ -107,7 +105,7 @@ void drawStrands(FrameContext& context, gl::RenderTarget& target, size_t batch) 
         sortAndSend(context);
         inputs.frame.orderedDraw = 1;
         target.bindAndClear(glm::vec4(0.0f));
-        resources.strandPass.setUniforms(inputs.frame, lightUniforms(plan, batch));
+        resources.strandPass.setUniforms(inputs.frame, lightUniforms(plan, batch), batchShadowUniforms(plan, batch));
     }
     resources.strandPass.draw(resources.strands, inputs.uploads.drawRanges,
                               plan.transparency == TransparencyPath::Opaque ? gl::StrandBlending::Opaque
@@ -118,7 +116,7 @@ void ids(FrameContext& context) {
     gl::FrameUniforms idsFrame = context.inputs.frame;
     idsFrame.drawMode = 2;
     idsFrame.orderedDraw = 0;
-    context.resources.strandPass.setUniforms(idsFrame, lightUniforms(context.plan, 0));
+    context.resources.strandPass.setUniforms(idsFrame, lightUniforms(context.plan, 0), gl::ShadowUniforms{});
     context.resources.strandPass.draw(context.resources.strands, context.inputs.uploads.drawRanges,
                                       gl::StrandBlending::IdsOnly);
 }
@@ -132,6 +130,57 @@ void lightBatch(FrameContext& context, size_t batch) {
     drawStrands(context, batchTarget, batch);
     batchTarget.resolve();
     context.resources.lightBatchAccumulation.add(*context.target, batchTarget);
+}
+
+// The planned shadow a pass "<kind> <key>" builds.
+size_t shadowNamed(const RenderPlan& plan, const std::string& key) {
+    for (size_t i = 0; i < plan.shadows.lights.size(); ++i)
+        if (plan.shadows.lights[i].key == key) return i;
+    throw std::logic_error("frame graph: no shadow-casting light '" + key + "'");
+}
+
+void prepareShadowMaps(FrameContext& context) {
+    const ShadowPlan& shadows = context.plan.shadows;
+    context.resources.shadowMaps.ensure(shadows.resolution, (shadows.layers + 3) / 4, std::max(shadows.capacity, 1));
+}
+
+// "shadowDepth L": the nearest hair in light L's view.
+void shadowDepth(FrameContext& context, size_t shadow) {
+    prepareShadowMaps(context);
+    FrameResources& resources = context.resources;
+    resources.shadowMapPass.renderDepth(resources.shadowMaps, resources.strands, context.inputs.uploads.drawRanges,
+                                        lightViewFrameUniforms(context.plan, shadow, context.inputs.frame),
+                                        lightShadowUniforms(context.plan, shadow));
+}
+
+// "deepOpacity L": light L's opacity layers behind that hair.
+void deepOpacity(FrameContext& context, size_t shadow) {
+    prepareShadowMaps(context);
+    FrameResources& resources = context.resources;
+    resources.shadowMapPass.renderOpacity(resources.shadowMaps, resources.strands, context.inputs.uploads.drawRanges,
+                                          lightViewFrameUniforms(context.plan, shadow, context.inputs.frame),
+                                          lightShadowUniforms(context.plan, shadow));
+}
+
+// "shadowFragments L": every fragment of light L's view (shadowMode=reference).
+void shadowFragments(FrameContext& context, size_t shadow) {
+    FrameResources& resources = context.resources;
+    PlannedShadow& planned = context.plan.shadows.lights[shadow];
+    resources.shadowReference.ensure(context.plan.shadows.resolution, std::max(context.plan.shadows.capacity, 1));
+    if (!context.shadowPoolEmptied) resources.shadowReference.reset();
+    context.shadowPoolEmptied = true;
+    bool written = false;
+    const uint64_t nodes = resources.shadowReference.render(
+        resources.strands, context.inputs.uploads.drawRanges,
+        lightViewFrameUniforms(context.plan, shadow, context.inputs.frame), lightShadowUniforms(context.plan, shadow),
+        &written);
+    if (written) return;
+    context.diagnostics.warn(planned.key, fmt::format("shadowMode=reference needs {} MB of light-view fragments more "
+                                                      "than one GL storage block holds; this light is shaded without "
+                                                      "its shadows (lower shadowMapResolution)",
+                                                      (nodes * gl::kShadowNodeBytes + (1 << 20) - 1) >> 20));
+    planned.slot = -1;
+    context.unshadowed.push_back(planned.key);
 }
 
 void readback(FrameContext& context) {
@@ -161,6 +210,10 @@ void runFramePass(const FramePass& pass, FrameContext& context) {
     if (name == "ids") return ids(context);
     if (name == "resolve") return context.target->resolve();
     if (name.rfind("lightBatch ", 0) == 0) return lightBatch(context, std::stoul(name.substr(11)) - 1);
+    if (name.rfind("shadowDepth ", 0) == 0) return shadowDepth(context, shadowNamed(context.plan, name.substr(12)));
+    if (name.rfind("deepOpacity ", 0) == 0) return deepOpacity(context, shadowNamed(context.plan, name.substr(12)));
+    if (name.rfind("shadowFragments ", 0) == 0)
+        return shadowFragments(context, shadowNamed(context.plan, name.substr(16)));
     if (name == "readback") return readback(context);
     throw std::logic_error("frame graph: no pass called '" + name + "'");
 }

@@ -30,6 +30,7 @@
 #include "hdHair/render/RenderPlan.h"
 #include "hdHair/render/RenderSettings.h"
 #include "hdHair/render/RenderStats.h"
+#include "hdHair/render/ShadowMapCache.h"
 #include "hdHair/render/StrandUploads.h"
 
 namespace hdhair {
@@ -92,6 +93,7 @@ private:
         uint64_t colorMaterialVersion = 0;
         std::shared_ptr<const PreparedCurves> prepared;
         float minSpanWidth = 0.0f;  // thinnest width at any span end
+        float maxWidth = 0.0f;      // widest control point (shadow views' margins)
         bool fullyOpaque = true;    // every control point's opacity is exactly 1
         // The prim's material, resolved once per version and material
         // settings (hairMaterialSettingsKey), and its per-point parameters.
@@ -106,6 +108,10 @@ private:
     std::optional<MaterialUpload> materialUpload(const std::vector<HairMaterial>& materials,
                                                  const std::vector<CachedCurves*>& drawnCurves,
                                                  const std::vector<DrawnPrim>& drawn, const StrandUploadPlan& uploads);
+    // Which shadow maps the frame rebuilds and which it keeps (ShadowMapCache),
+    // written into the plan; returns the tessellation view every pass uses.
+    TessellationView decideShadowMaps(RenderPlan& plan, const StrandSummary& summary, const CameraView& camera,
+                                      const RenderSettings& settings, Diagnostics& diagnostics, RenderStats& stats);
 
     std::unique_ptr<gl::GlRenderThread> glThread_;
     std::unique_ptr<FrameResources> resources_;  // created and destroyed on the GL thread
@@ -123,6 +129,10 @@ private:
     std::deque<CachedTables> marschnerTables_;
     std::map<std::string, CachedCurves> curves_;
     std::set<std::string> reportedMeshes_;  // meshes already warned about as not drawn
+    ShadowMapCache shadowMaps_;
+    // Changes whenever the strands on the GPU do: the casters of every shadow.
+    uint64_t castersVersion_ = 0;
+    std::vector<gl::SegmentRange> castersRanges_;  // the draw ranges castersVersion_ describes
     // Preparation since the last render (framing may prepare first).
     double pendingPrepareMilliseconds_ = 0.0;
     size_t pendingPreparedPrims_ = 0;

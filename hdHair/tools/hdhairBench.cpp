@@ -283,8 +283,7 @@ int main(int argc, char** argv) {
                     benchmark::DoNotOptimize(prepareCurves(*entry.prim, diagnostics).controlPoints.data());
         })->Unit(benchmark::kMillisecond);
         benchmark::RegisterBenchmark(("BinSort/" + stage->name).c_str(), [stage](benchmark::State& state) {
-            glm::dvec3 position(glm::inverse(stage->camera.view)[3]);
-            glm::dvec3 direction = glm::normalize(glm::dvec3(glm::inverse(stage->camera.view) * glm::dvec4(0, 0, -1, 0)));
+            const glm::dvec3 position = stage->camera.position(), direction = stage->camera.forward();
             std::vector<uint32_t> order;
             for (auto _ : state) {
                 binSortSegments(stage->controlPoints, position, direction, 256, order);
