@@ -12,9 +12,9 @@ constexpr GLuint kListEnd = 0xffffffffu;  // HDHAIR_SHADOW_LIST_END
 
 ShadowReferencePass::ShadowReferencePass()
     : program_(createProgram({"strand.vert", "strand.tesc", "strand.tese", "shadowFragmentList.frag"})),
-      nodes_(createBuffer(nullptr, kShadowNodeBytes, GL_DYNAMIC_STORAGE_BIT)),
-      counter_(createBuffer(nullptr, 2 * sizeof(uint32_t), GL_DYNAMIC_STORAGE_BIT | GL_MAP_READ_BIT)),
-      capacity_(1) {
+      unusedPool_(createBuffer(nullptr, kShadowNodeBytes, GL_DYNAMIC_STORAGE_BIT)),
+      counter_(createBuffer(nullptr, 2 * sizeof(uint32_t), GL_DYNAMIC_STORAGE_BIT | GL_MAP_READ_BIT)) {
+    pools_.push_back(createBuffer(nullptr, kShadowNodeBytes, GL_DYNAMIC_STORAGE_BIT));
     GLint64 maxBytes = 0;
     glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &maxBytes);
     maxNodes_ = size_t(maxBytes) / kShadowNodeBytes;
@@ -45,9 +45,8 @@ void ShadowReferencePass::drawLists(const StrandGeometry& geometry, const std::v
                                     uint32_t capacity) {
     const uint32_t counter[2] = {first, capacity};
     glNamedBufferSubData(counter_.get(), 0, sizeof counter, counter);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 10, nodes_.get());
+    bindForLookup();
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 11, counter_.get());
-    glBindImageTexture(1, heads_.get(), 0, GL_TRUE, 0, GL_READ_WRITE, GL_R32UI);
     // Nothing is drawn to any image: the lists are all the output.
     glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_.get());
     glViewport(0, 0, resolution_, resolution_);
@@ -66,28 +65,39 @@ uint64_t ShadowReferencePass::render(const StrandGeometry& geometry, const std::
     uint32_t offered = 0;
     glGetNamedBufferSubData(counter_.get(), 0, sizeof offered, &offered);
     const size_t needed = used_ + offered;
-    if (needed > maxNodes_) {
+    if (!reserve(needed)) {
         *written = false;
         return offered;
     }
-    if (needed > capacity_) {
-        const size_t capacity = std::min(maxNodes_, std::max(needed, capacity_ + capacity_ / 2));
-        Buffer grown = createBuffer(nullptr, capacity * kShadowNodeBytes, GL_DYNAMIC_STORAGE_BIT);
-        if (used_ > 0)
-            glCopyNamedBufferSubData(nodes_.get(), grown.get(), 0, 0, GLsizeiptr(used_ * kShadowNodeBytes));
-        nodes_ = std::move(grown);
-        capacity_ = capacity;
-    }
-    drawLists(geometry, ranges, lightView, light, uint32_t(used_), uint32_t(capacity_));
+    drawLists(geometry, ranges, lightView, light, uint32_t(used_), uint32_t(capacity()));
     used_ = needed;
     *written = true;
     checkGlError("drawing shadow reference lists");
     return offered;
 }
 
+bool ShadowReferencePass::reserve(size_t nodes) {
+    if (nodes <= capacity()) return true;
+    if (nodes > maxNodes_ * size_t(kShadowNodePools)) return false;
+    // The first pool grows, keeping its nodes, up to what a block addresses.
+    if (pools_.size() == 1 && poolSize_ < maxNodes_) {
+        const size_t size = std::min(maxNodes_, std::max(nodes, poolSize_ + poolSize_ / 2));
+        Buffer grown = createBuffer(nullptr, size * kShadowNodeBytes, GL_DYNAMIC_STORAGE_BIT);
+        if (used_ > 0) glCopyNamedBufferSubData(pools_[0].get(), grown.get(), 0, 0, GLsizeiptr(used_ * kShadowNodeBytes));
+        pools_[0] = std::move(grown);
+        poolSize_ = size;
+    }
+    // Then pools of that size are added.
+    while (capacity() < nodes)
+        pools_.push_back(createBuffer(nullptr, poolSize_ * kShadowNodeBytes, GL_DYNAMIC_STORAGE_BIT));
+    return true;
+}
+
 void ShadowReferencePass::bindForLookup() const {
     glBindImageTexture(1, heads_.get(), 0, GL_TRUE, 0, GL_READ_WRITE, GL_R32UI);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 10, nodes_.get());
+    const GLuint bindings[kShadowNodePools] = {10, 12, 13, 14};
+    for (size_t i = 0; i < size_t(kShadowNodePools); ++i)
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, bindings[i], i < pools_.size() ? pools_[i].get() : unusedPool_.get());
 }
 
 }  // namespace hdhair::gl

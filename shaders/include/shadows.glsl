@@ -62,47 +62,48 @@ float deepOpacityAt(int i, ivec2 texel, float z) {
     return previousOpacity;
 }
 
-// The reference: every fragment of the texel nearer than z, but the
-// strand segment's own.
-float referenceOpacityAt(int i, ivec2 texel, float z, int segment) {
+// The reference: every fragment of the texel nearer than z, exactly what
+// the layers approximate (so the strand's own fragments count too when they
+// are nearer, as they do in the layers).
+float referenceOpacityAt(int i, ivec2 texel, float z) {
     float opacity = 0.0;
-    uint count = uint(shadowNodes.length());
-    for (uint node = imageLoad(shadowListHeads, ivec3(texel, shadowSlot(i))).r;
-         node != HDHAIR_SHADOW_LIST_END && node < count; node = shadowNodes[node].next) {
-        ShadowNode fragment = shadowNodes[node];
-        if (fragment.depth < z && fragment.segment != segment) opacity += fragment.alpha;
+    uint end = uint(HDHAIR_SHADOW_NODE_POOLS) * shadowPoolSize();
+    for (uint node = imageLoad(shadowListHeads, ivec3(texel, shadowSlot(i))).r; node < end;) {
+        ShadowNode fragment = readShadowNode(node);
+        if (fragment.depth < z) opacity += fragment.alpha;
+        node = fragment.next;
     }
     return opacity;
 }
 
-float shadowTransmittanceAt(int i, ivec2 texel, float z, int segment) {
+float shadowTransmittanceAt(int i, ivec2 texel, float z) {
     if (any(lessThan(texel, ivec2(0))) || any(greaterThanEqual(texel, ivec2(shadows.mode.w)))) return 1.0;
-    float opacity = shadows.mode.x == HDHAIR_SHADOW_REFERENCE ? referenceOpacityAt(i, texel, z, segment)
+    float opacity = shadows.mode.x == HDHAIR_SHADOW_REFERENCE ? referenceOpacityAt(i, texel, z)
                                                               : deepOpacityAt(i, texel, z);
     return exp(-shadows.extinction.x * opacity);
 }
 
-// The fraction of light i that reaches `centre`, a point on the centre line
-// of strand segment `segment`. Bias: one texel's world size, so that where
-// the camera's ribbon and the light's rasterisation of the same strand
-// disagree by less than a texel the strand does not shadow itself.
-float shadowTransmittance(int i, vec3 centre, int segment) {
+// The fraction of light i that reaches `centre`, a point on a strand's
+// centre line. Bias: one texel's world size, so that where the camera's
+// tessellation and the light's rasterisation of the same strand disagree by
+// less than a texel the strand does not shadow itself.
+float shadowTransmittance(int i, vec3 centre) {
     if (shadows.mode.x == HDHAIR_SHADOW_OFF || shadows.lightMap[i].x < 0.0) return 1.0;
     vec4 clip = shadows.lightViewProjection[i] * vec4(centre, 1.0);
     if (clip.w <= 0.0) return 1.0;  // behind a perspective light's eye: outside its view
     vec2 position = (clip.xy / clip.w * 0.5 + 0.5) * float(shadows.mode.w);
     float z = shadowLinearDepth(i, centre);
     z -= shadows.lightMap[i].z * (shadows.lightMap[i].w > 0.5 ? z : 1.0);
-    if (shadows.mode.z == 0) return shadowTransmittanceAt(i, ivec2(floor(position)), z, segment);
+    if (shadows.mode.z == 0) return shadowTransmittanceAt(i, ivec2(floor(position)), z);
     // Bilinear: the four nearest texels' transmittances, each against its
     // own nearest hair (z0-relative values cannot be filtered by the
     // hardware: thesis section 1.5.4), weighted by distance.
     vec2 corner = position - 0.5;
     ivec2 base = ivec2(floor(corner));
     vec2 w = corner - vec2(base);
-    float t00 = shadowTransmittanceAt(i, base, z, segment);
-    float t10 = shadowTransmittanceAt(i, base + ivec2(1, 0), z, segment);
-    float t01 = shadowTransmittanceAt(i, base + ivec2(0, 1), z, segment);
-    float t11 = shadowTransmittanceAt(i, base + ivec2(1, 1), z, segment);
+    float t00 = shadowTransmittanceAt(i, base, z);
+    float t10 = shadowTransmittanceAt(i, base + ivec2(1, 0), z);
+    float t01 = shadowTransmittanceAt(i, base + ivec2(0, 1), z);
+    float t11 = shadowTransmittanceAt(i, base + ivec2(1, 1), z);
     return mix(mix(t00, t10, w.x), mix(t01, t11, w.x), w.y);
 }

@@ -22,7 +22,7 @@ vec3 strandRadiance(vec3 worldPosition, vec3 centre, vec3 worldTangent, vec3 hai
         vec3 l;
         vec3 irradiance = lightIrradiance(i, worldPosition, l);
         if (all(equal(irradiance, vec3(0.0)))) continue;  // unlit here: no shadow lookup
-        irradiance *= shadowTransmittance(i, centre, segment);
+        irradiance *= shadowTransmittance(i, centre);
         if (shading.model == 2) {
             radiance += irradiance * (analytic ? marschnerAnalytic(t, l, e, shading.fibre)
                                                : marschnerTabled(t, l, e, marschnerTables, shading.tableLayer,
