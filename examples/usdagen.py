@@ -310,13 +310,15 @@ def camera_prim(eye, rotate, focal=50.0, h_ap=20.955, v_ap=15.2908, clip=(1.0, 1
     ] + xform_attrs(translate=eye, rotate=rotate))
 
 
-def distant_light(name, travel, intensity=2.0, angle=1.0, color=(1, 1, 1)):
-    """A DistantLight whose light travels along `travel` (it emits along its -Z)."""
+def distant_light(name, travel, intensity=2.0, angle=1.0, color=(1, 1, 1), shadow=True):
+    """A DistantLight whose light travels along `travel` (it emits along its -Z);
+    shadow=False authors inputs:shadow:enable = false (UsdLuxShadowAPI)."""
     return Prim("DistantLight", name, attrs=[
         Attr("float", "inputs:angle", angle),
         Attr("color3f", "inputs:color", tuple(color)),
         Attr("float", "inputs:intensity", intensity),
-    ] + xform_attrs(rotate=look_rotation(travel)))
+    ] + ([] if shadow else [Attr("bool", "inputs:shadow:enable", False)])
+      + xform_attrs(rotate=look_rotation(travel)))
 
 
 def sphere_light(name, position, radius, intensity, color=(1, 1, 1)):
@@ -542,6 +544,8 @@ class Parser:
                 ok = isinstance(v, str)
             elif base == "matrix4d":
                 ok = isinstance(v, tuple) and len(v) == 4 and all(len(r) == 4 for r in v)
+            elif base == "bool":
+                ok = isinstance(v, bool) or (isinstance(v, float) and v in (0.0, 1.0))
             elif TUPLE_SIZES[base] == 1:
                 ok = isinstance(v, float)
             else:

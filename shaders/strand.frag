@@ -13,6 +13,8 @@
 #include "include/marschnerAnalytic.glsl"
 #include "include/catmullRom.glsl"
 #include "include/hairMaterials.glsl"
+#include "include/shadowFragmentLists.glsl"
+#include "include/shadows.glsl"
 #include "include/strandShading.glsl"
 #include "include/strandGeometry.glsl"
 
@@ -21,6 +23,7 @@ layout(location = 1) in vec3 worldTangent;
 layout(location = 2) in vec4 colorAlpha;
 layout(location = 3) flat in ivec4 ids;  // primId, elementId, material, segment
 layout(location = 4) in float spanU;
+layout(location = 5) in vec3 strandCentre;
 
 layout(location = 0) out vec4 outColor;
 // Picking and selection outputs; the render target binds them only when a
@@ -43,7 +46,8 @@ void main() {
     if (frame.drawMode == 2) {
         outColor = vec4(0.0);  // masked: the ids pass needs no shading
     } else {
-        vec3 radiance = strandRadiance(worldPosition, worldTangent, colorAlpha.rgb, ids.z, ids.w, spanU);
+        vec3 radiance =
+            strandRadiance(worldPosition, strandCentre, worldTangent, colorAlpha.rgb, ids.z, ids.w, spanU);
         outColor = frame.drawMode == 0 ? vec4(radiance, 1.0) : vec4(radiance * colorAlpha.a, colorAlpha.a);
     }
     outPrimId = ids.x;

@@ -1,9 +1,12 @@
 #version 450 core
 #extension GL_GOOGLE_include_directive : require
-// Chooses how finely each Catmull-Rom span is cut: by its projected length, so
-// strands far away or seen end-on cost few segments (adaptive to projected
-// size), never more than maxSegmentsPerSpan. Spans wholly outside the view
-// frustum get level 0, which discards them.
+// Chooses how finely each Catmull-Rom span is cut: by its projected length in
+// the tessellation view, so strands far away or seen end-on cost few segments
+// (adaptive to projected size), never more than maxSegmentsPerSpan. The
+// tessellation view is the camera's (or the camera the shadow maps were built
+// with, hdHair/render/TessellationView.h) in every pass, light views
+// included, so each view draws the same curve. Culling is per view: spans
+// wholly outside this pass's frustum get level 0, which discards them.
 #include "include/frameUniforms.glsl"
 
 layout(vertices = 4) out;
@@ -15,7 +18,7 @@ layout(location = 0) out vec4 tcsPositionWidth[];
 layout(location = 1) out vec4 tcsColorOpacity[];
 layout(location = 2) flat out int tcsSegment[];
 
-vec2 toPixels(vec4 clip) { return (clip.xy / clip.w * 0.5 + 0.5) * frame.viewportSize; }
+vec2 toTessellationPixels(vec4 clip) { return (clip.xy / clip.w * 0.5 + 0.5) * frame.tessellationViewport; }
 
 void main() {
     tcsPositionWidth[gl_InvocationID] = vsPositionWidth[gl_InvocationID];
@@ -51,11 +54,15 @@ void main() {
         culled = allBelow || allAbove;
     }
 
+    vec4 tessellationClip[4];
+    for (int i = 0; i < 4; ++i) tessellationClip[i] = frame.tessellationViewProjection * vec4(hull[i], 1.0);
     float level = frame.maxSegmentsPerSpan;
-    bool inFront = clip[0].w > 0.0 && clip[1].w > 0.0 && clip[2].w > 0.0 && clip[3].w > 0.0;
+    bool inFront = tessellationClip[0].w > 0.0 && tessellationClip[1].w > 0.0 && tessellationClip[2].w > 0.0 &&
+                   tessellationClip[3].w > 0.0;
     if (inFront) {
         float pixels = 0.0;
-        for (int i = 0; i < 3; ++i) pixels += distance(toPixels(clip[i]), toPixels(clip[i + 1]));
+        for (int i = 0; i < 3; ++i)
+            pixels += distance(toTessellationPixels(tessellationClip[i]), toTessellationPixels(tessellationClip[i + 1]));
         level = clamp(ceil(pixels / frame.pixelsPerSegment), 1.0, frame.maxSegmentsPerSpan);
     }
     if (culled) level = 0.0;

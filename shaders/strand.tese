@@ -23,6 +23,7 @@ layout(location = 1) out vec3 worldTangent;
 layout(location = 2) out vec4 colorAlpha;  // displayColor, opacity x coverage
 layout(location = 3) flat out ivec4 ids;   // primId, elementId, material, segment
 layout(location = 4) out float spanU;      // where on the span: per-point hair parameters
+layout(location = 5) out vec3 strandCentre;  // the centre line under this point: where shadows are looked up
 
 void main() {
     float u = gl_TessCoord.x, v = gl_TessCoord.y;
@@ -68,5 +69,6 @@ void main() {
     int segment = tcsSegment[0];
     ids = ivec4(segmentPrim[segment].x, segmentCurve[segment], segmentMaterial[segment], segment);
     spanU = u;
+    strandCentre = positionWidth.xyz;
     gl_Position = frame.viewProjection * vec4(position, 1.0);
 }

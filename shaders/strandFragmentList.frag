@@ -10,6 +10,8 @@
 #include "include/marschnerAnalytic.glsl"
 #include "include/catmullRom.glsl"
 #include "include/hairMaterials.glsl"
+#include "include/shadowFragmentLists.glsl"
+#include "include/shadows.glsl"
 #include "include/strandShading.glsl"
 #include "include/fragmentLists.glsl"
 
@@ -20,13 +22,14 @@ layout(location = 1) in vec3 worldTangent;
 layout(location = 2) in vec4 colorAlpha;
 layout(location = 3) flat in ivec4 ids;  // primId, elementId, material, segment
 layout(location = 4) in float spanU;
+layout(location = 5) in vec3 strandCentre;
 
 layout(r32ui, binding = 0) uniform coherent uimage2D listHeads;
 
 void main() {
     float alpha = colorAlpha.a;
     if (alpha <= 0.0) return;
-    vec3 radiance = strandRadiance(worldPosition, worldTangent, colorAlpha.rgb, ids.z, ids.w, spanU);
+    vec3 radiance = strandRadiance(worldPosition, strandCentre, worldTangent, colorAlpha.rgb, ids.z, ids.w, spanU);
     uint index = atomicAdd(fragmentCount, 1u);
     if (index >= capacity) return;  // over budget: the CPU sees the count and falls back
     uint previous = imageAtomicExchange(listHeads, ivec2(gl_FragCoord.xy), index);

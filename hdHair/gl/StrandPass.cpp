@@ -10,15 +10,18 @@ StrandPass::StrandPass()
     : program_(createProgram({"strand.vert", "strand.tesc", "strand.tese", "strand.frag"})),
       emptyVertexArray_(createVertexArray()),
       frameBlock_(createBuffer(nullptr, sizeof(FrameUniforms), GL_DYNAMIC_STORAGE_BIT)),
-      lightBlock_(createBuffer(nullptr, sizeof(LightUniforms), GL_DYNAMIC_STORAGE_BIT)) {
+      lightBlock_(createBuffer(nullptr, sizeof(LightUniforms), GL_DYNAMIC_STORAGE_BIT)),
+      shadowBlock_(createBuffer(nullptr, sizeof(ShadowUniforms), GL_DYNAMIC_STORAGE_BIT)) {
     checkGlError("setting up the strand pass");
 }
 
-void StrandPass::setUniforms(const FrameUniforms& frame, const LightUniforms& lights) {
+void StrandPass::setUniforms(const FrameUniforms& frame, const LightUniforms& lights, const ShadowUniforms& shadows) {
     glNamedBufferSubData(frameBlock_.get(), 0, sizeof(frame), &frame);
     glNamedBufferSubData(lightBlock_.get(), 0, sizeof(lights), &lights);
+    glNamedBufferSubData(shadowBlock_.get(), 0, sizeof(shadows), &shadows);
     glBindBufferBase(GL_UNIFORM_BUFFER, 0, frameBlock_.get());
     glBindBufferBase(GL_UNIFORM_BUFFER, 1, lightBlock_.get());
+    glBindBufferBase(GL_UNIFORM_BUFFER, 2, shadowBlock_.get());
     maxSegmentsPerSpan_ = frame.maxSegmentsPerSpan;
     orderedDraw_ = frame.orderedDraw != 0;
 }

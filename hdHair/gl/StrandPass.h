@@ -25,8 +25,9 @@ class StrandPass {
 public:
     StrandPass();  // compiles the strand program; throws on driver errors
 
-    // Uploads and binds the frame's uniform blocks (also used by other passes).
-    void setUniforms(const FrameUniforms& frame, const LightUniforms& lights);
+    // Uploads and binds the frame's uniform blocks (also used by other
+    // passes): frame at 0, lights at 1, their shadows at 2.
+    void setUniforms(const FrameUniforms& frame, const LightUniforms& lights, const ShadowUniforms& shadows);
 
     // Sends the frame's drawing order (segments far to near), once a frame:
     // every light batch draws with it.
@@ -44,7 +45,7 @@ public:
 private:
     Program program_;
     VertexArray emptyVertexArray_;  // core profile draws need one bound
-    Buffer frameBlock_, lightBlock_, orderBuffer_;
+    Buffer frameBlock_, lightBlock_, shadowBlock_, orderBuffer_;
     size_t orderCapacity_ = 0, orderedSegments_ = 0;
     float maxSegmentsPerSpan_ = 8.0f;
     bool orderedDraw_ = false;

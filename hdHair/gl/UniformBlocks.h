@@ -27,9 +27,14 @@ struct FrameUniforms {  // binding 0, shaders/include/frameUniforms.glsl
     // Blended frames: the least alpha (coverage x opacity) of a fragment that
     // may give its pixel depth and ids (hdHair/render/NearestStrandRule.h).
     float nearestStrandMinAlpha = 0.0f;
-    float padding_[3]{};  // std140 rounds the block up to whole vec4s
+    float padding_ = 0.0f;  // std140 aligns a vec2 to 8 bytes
+    // The view every pass takes its tessellation levels from
+    // (hdHair/render/TessellationView.h): the camera, or the camera the
+    // shadow maps were built with.
+    glm::vec2 tessellationViewport{1.0f};
+    glm::mat4 tessellationViewProjection{1.0f};
 };
-static_assert(sizeof(FrameUniforms) == 144, "std140 layout of FrameUniforms");
+static_assert(sizeof(FrameUniforms) == 208, "std140 layout of FrameUniforms");
 
 struct LightUniforms {  // binding 1, shaders/include/lights.glsl
     glm::vec4 lightVector[kMaxLightsPerPass]{};
@@ -41,6 +46,28 @@ struct LightUniforms {  // binding 1, shaders/include/lights.glsl
     glm::vec4 lightCone[kMaxLightsPerPass]{};
 };
 static_assert(sizeof(LightUniforms) == 16 * 4 * kMaxLightsPerPass + 32, "std140 layout of LightUniforms");
+
+// How a pass's lights shadow the hair (binding 2, shaders/include/shadows.glsl;
+// hdHair/render/DeepOpacityLayers.h has the formulas). Light i of a pass is
+// entry i; a shadow pass writes its one light as entry 0.
+constexpr int kMaxShadowLayerVectors = 8;  // 32 layer boundaries, 4 a vec4
+struct ShadowUniforms {
+    glm::mat4 lightViewProjection[kMaxLightsPerPass]{};  // world to the light view's clip space
+    glm::vec4 lightEye[kMaxLightsPerPass]{};             // xyz: the light view's eye
+    glm::vec4 lightForward[kMaxLightsPerPass]{};         // xyz: its unit viewing direction
+    // x: the map's slot (-1: the light casts no shadow), y: d_K, the last
+    // layer's depth behind the nearest hair (world units), z: a texel's world
+    // size (at linear depth 1 when perspective), w: 1 perspective, 0 orthographic.
+    glm::vec4 lightMap[kMaxLightsPerPass]{};
+    glm::vec4 layerBoundaries[kMaxShadowLayerVectors]{};  // d_k / d_K, k = 1..32
+    // x: 0 off, 1 deep opacity maps, 2 reference; y: layers; z: filter
+    // (0 nearest, 1 bilinear); w: the maps' resolution.
+    glm::ivec4 mode{0};
+    glm::vec4 extinction{1.0f, 0.0f, 0.0f, 0.0f};  // x: k of T = exp(-k opacity)
+};
+static_assert(sizeof(ShadowUniforms) == 64 * kMaxLightsPerPass + 48 * kMaxLightsPerPass + 16 * 8 + 32,
+              "std140 layout of ShadowUniforms");
+constexpr int kShadowModeOff = 0, kShadowModeDeepOpacity = 1, kShadowModeReference = 2;
 
 // One element of the HairMaterials storage buffer (shaders/include/hairMaterials.glsl).
 struct GpuHairMaterial {

@@ -31,6 +31,7 @@ LightPrim lightFromHydra(const std::string& path, LightType type, bool hostCamer
     light.height = number(parameter, "height", light.height);
     light.coneAngle = number(parameter, "shaping:cone:angle", light.coneAngle);
     light.coneSoftness = number(parameter, "shaping:cone:softness", light.coneSoftness);
+    light.shadowEnable = number(parameter, "shadow:enable", 1.0f) != 0.0f;
     return light;
 }
 

@@ -47,6 +47,12 @@ glm::dmat4 conformFit(glm::dmat4 projection, double targetAspect) {
 
 }  // namespace
 
+glm::dvec3 CameraView::position() const { return glm::dvec3(glm::inverse(view)[3]); }
+
+glm::dvec3 CameraView::forward() const {
+    return glm::normalize(glm::dvec3(glm::inverse(view) * glm::dvec4(0.0, 0.0, -1.0, 0.0)));
+}
+
 glm::dvec3 CameraView::worldToPixel(const glm::dvec3& world) const {
     glm::dvec4 clip = projection * view * glm::dvec4(world, 1.0);
     glm::dvec3 ndc = glm::dvec3(clip) / clip.w;

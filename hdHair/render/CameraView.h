@@ -27,6 +27,12 @@ struct CameraView {
     // corner, (0,0) the corner of the first pixel, (w,h) the opposite corner.
     // z is the window depth in [0, 1].
     glm::dvec3 worldToPixel(const glm::dvec3& world) const;
+
+    glm::dvec3 position() const;  // the eye, in world space
+    glm::dvec3 forward() const;   // the unit viewing direction (the camera's -Z), in world space
+    // Pixels a world unit spans horizontally at clip w = 1: half the image
+    // width times the projection's x scale (GL matrices: [0][0]).
+    double pixelsPerUnit() const { return projection[0][0] * imageWidth * 0.5; }
 };
 
 // The image height usdrecord gives an image `imageWidth` pixels wide for a

@@ -78,13 +78,16 @@ std::string FrameGraph::reasonFor(const FramePass& pass) {
 }
 
 std::string FrameGraph::describe() const {
+    // Names line up in a column as wide as the longest ("shadowDepth /World/key").
+    size_t width = 12;
+    for (const FramePass& pass : passes_) width = std::max(width, pass.name.size());
     std::string text;
     for (const FramePass& pass : passes_) {
-        text += fmt::format("  {:<12} {:<4} {}\n", pass.name, pass.enabled ? "on" : "off", reasonFor(pass));
+        text += fmt::format("  {:<{}} {:<4} {}\n", pass.name, width, pass.enabled ? "on" : "off", reasonFor(pass));
         if (pass.enabled)
-            text += fmt::format("  {:<12}      reads {}; writes {}\n", "", joined(pass.reads), joined(pass.writes));
+            text += fmt::format("  {:<{}}      reads {}; writes {}\n", "", width, joined(pass.reads), joined(pass.writes));
     }
-    text += fmt::format("  {:<12}      the frame delivers {}\n", "", joined(outputs_));
+    text += fmt::format("  {:<{}}      the frame delivers {}\n", "", width, joined(outputs_));
     return text;
 }
 

@@ -1,5 +1,6 @@
 #include "hdHair/render/FramePasses.h"
 
+#include <algorithm>
 #include <stdexcept>
 #include <string>
 
@@ -12,6 +13,7 @@
 #include "hdHair/render/FrameResources.h"
 #include "hdHair/render/RenderSettings.h"
 #include "hdHair/render/Renderer.h"
+#include "hdHair/render/ShadowPassUniforms.h"
 
 namespace hdhair {
 
@@ -35,15 +37,9 @@ gl::LightUniforms lightUniforms(const RenderPlan& plan, size_t batch) {
     return uniforms;
 }
 
-glm::dvec3 cameraPositionOf(const CameraView& camera) { return glm::dvec3(glm::inverse(camera.view)[3]); }
-
-glm::dvec3 viewDirectionOf(const CameraView& camera) {
-    return glm::normalize(glm::dvec3(glm::inverse(camera.view) * glm::dvec4(0.0, 0.0, -1.0, 0.0)));
-}
-
 void sortAndSend(FrameContext& context) {
     const CameraView& camera = *context.inputs.camera;
-    binSortSegments(context.inputs.sortSpans, cameraPositionOf(camera), viewDirectionOf(camera),
+    binSortSegments(context.inputs.sortSpans, camera.position(), camera.forward(),
                     context.plan.sortBins, context.drawOrder);
     // Once a frame: every light batch draws with the same order.
     context.resources.strandPass.setDrawOrder(context.drawOrder);
@@ -78,11 +74,23 @@ void meshUpload(FrameContext& context) {
     for (size_t i = 0; i < meshes.meshes.size(); ++i) geometry.write(meshes.draws[i].first, meshes.meshes[i]->vertices);
 }
 
+// Binds `target` and what a pass drawing light batch `batch` reads besides
+// its geometry: the hair materials, the frame's and the batch's lights'
+// uniforms, and their shadow maps (meshes and strands alike).
+void bindBatchInputs(FrameContext& context, gl::RenderTarget& target, size_t batch) {
+    FrameResources& resources = context.resources;
+    target.bind();
+    resources.materials.bind();
+    resources.shadowMaps.bindForLookup();
+    resources.shadowReference.bindForLookup();
+    resources.strandPass.setUniforms(context.inputs.frame, lightUniforms(context.plan, batch),
+                                     batchShadowUniforms(context.plan, batch));
+}
+
 // Draws the meshes lit by the lights of one batch into `target`, before the
 // strands: their depth is what every strand path tests against.
 void drawMeshes(FrameContext& context, gl::RenderTarget& target, size_t batch) {
-    target.bind();
-    context.resources.strandPass.setUniforms(context.inputs.frame, lightUniforms(context.plan, batch));
+    bindBatchInputs(context, target, batch);
     context.resources.meshPass.draw(context.resources.meshes, context.inputs.meshes.draws,
                                     context.inputs.frame.viewProjection,
                                     context.plan.meshesLit ? gl::MeshShading::Lit : gl::MeshShading::Unlit);
@@ -108,9 +116,7 @@ void drawStrands(FrameContext& context, gl::RenderTarget& target, size_t batch) 
     FrameInputs& inputs = context.inputs;
     RenderPlan& plan = context.plan;
     FrameResources& resources = context.resources;
-    target.bind();
-    resources.materials.bind();
-    resources.strandPass.setUniforms(inputs.frame, lightUniforms(plan, batch));
+    bindBatchInputs(context, target, batch);
     if (plan.transparency == TransparencyPath::Exact) {
         const CameraView& camera = *inputs.camera;
         uint64_t fragments = resources.fragmentLists.render(resources.strands, inputs.uploads.drawRanges,
@@ -130,9 +136,7 @@ void drawStrands(FrameContext& context, gl::RenderTarget& target, size_t batch) 
         inputs.frame.orderedDraw = 1;
         target.bindAndClear(glm::vec4(0.0f));
         if (plan.isEnabled("meshes")) drawMeshes(context, target, batch);
-        target.bind();
-        resources.materials.bind();
-        resources.strandPass.setUniforms(inputs.frame, lightUniforms(plan, batch));
+        bindBatchInputs(context, target, batch);
     }
     resources.strandPass.draw(resources.strands, inputs.uploads.drawRanges,
                               plan.transparency == TransparencyPath::Opaque ? gl::StrandBlending::Opaque
@@ -143,7 +147,7 @@ void ids(FrameContext& context) {
     gl::FrameUniforms idsFrame = context.inputs.frame;
     idsFrame.drawMode = 2;
     idsFrame.orderedDraw = 0;
-    context.resources.strandPass.setUniforms(idsFrame, lightUniforms(context.plan, 0));
+    context.resources.strandPass.setUniforms(idsFrame, lightUniforms(context.plan, 0), gl::ShadowUniforms{});
     context.resources.strandPass.draw(context.resources.strands, context.inputs.uploads.drawRanges,
                                       gl::StrandBlending::IdsOnly);
 }
@@ -159,6 +163,57 @@ void lightBatch(FrameContext& context, size_t batch) {
     if (context.plan.isEnabled("strands")) drawStrands(context, batchTarget, batch);
     batchTarget.resolve();
     context.resources.lightBatchAccumulation.add(*context.target, batchTarget);
+}
+
+// The planned shadow a pass "<kind> <key>" builds.
+size_t shadowNamed(const RenderPlan& plan, const std::string& key) {
+    for (size_t i = 0; i < plan.shadows.lights.size(); ++i)
+        if (plan.shadows.lights[i].key == key) return i;
+    throw std::logic_error("frame graph: no shadow-casting light '" + key + "'");
+}
+
+void prepareShadowMaps(FrameContext& context) {
+    const ShadowPlan& shadows = context.plan.shadows;
+    context.resources.shadowMaps.ensure(shadows.resolution, (shadows.layers + 3) / 4, std::max(shadows.capacity, 1));
+}
+
+// "shadowDepth L": the nearest hair in light L's view.
+void shadowDepth(FrameContext& context, size_t shadow) {
+    prepareShadowMaps(context);
+    FrameResources& resources = context.resources;
+    resources.shadowMapPass.renderDepth(resources.shadowMaps, resources.strands, context.inputs.uploads.drawRanges,
+                                        lightViewFrameUniforms(context.plan, shadow, context.inputs.frame),
+                                        lightShadowUniforms(context.plan, shadow));
+}
+
+// "deepOpacity L": light L's opacity layers behind that hair.
+void deepOpacity(FrameContext& context, size_t shadow) {
+    prepareShadowMaps(context);
+    FrameResources& resources = context.resources;
+    resources.shadowMapPass.renderOpacity(resources.shadowMaps, resources.strands, context.inputs.uploads.drawRanges,
+                                          lightViewFrameUniforms(context.plan, shadow, context.inputs.frame),
+                                          lightShadowUniforms(context.plan, shadow));
+}
+
+// "shadowFragments L": every fragment of light L's view (shadowMode=reference).
+void shadowFragments(FrameContext& context, size_t shadow) {
+    FrameResources& resources = context.resources;
+    PlannedShadow& planned = context.plan.shadows.lights[shadow];
+    resources.shadowReference.ensure(context.plan.shadows.resolution, std::max(context.plan.shadows.capacity, 1));
+    if (!context.shadowPoolEmptied) resources.shadowReference.reset();
+    context.shadowPoolEmptied = true;
+    bool written = false;
+    const uint64_t nodes = resources.shadowReference.render(
+        resources.strands, context.inputs.uploads.drawRanges,
+        lightViewFrameUniforms(context.plan, shadow, context.inputs.frame), lightShadowUniforms(context.plan, shadow),
+        &written);
+    if (written) return;
+    context.diagnostics.warn(planned.key, fmt::format("shadowMode=reference needs {} MB of light-view fragments more "
+                                                      "than one GL storage block holds; this light is shaded without "
+                                                      "its shadows (lower shadowMapResolution)",
+                                                      (nodes * gl::kShadowNodeBytes + (1 << 20) - 1) >> 20));
+    planned.slot = -1;
+    context.unshadowed.push_back(planned.key);
 }
 
 void readback(FrameContext& context) {
@@ -199,6 +254,10 @@ void runFramePass(const FramePass& pass, FrameContext& context) {
     if (name == "ids") return ids(context);
     if (name == "resolve") return context.target->resolve();
     if (name.rfind("lightBatch ", 0) == 0) return lightBatch(context, std::stoul(name.substr(11)) - 1);
+    if (name.rfind("shadowDepth ", 0) == 0) return shadowDepth(context, shadowNamed(context.plan, name.substr(12)));
+    if (name.rfind("deepOpacity ", 0) == 0) return deepOpacity(context, shadowNamed(context.plan, name.substr(12)));
+    if (name.rfind("shadowFragments ", 0) == 0)
+        return shadowFragments(context, shadowNamed(context.plan, name.substr(16)));
     if (name == "readback") return readback(context);
     if (name == "displayTransform") return displayTransform(context);
     throw std::logic_error("frame graph: no pass called '" + name + "'");

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <memory>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include <glm/vec4.hpp>
@@ -74,6 +75,8 @@ struct FrameContext {
     RenderResult& result;
     std::vector<uint32_t> drawOrder;         // the sort's output
     gl::RenderTarget* target = nullptr;      // set by the clear pass
+    bool shadowPoolEmptied = false;          // shadowMode=reference: the pool was emptied this frame
+    std::vector<std::string> unshadowed;     // lights whose shadow could not be built (warned)
 };
 
 // Runs one pass of the plan. Throws std::logic_error for a pass it does not know.

@@ -1,9 +1,9 @@
 #pragma once
 // The GL objects a frame's passes use (FramePasses.h), made once and kept
 // between frames: the compiled passes, the strand and mesh geometry and the
-// hair materials on the GPU, and the frame's render targets, remade only
-// when the image size or the images a frame needs change. Created, used and
-// destroyed on the GL thread only.
+// hair materials on the GPU, the lights' shadow maps, and the frame's render
+// targets, remade only when the image size or the images a frame needs
+// change. Created, used and destroyed on the GL thread only.
 
 #include <memory>
 
@@ -14,6 +14,9 @@
 #include "hdHair/gl/MeshGeometry.h"
 #include "hdHair/gl/MeshPass.h"
 #include "hdHair/gl/RenderTarget.h"
+#include "hdHair/gl/ShadowMapPass.h"
+#include "hdHair/gl/ShadowMapStorage.h"
+#include "hdHair/gl/ShadowReferencePass.h"
 #include "hdHair/gl/StrandGeometry.h"
 #include "hdHair/gl/StrandPass.h"
 
@@ -35,6 +38,11 @@ struct FrameResources {
     gl::StrandGeometry strands;
     gl::DisplayTransformPass displayTransform;
     gl::MeshGeometry meshes;
+    // Every light's shadow, kept between frames (hdHair/render/ShadowMapCache.h
+    // says which to rebuild).
+    gl::ShadowMapStorage shadowMaps;
+    gl::ShadowMapPass shadowMapPass;
+    gl::ShadowReferencePass shadowReference;
     int maxSamples = 0;  // the driver's GL_MAX_SAMPLES
 
 private:

@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include "hdHair/render/CameraView.h"
+#include "hdHair/render/DeepOpacityLayers.h"
 #include "hdHair/render/NearestStrandRule.h"
 #include "hdHair/render/RenderSettings.h"
 #include "hdHair/scene/Scene.h"
@@ -19,6 +20,25 @@ const char* toString(TransparencyPath path) {
     case TransparencyPath::Unsorted: return "unsorted";
     }
     return "opaque";
+}
+
+const char* toString(ShadowMode mode) {
+    switch (mode) {
+    case ShadowMode::DeepOpacity: return "deepOpacity";
+    case ShadowMode::Reference: return "reference";
+    case ShadowMode::Off: return "off";
+    }
+    return "off";
+}
+
+std::string ShadowPlan::resourceOf(const PlannedShadow& shadow) const {
+    return (mode == ShadowMode::Reference ? "shadowFragments " : "deepOpacity ") + shadow.key;
+}
+
+int ShadowPlan::shadowOf(size_t light) const {
+    for (size_t i = 0; i < lights.size(); ++i)
+        if (lights[i].light == light) return int(i);
+    return -1;
 }
 
 namespace {
@@ -65,16 +85,105 @@ std::vector<FrameResource> strandReads(TransparencyPath path, std::vector<FrameR
     return reads;
 }
 
-// A later light batch draws what the first drew, with its own lights: the
-// strands (when there are any) and the meshes (when there are any).
-std::vector<FrameResource> lightBatchReads(TransparencyPath path, bool anyStrands, bool anyMeshes) {
-    std::vector<FrameResource> reads = anyStrands ? strandReads(path, {}) : std::vector<FrameResource>{};
-    if (anyMeshes) reads.push_back("meshGeometry");
-    reads.push_back("color");
+// The shadow settings, and a planned shadow for every light that casts one
+// (its view fitted to the casters, or why it cannot be).
+void planShadows(RenderPlan& plan, const RenderSettings& settings, const StrandSummary& strands) {
+    ShadowPlan& shadows = plan.shadows;
+    const std::string mode = settings.getToken("shadowMode");
+    shadows.mode = mode == "reference" ? ShadowMode::Reference : mode == "off" ? ShadowMode::Off
+                                                                                 : ShadowMode::DeepOpacity;
+    shadows.layers = settings.getInt("shadowLayers");
+    shadows.boundaries = deepOpacityLayerBoundaries(
+        shadows.layers,
+        settings.getToken("shadowLayerSpacing") == "uniform" ? ShadowLayerSpacing::Uniform : ShadowLayerSpacing::Linear);
+    shadows.layerDepth = settings.getFloat("shadowLayerDepth");
+    shadows.bilinear = settings.getToken("shadowFilter") == "bilinear";
+    shadows.resolution = settings.getInt("shadowMapResolution");
+    shadows.minPixelWidth = settings.getFloat("minPixelWidth");
+    for (size_t i = 0; i < plan.lights.lights.size(); ++i) {
+        const ShadingLight& light = plan.lights.lights[i];
+        if (!light.castsShadow) continue;
+        PlannedShadow shadow;
+        shadow.light = i;
+        shadow.key = light.path.empty() ? "camera light" : light.path;
+        if (shadows.mode != ShadowMode::Off) shadow.view = fitShadowLightView(light, strands.casters, shadows.resolution);
+        shadows.lights.push_back(std::move(shadow));
+    }
+}
+
+// The passes that build light `shadow`'s map, wanted or not with the reason.
+void addShadowPasses(FrameGraph& graph, const RenderPlan& plan, const PlannedShadow& shadow, bool anyStrands) {
+    const ShadowPlan& shadows = plan.shadows;
+    bool wanted = false;
+    std::string why, flat;
+    if (shadows.mode == ShadowMode::Off) {
+        why = "shadowMode=off";
+    } else if (!anyStrands) {
+        why = "no visible curves";
+    } else if (!shadow.view.valid) {
+        why = "no shadows from this light: " + shadow.view.fallback;
+    } else {
+        wanted = true;
+        why = fmt::format("{} light view, {}x{}", shadow.view.orthographic ? "orthographic" : "perspective",
+                          shadows.resolution, shadows.resolution);
+        if (plan.flatShading) flat = "; every prim is flat-shaded, so no pass reads lights or their shadows";
+    }
+    const std::string& key = shadow.key;
+    if (shadows.mode == ShadowMode::Reference) {
+        graph.add(FramePass{"shadowFragments " + key, {"strands"}, {"shadowFragments " + key}, wanted,
+                            why + (wanted ? ": every fragment kept per texel, the reference (slow)" : "") + flat});
+        return;
+    }
+    graph.add(FramePass{"shadowDepth " + key, {"strands"}, {"hairDepth " + key}, wanted,
+                        why + (wanted ? ": the nearest hair per texel" : "") + flat});
+    graph.add(FramePass{"deepOpacity " + key, {"strands", "hairDepth " + key}, {"deepOpacity " + key}, wanted,
+                        (wanted ? why + fmt::format(": {} opacity layers behind it, the last {} of the hair's depth "
+                                                    "along the light",
+                                                    shadows.layers, shadows.layerDepth)
+                                : why) +
+                            flat});
+}
+
+// The shadow maps light batch `batch` reads: those of its lights that have one.
+std::vector<FrameResource> batchShadowReads(const RenderPlan& plan, size_t batch) {
+    std::vector<FrameResource> reads;
+    if (plan.shadows.mode == ShadowMode::Off) return reads;
+    for (size_t light = plan.lightBatches[batch].first; light < plan.lightBatches[batch].second; ++light) {
+        int shadow = plan.shadows.shadowOf(light);
+        if (shadow >= 0 && plan.shadows.lights[size_t(shadow)].view.valid)
+            reads.push_back(plan.shadows.resourceOf(plan.shadows.lights[size_t(shadow)]));
+    }
     return reads;
 }
 
 }  // namespace
+
+void RenderPlan::setShadowMap(size_t shadow, int slot, bool rebuild, const std::string& reason) {
+    PlannedShadow& planned = shadows.lights[shadow];
+    planned.slot = slot;
+    planned.rebuild = rebuild;
+    planned.reason = reason;
+    for (const char* kind : {"shadowDepth ", "deepOpacity ", "shadowFragments "}) {
+        FramePass* pass = graph.find(kind + planned.key);
+        if (!pass || !pass->wanted) continue;
+        if (rebuild) {
+            pass->reason = reason + "; " + pass->reason;
+        } else {
+            pass->wanted = false;
+            pass->reason = reason;
+        }
+    }
+    if (!rebuild) graph.input(shadows.resourceOf(planned));
+    graph.compile();
+}
+
+bool RenderPlan::shadowUsed(size_t shadow) const {
+    const std::string resource = shadows.resourceOf(shadows.lights[shadow]);
+    for (const FramePass& pass : graph.passes())
+        if (pass.enabled && std::find(pass.reads.begin(), pass.reads.end(), resource) != pass.reads.end())
+            return true;
+    return false;
+}
 
 void RenderPlan::fallBackToBinSorted(uint32_t bins, bool idsRequested) {
     transparency = TransparencyPath::BinSorted;
@@ -89,12 +198,14 @@ void RenderPlan::fallBackToBinSorted(uint32_t bins, bool idsRequested) {
             FramePass replacement = idsPass(transparency, idsRequested, anyStrands, anyMeshes);
             pass.wanted = replacement.wanted;
             pass.reason = replacement.reason;
-        } else if (pass.name == "strands") {
-            std::vector<FrameResource> inPlace(pass.reads.begin() + 1, pass.reads.end());
-            inPlace.erase(std::remove(inPlace.begin(), inPlace.end(), "drawOrder"), inPlace.end());
-            pass.reads = strandReads(transparency, inPlace);
-        } else if (pass.name.rfind("lightBatch", 0) == 0) {
-            pass.reads = lightBatchReads(transparency, anyStrands, anyMeshes);
+        } else if (pass.name == "strands" || pass.name.rfind("lightBatch", 0) == 0) {
+            // The strands now read the draw order; what else they read stays.
+            auto drawsStrands = std::find(pass.reads.begin(), pass.reads.end(), "strands");
+            if (drawsStrands == pass.reads.end()) continue;
+            std::vector<FrameResource> rest;
+            for (const FrameResource& read : pass.reads)
+                if (read != "strands" && read != "drawOrder") rest.push_back(read);
+            pass.reads = strandReads(transparency, rest);
         }
     }
     graph.compile();
@@ -138,6 +249,8 @@ RenderPlan makeRenderPlan(const Scene& scene, const RenderSettings& settings, co
             plan.lights.lights.push_back(hdhair::cameraLight(towardsCamera));
         }
     }
+
+    planShadows(plan, settings, strands);
 
     // Transparency: what was asked for, unless the stage does not need it.
     std::string requested = settings.getToken("transparency");
@@ -196,6 +309,14 @@ RenderPlan makeRenderPlan(const Scene& scene, const RenderSettings& settings, co
                               : "no bin sorting on this path";
     graph.add(sort);
 
+    size_t perPass = size_t(settings.getInt("lightsPerPass"));
+    size_t lightCount = plan.flatShading ? 0 : plan.lights.lights.size();
+    for (size_t begin = 0; begin < lightCount; begin += perPass)
+        plan.lightBatches.emplace_back(begin, std::min(begin + perPass, lightCount));
+    if (plan.lightBatches.empty()) plan.lightBatches.emplace_back(0, 0);
+
+    for (const PlannedShadow& shadow : plan.shadows.lights) addShadowPasses(graph, plan, shadow, anyStrands);
+
     std::vector<FrameResource> frameImages{"color", "depth"};
     if (idsRequested) frameImages.push_back("ids");
     graph.add(FramePass{"clear", {}, frameImages, true, "the frame's images, empty (transparent black, depth 1, ids -1)"});
@@ -234,6 +355,7 @@ RenderPlan makeRenderPlan(const Scene& scene, const RenderSettings& settings, co
     if (idsRequested && (plan.transparency == TransparencyPath::Opaque || plan.transparency == TransparencyPath::Exact))
         strandWrites.push_back("ids");
     std::vector<FrameResource> inPlace = strandWrites;
+    for (const FrameResource& shadow : batchShadowReads(plan, 0)) inPlace.push_back(shadow);
     FramePass strandPass{"strands", strandReads(plan.transparency, inPlace), strandWrites, anyStrands, ""};
     strandPass.reason = anyStrands ? fmt::format("{} segments, {}: {}{}, {}; {}", strands.segments,
                                                  toString(plan.transparency), why, multisampling, shading,
@@ -251,17 +373,17 @@ RenderPlan makeRenderPlan(const Scene& scene, const RenderSettings& settings, co
                                     : "no multisampling";
     graph.add(resolve);
 
-    size_t perPass = size_t(settings.getInt("lightsPerPass"));
-    size_t lightCount = plan.flatShading ? 0 : plan.lights.lights.size();
-    for (size_t begin = 0; begin < lightCount; begin += perPass)
-        plan.lightBatches.emplace_back(begin, std::min(begin + perPass, lightCount));
-    if (plan.lightBatches.empty()) plan.lightBatches.emplace_back(0, 0);
     const std::string drawnAgain = anyStrands && anyMeshes ? "the meshes and the strands"
                                    : anyMeshes                ? "the meshes"
                                                               : "the strands";
     for (size_t batch = 1; batch < plan.lightBatches.size(); ++batch) {
+        // A later batch draws what the first drew, with its own lights and their shadows.
+        std::vector<FrameResource> batchReads;
+        if (anyMeshes) batchReads.push_back("meshGeometry");
+        batchReads.push_back("color");
+        for (const FrameResource& shadow : batchShadowReads(plan, batch)) batchReads.push_back(shadow);
         FramePass lights{fmt::format("lightBatch {}", batch + 1),
-                         lightBatchReads(plan.transparency, anyStrands, anyMeshes), {"color"},
+                         anyStrands ? strandReads(plan.transparency, batchReads) : batchReads, {"color"},
                          anyStrands || anyMeshes, ""};
         lights.reason = fmt::format("lights {}-{} of {} (lightsPerPass {}): {} again, colour added, alpha "
                                     "counted once",

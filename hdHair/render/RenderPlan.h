@@ -12,6 +12,7 @@
 #include <nlohmann/json_fwd.hpp>
 
 #include "hdHair/render/FrameGraph.h"
+#include "hdHair/render/ShadowLightView.h"
 #include "hdHair/shading/ShadingLight.h"
 
 namespace hdhair {
@@ -37,6 +38,38 @@ struct StrandSummary {
     std::string shadingModels;   // the models in use, e.g. "kajiyaKay+marschner"
     size_t perPointPrims = 0;    // prims whose hair parameters vary per curve or vertex
     size_t analyticPrims = 0;    // Marschner prims shaded with per-fragment azimuthal terms
+    CasterBounds casters;        // what casts shadows: every drawn strand
+};
+
+// How lights shadow the hair (the shadowMode setting).
+enum class ShadowMode { DeepOpacity, Reference, Off };
+const char* toString(ShadowMode mode);
+
+// A light that casts shadows (ShadingLight::castsShadow) in this frame.
+struct PlannedShadow {
+    size_t light = 0;       // index into RenderPlan::lights.lights
+    std::string key;        // the light's path, or "camera light"
+    ShadowLightView view;   // not valid: no map, the light shades unshadowed (view.fallback says why)
+    int slot = -1;          // where its map lives (gl::ShadowMapStorage), set by the renderer
+    bool rebuild = true;    // false: kept from an earlier frame (ShadowMapCache)
+    std::string reason;     // "rebuilt: ..." or "kept: ..." once the renderer decided
+};
+
+struct ShadowPlan {
+    ShadowMode mode = ShadowMode::Off;
+    int layers = 3;                // shadowLayers
+    std::vector<float> boundaries;  // d_k / d_K (DeepOpacityLayers.h)
+    double layerDepth = 1.0;       // shadowLayerDepth: d_K over the casters' depth range
+    bool bilinear = true;          // shadowFilter
+    int resolution = 1024;         // shadowMapResolution
+    double minPixelWidth = 1.0;    // the coverage rule in the light's pixels, whatever the camera's path
+    int capacity = 0;              // map slots the storage holds (set by the renderer)
+    std::vector<PlannedShadow> lights;
+    // The resource light `shadow` gives the strand passes ("deepOpacity L",
+    // "shadowFragments L").
+    std::string resourceOf(const PlannedShadow& shadow) const;
+    // Index into `lights` of light `light`'s shadow, or -1.
+    int shadowOf(size_t light) const;
 };
 
 // What the frame's meshes need, measured on the prepared meshes.
@@ -51,12 +84,16 @@ struct MeshSummary {
 //   upload        preparedStrands -> strands        GPU copy of the changed prims
 //   meshUpload    preparedMeshes -> meshGeometry    GPU copy of the meshes, when one changed
 //   sort          preparedStrands -> drawOrder      binSorted only
+//   shadowDepth L      strands -> hairDepth L       per shadow-casting light L: its nearest hair
+//   deepOpacity L      strands, hairDepth L -> deepOpacity L   its opacity layers
+//   shadowFragments L  strands -> shadowFragments L  shadowMode=reference instead: every fragment
+//                 (a map kept from an earlier frame is an input of the graph instead)
 //   clear         -> color, depth[, ids]            the frame's targets, empty
 //   meshes        meshGeometry, color, depth[, ids] -> color, depth[, ids]   opaque, lights of batch 1
-//   strands       strands[, drawOrder], color, depth -> color, depth[, ids]   lights of batch 1
+//   strands       strands[, drawOrder], color, depth[, the batch's shadows] -> color, depth[, ids]   lights of batch 1
 //   ids           strands, depth -> ids             blended paths, when a host asks for ids
 //   resolve       color, depth[, ids] (in place)    multisampled frames
-//   lightBatch k  [strands[, drawOrder],] [meshGeometry,] color -> color   lights of batch k (k >= 2)
+//   lightBatch k  [strands[, drawOrder],] [meshGeometry,] color[, the batch's shadows] -> color   lights of batch k (k >= 2)
 //   readback      color, depth[, ids] -> aovs       the frame's images, to the CPU
 //   displayTransform  color -> displayImage         the display image on the GPU, when asked for
 // Meshes are drawn first and write depth, so every strand path tests
@@ -75,11 +112,18 @@ struct RenderPlan {
     // lightsPerPass each; always at least one (ambient and unlit shading
     // need a pass too).
     std::vector<std::pair<size_t, size_t>> lightBatches;
+    ShadowPlan shadows;
 
     bool isEnabled(const std::string& name) const { return graph.isEnabled(name); }
     // Exact transparency over its memory budget: the frame is redrawn
     // binSorted with `bins` bins, which needs the ids pass when ids are asked for.
     void fallBackToBinSorted(uint32_t bins, bool idsRequested);
+    // The renderer's decision for shadow `shadow` (ShadowMapCache): rebuilt
+    // by its passes, or kept, when its map becomes an input of the graph and
+    // its passes do not run.
+    void setShadowMap(size_t shadow, int slot, bool rebuild, const std::string& reason);
+    // Whether an enabled pass reads shadow `shadow`'s map.
+    bool shadowUsed(size_t shadow) const;
     std::string describe() const { return graph.describe(); }  // for --explain
     nlohmann::json toJson() const;
 };

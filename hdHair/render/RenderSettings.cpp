@@ -74,6 +74,28 @@ const std::vector<SettingDescriptor>& RenderSettings::descriptors() {
          "per curve or vertex), tables (always; such prims use their mean absorption and eta), or analytic "
          "(always per fragment: the reference)",
          0, 0, {"auto", "tables", "analytic"}},
+        {"shadowMode", SettingType::Token, "deepOpacity",
+         "Hair self-shadowing from lights that cast shadows (inputs:shadow:enable): deepOpacity (deep opacity "
+         "maps), reference (every light-view fragment kept and summed per lookup: slow, the yardstick), or off",
+         0, 0, {"deepOpacity", "reference", "off"}},
+        {"shadowLayers", SettingType::Int, "3",
+         "Opacity layers of a deep opacity map behind the nearest hair (3 as in Yuksel & Keyser; up to 32, in "
+         "RGBA16F targets of 4 layers)",
+         1, 32, {}},
+        {"shadowMapResolution", SettingType::Int, "1024", "Texels across each light's square shadow map", 16, 16384,
+         {}},
+        {"shadowLayerSpacing", SettingType::Token, "linear",
+         "Deep opacity layer spacing: linear (gaps growing linearly from the lit surface, Yuksel & Keyser's "
+         "choice) or uniform",
+         0, 0, {"linear", "uniform"}},
+        {"shadowLayerDepth", SettingType::Float, "1",
+         "How deep the last opacity layer reaches behind the nearest hair, as a fraction of the hair's depth "
+         "along the light; hair beyond it counts in the last layer",
+         0.01, 1.0, {}},
+        {"shadowFilter", SettingType::Token, "bilinear",
+         "Shadow lookup: nearest (one texel, as in the thesis) or bilinear (transmittance of the four nearest "
+         "texels, each against its own nearest depth, weighted bilinearly)",
+         0, 0, {"nearest", "bilinear"}},
         {"cameraLight", SettingType::Token, "auto",
          "Light from the camera: auto (only when the stage has no lights), on, off", 0, 0,
          {"auto", "on", "off"}},

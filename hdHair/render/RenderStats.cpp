@@ -30,6 +30,9 @@ nlohmann::json RenderStats::toJson() const {
     json["preparedMeshes"] = preparedMeshes;
     json["uploadedSegments"] = uploadedSegments;
     json["passTiming"] = passTiming;
+    json["shadowMapsRebuilt"] = shadowMapsRebuilt;
+    json["shadowMapsKept"] = shadowMapsKept;
+    json["shadowMaps"] = shadowMaps;
     if (fragments > 0) json["fragments"] = fragments;
     if (!fallback.empty()) json["fallback"] = fallback;
     return json;

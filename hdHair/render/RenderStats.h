@@ -36,6 +36,11 @@ struct RenderStats {
     size_t preparedPrims = 0;     // curves prims prepared for this frame (only new and changed ones)
     uint64_t uploadedSegments = 0;  // strand segments sent to the GPU this frame (only changed prims)
     std::string passTiming;       // how passes were timed (the passTimings setting and the driver)
+    // Shadow maps this frame: rebuilt, kept from an earlier frame, and per
+    // shadow-casting light what happened and why ({"light", "map", "reason"};
+    // map is "rebuilt", "kept" or "none").
+    size_t shadowMapsRebuilt = 0, shadowMapsKept = 0;
+    nlohmann::json shadowMaps = nlohmann::json::array();
 
     nlohmann::json toJson() const;
 };

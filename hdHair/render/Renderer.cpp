@@ -30,32 +30,35 @@ double millisecondsSince(Clock::time_point start) {
     return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
 }
 
-glm::dvec3 cameraPositionOf(const CameraView& camera) { return glm::dvec3(glm::inverse(camera.view)[3]); }
-
-glm::dvec3 viewDirectionOf(const CameraView& camera) {
-    return glm::normalize(glm::dvec3(glm::inverse(camera.view) * glm::dvec4(0.0, 0.0, -1.0, 0.0)));
-}
-
-// Pixels a world unit spans horizontally at clip w = 1: half the image width
-// times the projection's x scale (GL matrices: [0][0]).
-double pixelsPerUnit(const CameraView& camera) { return camera.projection[0][0] * camera.imageWidth * 0.5; }
-
-gl::FrameUniforms frameUniforms(const CameraView& camera, const RenderSettings& settings, const RenderPlan& plan) {
+gl::FrameUniforms frameUniforms(const CameraView& camera, const RenderSettings& settings, const RenderPlan& plan,
+                                const TessellationView& tessellation) {
     gl::FrameUniforms frame;
     frame.viewProjection = glm::mat4(camera.projection * camera.view);
-    frame.cameraPosition = glm::vec4(glm::vec3(cameraPositionOf(camera)), camera.orthographic ? 0.0f : 1.0f);
-    frame.cameraForward = glm::vec4(glm::vec3(viewDirectionOf(camera)), 0.0f);
+    frame.cameraPosition = glm::vec4(glm::vec3(camera.position()), camera.orthographic ? 0.0f : 1.0f);
+    frame.cameraForward = glm::vec4(glm::vec3(camera.forward()), 0.0f);
     frame.viewportSize = glm::vec2(float(camera.imageWidth), float(camera.imageHeight));
     frame.pixelsPerSegment = float(settings.getFloat("pixelsPerSegment"));
     frame.maxSegmentsPerSpan = float(settings.getInt("maxSegmentsPerSpan"));
-    frame.pixelsPerUnit = float(pixelsPerUnit(camera));
+    frame.pixelsPerUnit = float(camera.pixelsPerUnit());
     bool opaque = plan.transparency == TransparencyPath::Opaque;
     // The opaque path draws true widths; every blended path applies coverage.
     frame.minPixelWidth = opaque ? 0.0f : float(settings.getFloat("minPixelWidth"));
     frame.drawMode = opaque ? 0 : 1;
     frame.orderedDraw = plan.transparency == TransparencyPath::BinSorted ? 1 : 0;
     frame.nearestStrandMinAlpha = kNearestStrandMinAlpha;
+    frame.tessellationViewport = glm::vec2(tessellation.viewport);
+    frame.tessellationViewProjection = glm::mat4(tessellation.viewProjection);
     return frame;
+}
+
+// Everything a shadow map depends on besides its light view, the casters and
+// the tessellation view: the settings that shape it.
+std::string shadowSettingsKey(const RenderSettings& settings) {
+    std::string key;
+    for (const char* name : {"shadowMode", "shadowLayers", "shadowMapResolution", "shadowLayerSpacing",
+                             "shadowLayerDepth", "minPixelWidth", "pixelsPerSegment", "maxSegmentsPerSpan"})
+        key += settings.getToken(name) + ";";
+    return key;
 }
 
 // The thinnest projected width of any strand: its thinnest span end at the
@@ -73,7 +76,7 @@ double minProjectedWidthPixels(const CameraView& camera, const PreparedCurves& c
     } else {
         farthest = 1.0;
     }
-    return double(minSpanWidth) * pixelsPerUnit(camera) / farthest;
+    return double(minSpanWidth) * camera.pixelsPerUnit() / farthest;
 }
 
 // The instances of an instanced prim are copies of its first instance but for
@@ -129,10 +132,12 @@ SceneBounds Renderer::prepare(const Scene& scene, Diagnostics& diagnostics) {
             prepareCurves(*changed[i].prim, report, hairParameterPrimvars(), &colors));
         CachedCurves& cached = *changed[i].cached;
         cached.minSpanWidth = std::numeric_limits<float>::max();
+        cached.maxWidth = 0.0f;
         cached.fullyOpaque = true;
         for (size_t c = 0; c < prepared->controlPoints.size(); ++c) {
             const StrandControlPoint& point = prepared->controlPoints[c];
             cached.fullyOpaque = cached.fullyOpaque && point.opacity == 1.0f;
+            if (std::isfinite(point.width)) cached.maxWidth = std::max(cached.maxWidth, point.width);
             if (c % 4 == 1 || c % 4 == 2) cached.minSpanWidth = std::min(cached.minSpanWidth, point.width);
         }
         cached.sortHashes = segmentSortHashes(prepared->controlPoints);
@@ -211,6 +216,42 @@ MeshUpload Renderer::meshUpload(const Scene& scene, MeshSummary& summary) {
     summary.changed = upload.changed;
     uploadedMeshes_ = std::move(drawn);
     return upload;
+}
+
+TessellationView Renderer::decideShadowMaps(RenderPlan& plan, const StrandSummary& summary, const CameraView& camera,
+                                            const RenderSettings& settings, Diagnostics& diagnostics,
+                                            RenderStats& stats) {
+    ShadowPlan& shadows = plan.shadows;
+    std::vector<ShadowMapRequest> requests;
+    std::vector<size_t> requested;  // index into shadows.lights
+    for (size_t i = 0; i < shadows.lights.size(); ++i) {
+        const PlannedShadow& shadow = shadows.lights[i];
+        // The camera light, when used, is the last light.
+        const bool followsCamera = plan.cameraLight && shadow.light + 1 == plan.lights.lights.size();
+        if (shadows.mode != ShadowMode::Off && !plan.flatShading && summary.segments > 0 && !shadow.view.valid)
+            diagnostics.warn(shadow.key, "no shadows from this light: " + shadow.view.fallback);
+        if (!plan.shadowUsed(i)) continue;
+        requests.push_back({shadow.key, shadow.view, followsCamera});
+        requested.push_back(i);
+    }
+    const ShadowFrame frame = shadowMaps_.update(requests, shadowSettingsKey(settings), castersVersion_, camera,
+                                                 summary.casters, shadows.mode == ShadowMode::Reference);
+    shadows.capacity = frame.capacity;
+    for (size_t r = 0; r < requests.size(); ++r) {
+        const ShadowMapDecision& decision = frame.maps[r];
+        plan.setShadowMap(requested[r], decision.slot, decision.rebuild, decision.reason);
+        (decision.rebuild ? stats.shadowMapsRebuilt : stats.shadowMapsKept) += 1;
+    }
+    for (const PlannedShadow& shadow : shadows.lights) {
+        const bool mapped = shadow.slot >= 0;
+        stats.shadowMaps.push_back({{"light", shadow.key},
+                                    {"map", mapped ? (shadow.rebuild ? "rebuilt" : "kept") : "none"},
+                                    {"reason", mapped ? shadow.reason
+                                                      : shadows.mode == ShadowMode::Off ? std::string("shadowMode=off")
+                                                      : !shadow.view.valid ? shadow.view.fallback
+                                                                           : std::string("nothing reads it")}});
+    }
+    return frame.tessellation;
 }
 
 std::optional<MaterialUpload> Renderer::materialUpload(const std::vector<HairMaterial>& materials,
@@ -319,9 +360,23 @@ RenderResult Renderer::render(const Scene& scene, const CameraView& camera, cons
         summary.minProjectedWidthPixels =
             std::min(summary.minProjectedWidthPixels,
                      minProjectedWidthPixels(camera, *cached.prepared, cached.minSpanWidth));
+        // Every drawn strand casts shadows.
+        CasterBounds& casters = summary.casters;
+        const glm::dvec3 low(cached.prepared->boundsMin), high(cached.prepared->boundsMax);
+        const bool first = casters.empty();
+        casters.min = first ? low : glm::min(casters.min, low);
+        casters.max = first ? high : glm::max(casters.max, high);
+        casters.maxWidth = std::max(casters.maxWidth, double(cached.maxWidth));
         curveCount += cached.prepared->curveCount;
     }
     inputs.uploads = uploads_.update(inputs.drawn);
+    // Any strand written, moved or dropped changes what casts shadows.
+    const bool castersChanged =
+        std::any_of(inputs.uploads.writes.begin(), inputs.uploads.writes.end(),
+                    [](const StrandWrite& write) { return !write.materialOnly; }) ||
+        inputs.uploads.drawRanges != castersRanges_;
+    if (castersChanged) ++castersVersion_;
+    castersRanges_ = inputs.uploads.drawRanges;
     inputs.materials = materialUpload(materials, drawnCurves, inputs.drawn, inputs.uploads);
     for (size_t i = 0; i < inputs.drawn.size(); ++i) {
         const PreparedCurves& curves = *inputs.drawn[i].curves;
@@ -339,14 +394,17 @@ RenderResult Renderer::render(const Scene& scene, const CameraView& camera, cons
     inputs.idsRequested = outputs.ids;
     inputs.gpuDisplay = outputs.gpuDisplay;
     inputs.displayOverBlack = outputs.displayOverBlack;
-    inputs.frame = frameUniforms(camera, settings, plan);
+    inputs.frame = frameUniforms(camera, settings, plan,
+                                 decideShadowMaps(plan, summary, camera, settings, diagnostics, stats));
     inputs.fragmentListCapacity = size_t(settings.getInt("exactMemoryMB")) * 1024 * 1024 / gl::kFragmentNodeBytes;
     const gl::PassTiming timing = settings.getBool("passTimings") ? passTiming_ : gl::PassTiming::Off;
 
     glThread_->run([&] {
         inputs.samples = std::min(plan.msaaSamples, resources_->maxSamples);
-        FrameContext context{inputs, plan, *resources_, diagnostics, result, {}, nullptr};
+        FrameContext context{inputs, plan, *resources_, diagnostics, result, {}, nullptr, false, {}};
         runFrameGraph(context, timing);
+        // A shadow that could not be built is tried again next frame.
+        for (const std::string& key : context.unshadowed) shadowMaps_.forget(key);
     });
     if (inputs.samples < plan.msaaSamples)
         diagnostics.warn("render", fmt::format("msaaSamples={} is more than this GL driver offers; using {}",

@@ -9,6 +9,7 @@
 // changed and read the images back.
 
 #include <cstdint>
+#include <deque>
 #include <map>
 #include <memory>
 #include <optional>
@@ -30,6 +31,7 @@
 #include "hdHair/render/RenderPlan.h"
 #include "hdHair/render/RenderSettings.h"
 #include "hdHair/render/RenderStats.h"
+#include "hdHair/render/ShadowMapCache.h"
 #include "hdHair/render/StrandUploads.h"
 
 namespace hdhair {
@@ -101,6 +103,7 @@ private:
         uint64_t colorMaterialVersion = 0;
         std::shared_ptr<const PreparedCurves> prepared;
         float minSpanWidth = 0.0f;  // thinnest width at any span end
+        float maxWidth = 0.0f;      // widest control point (shadow views' margins)
         bool fullyOpaque = true;    // every control point's opacity is exactly 1
         // The prim's material, resolved once per version and material
         // settings (hairMaterialSettingsKey), and its per-point parameters.
@@ -115,6 +118,10 @@ private:
     std::optional<MaterialUpload> materialUpload(const std::vector<HairMaterial>& materials,
                                                  const std::vector<CachedCurves*>& drawnCurves,
                                                  const std::vector<DrawnPrim>& drawn, const StrandUploadPlan& uploads);
+    // Which shadow maps the frame rebuilds and which it keeps (ShadowMapCache),
+    // written into the plan; returns the tessellation view every pass uses.
+    TessellationView decideShadowMaps(RenderPlan& plan, const StrandSummary& summary, const CameraView& camera,
+                                      const RenderSettings& settings, Diagnostics& diagnostics, RenderStats& stats);
 
     std::unique_ptr<gl::GlRenderThread> glThread_;
     std::unique_ptr<FrameResources> resources_;  // created and destroyed on the GL thread
@@ -127,7 +134,9 @@ private:
         std::vector<uint16_t> halfTexels;
         int width = 0, height = 0;
     };
-    std::vector<CachedTables> marschnerTables_;
+    // A deque: material uploads keep pointers to the texels of earlier entries
+    // while later ones are added (a vector would move them).
+    std::deque<CachedTables> marschnerTables_;
     std::map<std::string, CachedCurves> curves_;
 
     struct CachedMesh {
@@ -143,6 +152,10 @@ private:
     std::map<std::string, CachedMesh> meshes_;
     // What the mesh buffer holds: each mesh drawn last, with its ids.
     std::vector<std::pair<std::shared_ptr<const PreparedMesh>, glm::ivec2>> uploadedMeshes_;
+    ShadowMapCache shadowMaps_;
+    // Changes whenever the strands on the GPU do: the casters of every shadow.
+    uint64_t castersVersion_ = 0;
+    std::vector<gl::SegmentRange> castersRanges_;  // the draw ranges castersVersion_ describes
     // Preparation since the last render (framing may prepare first).
     double pendingPrepareMilliseconds_ = 0.0;
     size_t pendingPreparedPrims_ = 0;

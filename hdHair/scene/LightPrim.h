@@ -28,6 +28,9 @@ struct LightPrim {
     float width = 1.0f, height = 1.0f;      // RectLight inputs:width/height
     float coneAngle = 90.0f;                // shaping:cone:angle (degrees)
     float coneSoftness = 0.0f;              // shaping:cone:softness
+    // ShadowAPI inputs:shadow:enable (USD's fallback: true): the light casts
+    // hair self-shadows (deep opacity maps, hdHair/render/README.md).
+    bool shadowEnable = true;
     glm::dmat4 worldTransform{1.0};         // lights emit along their -Z axis
     bool visible = true;
     // A light the host adds at the camera (usdview's and usdrecord's default
@@ -41,7 +44,8 @@ struct LightPrim {
     // the size check after the struct is there to say so.
     auto fields() const {
         return std::tie(path, type, intensity, exposure, color, enableColorTemperature, colorTemperature, normalize, angle,
-                        radius, width, height, coneAngle, coneSoftness, worldTransform, visible, hostCameraLight);
+                        radius, width, height, coneAngle, coneSoftness, shadowEnable, worldTransform, visible,
+                        hostCameraLight);
     }
     bool operator==(const LightPrim& other) const { return fields() == other.fields(); }
     bool operator!=(const LightPrim& other) const { return !(*this == other); }

@@ -57,6 +57,8 @@ ShadingLights toShadingLights(const std::vector<const LightPrim*>& lights) {
             continue;
         }
         ShadingLight shading;
+        shading.castsShadow = light->shadowEnable;
+        shading.path = light->path;
         if (light->type == LightType::Distant) {
             // Lights emit along their −Z axis, so the light lies towards +Z.
             shading.directionOrPosition = transformDirection(light->worldTransform, {0.0, 0.0, 1.0});

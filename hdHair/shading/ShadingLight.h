@@ -31,6 +31,7 @@
 //   cutoff, and ignores the softness.)
 // Textures, focus and IES profiles are not supported.
 
+#include <string>
 #include <vector>
 
 #include <glm/vec3.hpp>
@@ -48,6 +49,8 @@ struct ShadingLight {
     bool shaped = false;              // a ShapingAPI cone narrower than 90° (local lights only)
     float coneCosOuter = 0.0f;        // cos(shaping:cone:angle): no light beyond it
     float coneCosInner = 0.0f;        // cos(angle·(1 − softness)): full light within it
+    bool castsShadow = true;          // inputs:shadow:enable
+    std::string path;                 // the light prim it came from ("" for the engine's camera light)
 };
 
 // What the lights of a stage amount to for hair shading.

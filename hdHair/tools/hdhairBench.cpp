@@ -1,7 +1,7 @@
 // hdhair-bench: what accuracy costs in time, measured with Google Benchmark.
 //
-//   hdhair-bench [--stage FILE]... [--imageWidth N] [--table complexity|transparency|shading|all]
-//                [Google Benchmark flags]
+//   hdhair-bench [--stage FILE]... [--imageWidth N]
+//                [--table complexity|transparency|shading|shadows|all] [Google Benchmark flags]
 //
 // For each stage (examples/dense_clump.usda when none is given), rendered
 // through its first camera (or a framing camera):
@@ -12,6 +12,10 @@
 //   RenderFrame/<stage>/<complexity>    a frame per --complexity level
 //   RenderFrame/<stage>/<transparency>  a frame per transparency mode and bin count
 //   RenderFrame/<stage>/<model> <n> lights  a frame per shading model and light count
+//   ShadowFrame/<stage>/<shadows>       a frame that rebuilds every light's shadow (each
+//                                       light turned by a microradian), per shadowLayers,
+//                                       shadowMapResolution, filter and spacing, timed in
+//                                       process CPU seconds (llvmpipe's threads included)
 // Then it prints markdown tables: each configuration's time relative to a
 // reference measured in the same run (these machines are shared and noisy,
 // so ratios mean more than milliseconds), and its image error against the
@@ -24,13 +28,17 @@
 #include <cstring>
 #include <filesystem>
 #include <map>
+#include <set>
 #include <memory>
 #include <string>
 #include <vector>
 
+#include <sys/resource.h>
+
 #include <benchmark/benchmark.h>
 #include <fmt/format.h>
 #include <glm/geometric.hpp>
+#include <glm/gtc/matrix_transform.hpp>
 
 #include "hdHair/base/Diagnostics.h"
 #include "hdHair/curves/PreparedCurves.h"
@@ -160,15 +168,101 @@ std::vector<Configuration> transparencyConfigurations() {
     return result;
 }
 
+// Shadows: off (the time reference); deep opacity maps over layers and
+// resolutions; around 3 layers (the default), layer depth, filter and
+// spacing; and the reference (the error yardstick, at the finest
+// resolution). Every row names all its settings, so the table does not
+// depend on the defaults.
+std::vector<Configuration> shadowConfigurations() {
+    std::vector<Configuration> result = {{"off", {"shadowMode=off"}, Complexity::Low}};
+    auto add = [&](int layers, int resolution, const char* depth, const char* filter, const char* spacing) {
+        result.push_back({fmt::format("{} layers, {}, depth {}, {}{}", layers, resolution, depth, filter,
+                                      std::string(spacing) == "linear" ? "" : ", uniform spacing"),
+                          {fmt::format("shadowLayers={}", layers), fmt::format("shadowMapResolution={}", resolution),
+                           std::string("shadowLayerDepth=") + depth, std::string("shadowFilter=") + filter,
+                           std::string("shadowLayerSpacing=") + spacing},
+                          Complexity::Low});
+    };
+    for (int resolution : {512, 1024, 2048, 4096})
+        for (int layers : {3, 7, 15}) add(layers, resolution, "0.25", "bilinear", "linear");
+    for (int resolution : {512, 1024})
+        for (const char* depth : {"1", "0.5", "0.25", "0.1"})
+            for (const char* filter : {"bilinear", "nearest"})
+                if (std::string(depth) != "0.25" || std::string(filter) != "bilinear")
+                    add(3, resolution, depth, filter, "linear");
+    add(3, 1024, "0.25", "bilinear", "uniform");
+    result.push_back({"reference, 4096", {"shadowMode=reference", "shadowMapResolution=4096"}, Complexity::Low});
+    return result;
+}
+
+// Turns every light of the stage by +-1 microradian about Y: each light's
+// view changes, so a frame rebuilds every shadow, as after a light moved.
+void nudgeLights(BenchStage& stage, bool forth) {
+    std::vector<LightPrim> lights;
+    for (const auto& [path, entry] : stage.scene.lights()) lights.push_back(*entry.prim);
+    for (LightPrim& light : lights) {
+        light.worldTransform = glm::rotate(glm::dmat4(1.0), forth ? 1e-6 : -1e-6, glm::dvec3(0, 1, 0)) *
+                               light.worldTransform;
+        stage.scene.setLight(light);
+    }
+}
+
+std::string shadowFrameName(const BenchStage& stage, const Configuration& configuration) {
+    return "ShadowFrame/" + stage.name + "/" + configuration.label;
+}
+
+// Seconds of CPU this process has used, llvmpipe's rendering threads
+// included: the work a frame costs, which other load on a shared machine
+// changes far less than it changes wall-clock time.
+double processCpuSeconds() {
+    rusage usage{};
+    getrusage(RUSAGE_SELF, &usage);
+    auto seconds = [](const timeval& t) { return double(t.tv_sec) + 1e-6 * double(t.tv_usec); };
+    return seconds(usage.ru_utime) + seconds(usage.ru_stime);
+}
+
+// CPU seconds of one frame.
+double frameCpuSeconds(BenchStage& stage, const RenderSettings& settings, Diagnostics& diagnostics) {
+    const double start = processCpuSeconds();
+    benchmark::DoNotOptimize(renderer()->render(stage.scene, stage.camera, settings, diagnostics).color.pixels.data());
+    return processCpuSeconds() - start;
+}
+
+// Timed in process CPU seconds (manual time), each iteration a frame that
+// rebuilds every shadow.
+void registerShadowFrame(BenchStage* stage, const Configuration& configuration) {
+    benchmark::RegisterBenchmark(shadowFrameName(*stage, configuration).c_str(),
+                                 [stage, configuration](benchmark::State& state) {
+                                     setLightCount(*stage, kStageLights);
+                                     RenderSettings settings = settingsFor(configuration);
+                                     Diagnostics diagnostics;
+                                     bool forth = true;
+                                     for (auto _ : state) {
+                                         nudgeLights(*stage, forth = !forth);
+                                         state.SetIterationTime(frameCpuSeconds(*stage, settings, diagnostics));
+                                     }
+                                 })
+        ->Unit(benchmark::kMillisecond)
+        ->UseManualTime();
+}
+
 // Keeps each run's time so the tables can relate them.
 class RecordingReporter : public benchmark::ConsoleReporter {
 public:
     void ReportRuns(const std::vector<Run>& runs) override {
-        for (const Run& run : runs)
-            if (run.run_type == Run::RT_Iteration) seconds[run.run_name.function_name] = run.GetAdjustedRealTime();
+        // With --benchmark_repetitions the median stands for the benchmark.
+        for (const Run& run : runs) {
+            const std::string& name = run.run_name.function_name;
+            if (run.run_type == Run::RT_Iteration && !medians.count(name)) seconds[name] = run.GetAdjustedRealTime();
+            if (run.run_type == Run::RT_Aggregate && run.aggregate_name == "median") {
+                seconds[name] = run.GetAdjustedRealTime();
+                medians.insert(name);
+            }
+        }
         ConsoleReporter::ReportRuns(runs);
     }
-    std::map<std::string, double> seconds;  // by benchmark name
+    std::map<std::string, double> seconds;  // by benchmark name, in the benchmark's unit (milliseconds)
+    std::set<std::string> medians;          // names whose time is a median of repetitions
 };
 
 std::string frameName(const BenchStage& stage, const Configuration& configuration) {
@@ -196,6 +290,67 @@ void printTable(const BenchStage& stage, const std::vector<Configuration>& confi
                                 : "not run";
         std::printf("| %s | %s | %s | %.5f | %.4f |\n", configuration.label.c_str(), result.stats.transparency.c_str(),
                     ratio.c_str(), difference.rootMeanSquare, difference.maxDifference);
+    }
+}
+
+// Per shadow configuration, in process CPU seconds: a frame that rebuilds
+// every light's shadow (Google Benchmark, median of the run's repetitions)
+// relative to one with shadows off, and the shadow passes' share, that frame
+// less one that keeps its maps (the fastest of three); then the image's
+// error against the reference. '*' marks the error-versus-time Pareto front:
+// nothing else is both cheaper and closer to the reference.
+void printShadowTable(BenchStage& stage, const std::vector<Configuration>& configurations,
+                      const RecordingReporter& reporter) {
+    Diagnostics diagnostics, referenceDiagnostics;
+    setLightCount(stage, kStageLights);
+    const size_t off = 0, reference = configurations.size() - 1;
+    RenderResult best = renderer()->render(stage.scene, stage.camera, settingsFor(configurations[reference]),
+                                           referenceDiagnostics);
+    std::printf("\nShadows, %s (%dx%d, %llu segments, %zu shadow-casting lights): process CPU time of a frame "
+                "that rebuilds every shadow, relative to shadows off; error against %s%s\n\n",
+                stage.path.c_str(), stage.camera.imageWidth, stage.camera.imageHeight,
+                static_cast<unsigned long long>(best.stats.segments), best.stats.shadowMaps.size(),
+                configurations[reference].label.c_str(),
+                referenceDiagnostics.warningCount() > 0 ? " (the reference warned: not a yardstick)" : "");
+    std::printf("| configuration | frame | shadow passes | RMSE | max difference | Pareto |\n"
+                "|---|---|---|---|---|---|\n");
+    struct Row {
+        double seconds = 0.0, shadowSeconds = 0.0, rmse = 0.0, maxDifference = 0.0;
+    };
+    std::vector<Row> rows;
+    auto base = reporter.seconds.find(shadowFrameName(stage, configurations[off]));
+    bool forth = true;
+    for (const Configuration& configuration : configurations) {
+        RenderSettings settings = settingsFor(configuration);
+        nudgeLights(stage, forth = !forth);
+        RenderResult result = renderer()->render(stage.scene, stage.camera, settings, diagnostics);
+        double kept = INFINITY;
+        for (int i = 0; i < 3; ++i) kept = std::min(kept, frameCpuSeconds(stage, settings, diagnostics));
+        Row row;
+        // The reporter keeps times in the benchmarks' unit, milliseconds.
+        auto time = reporter.seconds.find(shadowFrameName(stage, configuration));
+        if (time != reporter.seconds.end()) row.seconds = 1e-3 * time->second;
+        row.shadowSeconds = row.seconds - kept;
+        ImageComparison difference = compareImages(result.color, best.color, exactWithin(kOneStep));
+        row.rmse = difference.rootMeanSquare;
+        row.maxDifference = difference.maxDifference;
+        rows.push_back(row);
+    }
+    for (size_t i = 0; i < rows.size(); ++i) {
+        bool dominated = rows[i].seconds <= 0.0 || i == off;
+        for (size_t j = 0; j < rows.size() && !dominated; ++j)
+            dominated = j != i && j != off && rows[j].seconds > 0.0 && rows[j].seconds <= rows[i].seconds &&
+                        rows[j].rmse <= rows[i].rmse &&
+                        (rows[j].seconds < rows[i].seconds || rows[j].rmse < rows[i].rmse);
+        const std::string frame = rows[i].seconds > 0.0 && base != reporter.seconds.end()
+                                      ? fmt::format("{:.2f}x", 1e3 * rows[i].seconds / base->second)
+                                      : std::string("not run");
+        const std::string shadow =
+            i == off || rows[i].seconds <= 0.0
+                ? std::string("-")
+                : fmt::format("{:.0f} %", 100.0 * std::max(rows[i].shadowSeconds, 0.0) / rows[i].seconds);
+        std::printf("| %s | %s | %s | %.5f | %.4f | %s |\n", configurations[i].label.c_str(), frame.c_str(),
+                    shadow.c_str(), rows[i].rmse, rows[i].maxDifference, dominated ? "" : "*");
     }
 }
 
@@ -272,6 +427,8 @@ int main(int argc, char** argv) {
     bool complexityTable = table == "all" || table == "complexity";
     bool transparencyTable = table == "all" || table == "transparency";
     bool shadingTable = table == "all" || table == "shading";
+    bool shadowTable = table == "all" || table == "shadows";
+    std::vector<Configuration> shadows = shadowConfigurations();
     std::vector<ShadingConfiguration> shadings = shadingConfigurations();
     registerReaderBenchmarks();
     for (const auto& stagePointer : stages) {
@@ -283,8 +440,7 @@ int main(int argc, char** argv) {
                     benchmark::DoNotOptimize(prepareCurves(*entry.prim, diagnostics).controlPoints.data());
         })->Unit(benchmark::kMillisecond);
         benchmark::RegisterBenchmark(("BinSort/" + stage->name).c_str(), [stage](benchmark::State& state) {
-            glm::dvec3 position(glm::inverse(stage->camera.view)[3]);
-            glm::dvec3 direction = glm::normalize(glm::dvec3(glm::inverse(stage->camera.view) * glm::dvec4(0, 0, -1, 0)));
+            const glm::dvec3 position = stage->camera.position(), direction = stage->camera.forward();
             std::vector<uint32_t> order;
             for (auto _ : state) {
                 binSortSegments(stage->controlPoints, position, direction, 256, order);
@@ -302,6 +458,10 @@ int main(int argc, char** argv) {
         if (!shadingTable) break;
         for (const ShadingConfiguration& shading : shadings)
             registerFrame(stagePointer.get(), shading.configuration, shading.lights);
+    }
+    for (const auto& stagePointer : stages) {
+        if (!shadowTable) break;
+        for (const Configuration& configuration : shadows) registerShadowFrame(stagePointer.get(), configuration);
     }
     RecordingReporter reporter;
     benchmark::RunSpecifiedBenchmarks(&reporter);
@@ -360,6 +520,8 @@ int main(int argc, char** argv) {
                         100.0 * double(difference.outliers) / double(std::max<size_t>(difference.coveredPixels, 1)));
         }
     }
+    for (const auto& stage : stages)
+        if (shadowTable) printShadowTable(*stage, shadows, reporter);
     if (shadingTable) {
         // Tabled against analytic Marschner on the CPU, over directions a
         // frame would see.

@@ -466,6 +466,8 @@ void Reader::readLight(const Prim& prim, const Inherited& state, LightType type)
         readFloat(prim, {"inputs:shaping:cone:angle", "shaping:cone:angle"}, light.coneAngle);
     light.coneSoftness = readFloat(prim, {"inputs:shaping:cone:softness", "shaping:cone:softness"},
                                    light.coneSoftness);
+    // UsdLuxShadowAPI, likewise.
+    light.shadowEnable = readBool(prim, {"inputs:shadow:enable", "shadow:enable"}, light.shadowEnable);
     scene_.setLight(std::move(light));
 }
 

@@ -19,6 +19,11 @@ layout(std140, binding = 0) uniform FrameUniforms {
     // fragment whose alpha (coverage x opacity) is at least this
     // (hdHair/render/NearestStrandRule.h).
     float nearestStrandMinAlpha;
+    // The view the tessellation levels come from (hdHair/render/TessellationView.h):
+    // the same for the camera and every light view, so shadows hold the curve
+    // the camera draws.
+    vec2 tessellationViewport;
+    mat4 tessellationViewProjection;
 } frame;
 
 // Whether a blended fragment of this alpha may give its pixel depth and ids.

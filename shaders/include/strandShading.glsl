@@ -2,11 +2,16 @@
 // hair material: flat displayColor (look-dev, and tests whose pixels can be
 // computed by hand), Kajiya-Kay, or Marschner with its azimuthal terms from
 // tables or evaluated per fragment; lit by every light of the pass plus
-// (first pass only) the dome's ambient. `segment` and `u` locate the fragment
-// on its span, for parameters that vary along the prim.
+// (first pass only) the dome's ambient. Each light's irradiance is scaled by
+// its shadow transmittance at the strand's centre line `centre` (the same
+// for Kajiya-Kay and Marschner; the ambient term is not shadowed). `segment`
+// and `u` locate the fragment on its span, for parameters that vary along
+// the prim.
 // Needs frameUniforms.glsl, lights.glsl, kajiyaKay.glsl, marschner.glsl,
-// marschnerAnalytic.glsl, catmullRom.glsl and hairMaterials.glsl.
-vec3 strandRadiance(vec3 worldPosition, vec3 worldTangent, vec3 hairColor, int materialIndex, int segment, float u) {
+// marschnerAnalytic.glsl, catmullRom.glsl, hairMaterials.glsl,
+// shadowFragmentLists.glsl and shadows.glsl.
+vec3 strandRadiance(vec3 worldPosition, vec3 centre, vec3 worldTangent, vec3 hairColor, int materialIndex, int segment,
+                    float u) {
     HairShading shading = hairShadingAt(materialIndex, segment, u);
     // Flat colour is unlit: it belongs to the first light batch alone, so
     // that summing batches counts it once.
@@ -18,6 +23,8 @@ vec3 strandRadiance(vec3 worldPosition, vec3 worldTangent, vec3 hairColor, int m
     for (int i = 0; i < lights.lightCount.x; ++i) {
         vec3 l;
         vec3 irradiance = lightIrradiance(i, worldPosition, l);
+        if (all(equal(irradiance, vec3(0.0)))) continue;  // unlit here: no shadow lookup
+        irradiance *= shadowTransmittance(i, centre);
         if (shading.model == 2) {
             radiance += irradiance * (analytic ? marschnerAnalytic(t, l, e, shading.fibre)
                                                : marschnerTabled(t, l, e, marschnerTables, shading.tableLayer,

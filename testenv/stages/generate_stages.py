@@ -56,8 +56,8 @@ def add_framed_camera(layer, path, texts, target=(0, 0, 0), fill=0.85):
     return layer
 
 
-def key_light(travel=(0.3, -0.4, -1.0), intensity=2):
-    return u.distant_light("key_light", travel, intensity=intensity, angle=1)
+def key_light(travel=(0.3, -0.4, -1.0), intensity=2, shadow=True):
+    return u.distant_light("key_light", travel, intensity=intensity, angle=1, shadow=shadow)
 
 
 # ---------------------------------------------------------------------------
@@ -438,7 +438,10 @@ def materials():
 def instancing():
     """Three instanceable references to one tuft: OpenUSD makes a prototype and
     Hydra an instancer with three instance transforms (translated, rotated,
-    scaled 2x, whose widths must double); the embedded reader expands them."""
+    scaled 2x, whose widths must double); the embedded reader expands them.
+    The key light casts no shadows (inputs:shadow:enable = false): the tufts
+    would shadow themselves, so the reader-parity test sees whether Hydra
+    passes the flag on."""
     texts = {}
     tuft = u.Layer(doc=DOC, default_prim="Tuft")
     tuft.add(u.Prim("Xform", "Tuft", metadata=[("kind", '"component"')],
@@ -453,7 +456,7 @@ def instancing():
     root.add(world(instance("left", translate=(-9, 0, 0)),
                    instance("middle", translate=(0, 1, 0), rotate=(0, 0, 30)),
                    instance("right", translate=(10, 0, 0), scale=(2, 2, 2)),
-                   key_light()))
+                   key_light(shadow=False)))
     add_framed_camera(root, "instancing/root.usda", texts, fill=0.85)
     texts["instancing/root.usda"] = root.text()
     return texts

@@ -88,10 +88,15 @@ TEST_F(HdhairRecord, RendersAnExampleWithItsCameraAndReportsStats) {
     for (const auto& pass : frame["plan"]) {
         if (pass["pass"] != "strands") continue;
         graphStrands = pass["enabled"] == true && pass["milliseconds"] > 0.0 &&
-                       pass["reads"] == nlohmann::json({"strands", "drawOrder", "color", "depth"}) &&
+                       pass["reads"] == nlohmann::json({"strands", "drawOrder", "color", "depth",
+                                                        "deepOpacity /World/fill_light",
+                                                        "deepOpacity /World/key_light"}) &&
                        pass["writes"] == nlohmann::json({"color", "depth"});
     }
     EXPECT_TRUE(graphStrands) << frame["plan"].dump(2);
+    // Both lights cast: their maps were built in this first frame.
+    EXPECT_EQ(frame["shadowMapsRebuilt"], 2);
+    EXPECT_EQ(frame["shadowMapsKept"], 0);
 }
 
 // The plan in --stats: a stage without meshes builds neither mesh pass; the
@@ -270,7 +275,12 @@ TEST_F(HdhairRecord, ExplainPrintsThePlanAndVerbosePrintsPassTimes) {
     RecordRun run = record("--explain --verbose --imageWidth 64 " + example("straight_strands.usda") + " " + file("o.png"));
     ASSERT_EQ(run.exitCode, 0) << run.output;
     EXPECT_NE(run.output.find("plan (earliest time)"), std::string::npos) << run.output;
-    EXPECT_NE(run.output.find("  strands      on   160 segments, binSorted"), std::string::npos) << run.output;
+    // Pass names make a column as wide as the longest ("shadowDepth /World/fill_light").
+    EXPECT_NE(run.output.find("  strands                       on   160 segments, binSorted"), std::string::npos)
+        << run.output;
+    EXPECT_NE(run.output.find("  deepOpacity /World/key_light  on   rebuilt: a new shadow-casting light"),
+              std::string::npos)
+        << run.output;
     EXPECT_NE(run.output.find("readback"), std::string::npos) << run.output;
 }
 

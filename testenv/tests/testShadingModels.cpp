@@ -8,6 +8,7 @@
 
 #include <gtest/gtest.h>
 
+#include "DistantLight.h"
 #include "OrthographicView.h"
 #include "StageRendering.h"
 #include "hdHair/render/CameraView.h"
@@ -47,18 +48,8 @@ CurvesPrim strand(const std::string& path, float y, glm::vec3 color) {
 
 CameraView camera() { return orthographicView(2.4, 64); }
 
-// A distant light shining from `towardsLight` (its -Z turned to -towardsLight).
-LightPrim distantFrom(glm::dvec3 towardsLight) {
-    LightPrim light;
-    light.path = "/light";
-    light.intensity = 2.0f;
-    towardsLight = glm::normalize(towardsLight);
-    glm::dvec3 z = towardsLight;
-    glm::dvec3 x = glm::normalize(glm::cross(std::abs(z.y) < 0.9 ? glm::dvec3(0, 1, 0) : glm::dvec3(1, 0, 0), z));
-    glm::dvec3 y = glm::cross(z, x);
-    light.worldTransform = glm::dmat4(glm::dvec4(x, 0), glm::dvec4(y, 0), glm::dvec4(z, 0), glm::dvec4(0, 0, 0, 1));
-    return light;
-}
+// A distant light shining from `towardsLight`.
+LightPrim distantFrom(glm::dvec3 towardsLight) { return distantLightFrom(towardsLight); }
 
 RenderSettings withModel(const std::string& model, const std::string& azimuthal = "auto") {
     RenderSettings settings;

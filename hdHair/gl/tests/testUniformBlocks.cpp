@@ -56,6 +56,8 @@ const std::vector<Block>& blocks() {
              {"drawMode", offsetof(FrameUniforms, drawMode)},
              {"orderedDraw", offsetof(FrameUniforms, orderedDraw)},
              {"nearestStrandMinAlpha", offsetof(FrameUniforms, nearestStrandMinAlpha)},
+             {"tessellationViewport", offsetof(FrameUniforms, tessellationViewport)},
+             {"tessellationViewProjection", offsetof(FrameUniforms, tessellationViewProjection), 0, 1, kVec4},
          }},
         {GL_UNIFORM_BLOCK, GL_UNIFORM, "LightUniforms", "LightUniforms.", sizeof(LightUniforms), false,
          {
@@ -65,6 +67,17 @@ const std::vector<Block>& blocks() {
              {"lightCount", offsetof(LightUniforms, lightCount)},
              {"ambient", offsetof(LightUniforms, ambient)},
              {"lightCone[0]", offsetof(LightUniforms, lightCone), kVec4, kMaxLightsPerPass},
+         }},
+        {GL_UNIFORM_BLOCK, GL_UNIFORM, "ShadowUniforms", "ShadowUniforms.", sizeof(ShadowUniforms), false,
+         {
+             {"lightViewProjection[0]", offsetof(ShadowUniforms, lightViewProjection), 4 * kVec4, kMaxLightsPerPass,
+              kVec4},
+             {"lightEye[0]", offsetof(ShadowUniforms, lightEye), kVec4, kMaxLightsPerPass},
+             {"lightForward[0]", offsetof(ShadowUniforms, lightForward), kVec4, kMaxLightsPerPass},
+             {"lightMap[0]", offsetof(ShadowUniforms, lightMap), kVec4, kMaxLightsPerPass},
+             {"layerBoundaries[0]", offsetof(ShadowUniforms, layerBoundaries), kVec4, kMaxShadowLayerVectors},
+             {"mode", offsetof(ShadowUniforms, mode)},
+             {"extinction", offsetof(ShadowUniforms, extinction)},
          }},
         // An unsized array of HairMaterial: each element laid out as GpuHairMaterial.
         {GL_SHADER_STORAGE_BLOCK, GL_BUFFER_VARIABLE, "HairMaterials", "materials[0].", sizeof(GpuHairMaterial), true,
@@ -151,16 +164,23 @@ void expectBlocksMatch(GLuint program, const std::string& programName, int* foun
 TEST(UniformBlocks, CopiesMatchTheLayoutGlGivesEveryProgram) {
     GlRenderThread thread(GlBackend::Egl);
     thread.run([] {
-        // The programs the passes link (StrandPass, FragmentListPass).
-        const std::vector<std::vector<std::string>> programs = {
-            {"strand.vert", "strand.tesc", "strand.tese", "strand.frag"},
-            {"strand.vert", "strand.tesc", "strand.tese", "strandFragmentList.frag"},
+        // The programs the passes link (StrandPass, FragmentListPass,
+        // ShadowMapPass, ShadowReferencePass) and how many of the blocks
+        // each has: the shading programs all, the shadow builders the frame,
+        // light and shadow blocks (they include lights.glsl for
+        // HDHAIR_MAX_LIGHTS, and std140 blocks stay active unused).
+        const std::vector<std::pair<std::string, int>> programs = {
+            {"strand.frag", int(blocks().size())},
+            {"strandFragmentList.frag", int(blocks().size())},
+            {"shadowDepth.frag", 3},
+            {"deepOpacity.frag", 3},
+            {"shadowFragmentList.frag", 3},
         };
-        for (const std::vector<std::string>& shaders : programs) {
-            Program program = createProgram(shaders);
+        for (const auto& [fragment, blockCount] : programs) {
+            Program program = createProgram({"strand.vert", "strand.tesc", "strand.tese", fragment});
             int found = 0;
-            expectBlocksMatch(program.get(), shaders.back(), &found);
-            EXPECT_EQ(found, int(blocks().size())) << shaders.back() << " uses every block";
+            expectBlocksMatch(program.get(), fragment, &found);
+            EXPECT_EQ(found, blockCount) << fragment << " uses the blocks it should";
         }
     });
 }

@@ -124,9 +124,11 @@ TEST(HydraLights, ParametersAndFallbacks) {
         if (name == "color") return std::vector<double>{1.0, 0.5, 0.25};
         if (name == "radius") return std::vector<double>{2.0};
         if (name == "normalize") return std::vector<double>{1.0};
+        if (name == "shadow:enable") return std::vector<double>{0.0};
         return std::nullopt;
     };
     LightPrim light = lightFromHydra("/L", LightType::Sphere, false, lookup, glm::dmat4(1.0));
+    EXPECT_FALSE(light.shadowEnable);
     EXPECT_EQ(light.intensity, 3.0f);
     EXPECT_EQ(light.color, glm::vec3(1.0f, 0.5f, 0.25f));
     EXPECT_EQ(light.radius, 2.0f);
@@ -142,6 +144,7 @@ TEST(HydraLights, HostCameraLightHasUnitIntensity) {
     };
     LightPrim light = lightFromHydra("/host/light0", LightType::Distant, true, lookup, glm::dmat4(1.0));
     EXPECT_TRUE(light.hostCameraLight);
+    EXPECT_TRUE(light.shadowEnable) << "ShadowAPI's fallback where the host gives nothing";
     EXPECT_EQ(light.intensity, 1.0f);
 }
 

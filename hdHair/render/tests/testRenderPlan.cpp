@@ -1,3 +1,5 @@
+#include <algorithm>
+
 #include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
 
@@ -198,4 +200,127 @@ TEST(RenderPlan, MeshPassesRunOnlyForVisibleMeshes) {
     EXPECT_FALSE(flat.meshesLit);
     EXPECT_TRUE(flat.flatShading);
     EXPECT_EQ(flat.lightBatches.size(), 1u);
+}
+
+namespace {
+
+StrandSummary castingStrands() {
+    StrandSummary summary = wideOpaqueStrands(10);
+    summary.casters.min = glm::dvec3(-1.0);
+    summary.casters.max = glm::dvec3(1.0);
+    return summary;
+}
+
+LightPrim distantLight(const std::string& path, bool casts = true) {
+    LightPrim light;
+    light.path = path;
+    light.shadowEnable = casts;
+    return light;
+}
+
+std::vector<std::string> shadowPassNames(const RenderPlan& plan) {
+    std::vector<std::string> names;
+    for (const FramePass& pass : plan.graph.passes())
+        if (pass.name.rfind("shadow", 0) == 0 || pass.name.rfind("deepOpacity", 0) == 0) names.push_back(pass.name);
+    return names;
+}
+
+bool reads(const RenderPlan& plan, const std::string& pass, const std::string& resource) {
+    const std::vector<FrameResource>& list = plan.graph.find(pass)->reads;
+    return std::find(list.begin(), list.end(), resource) != list.end();
+}
+
+}  // namespace
+
+TEST(RenderPlan, EveryCastingLightGetsADepthAndAnOpacityPassReadByItsBatch) {
+    Scene scene;
+    scene.setLight(distantLight("/key"));
+    scene.setLight(distantLight("/rim"));
+    RenderSettings settings;
+    settings.set("lightsPerPass", "1");
+    RenderPlan plan = makeRenderPlan(scene, settings, cameraAtPlusZ(), castingStrands());
+    EXPECT_EQ(shadowPassNames(plan), (std::vector<std::string>{"shadowDepth /key", "deepOpacity /key",
+                                                               "shadowDepth /rim", "deepOpacity /rim"}));
+    for (const std::string& name : shadowPassNames(plan)) EXPECT_TRUE(plan.isEnabled(name)) << name;
+    EXPECT_TRUE(reads(plan, "deepOpacity /key", "hairDepth /key"));
+    // Batch 1 shades /key and reads its map only; batch 2 /rim's.
+    EXPECT_TRUE(reads(plan, "strands", "deepOpacity /key"));
+    EXPECT_FALSE(reads(plan, "strands", "deepOpacity /rim"));
+    EXPECT_TRUE(reads(plan, "lightBatch 2", "deepOpacity /rim"));
+    EXPECT_EQ(plan.shadows.lights.size(), 2u);
+    EXPECT_TRUE(plan.shadows.lights[0].view.orthographic);
+
+    // A map kept from an earlier frame is an input: its passes do not run,
+    // the strands still read it.
+    plan.setShadowMap(0, 0, false, "kept: unchanged");
+    EXPECT_FALSE(plan.isEnabled("shadowDepth /key"));
+    EXPECT_FALSE(plan.isEnabled("deepOpacity /key"));
+    EXPECT_EQ(plan.graph.find("deepOpacity /key")->reason, "kept: unchanged");
+    EXPECT_TRUE(plan.isEnabled("strands"));
+    EXPECT_TRUE(plan.shadowUsed(0));
+    plan.setShadowMap(1, 1, true, "rebuilt: the light moved");
+    EXPECT_TRUE(plan.isEnabled("deepOpacity /rim"));
+    EXPECT_EQ(plan.graph.find("deepOpacity /rim")->reason.rfind("rebuilt: the light moved; ", 0), 0u);
+}
+
+TEST(RenderPlan, AStageWithNoCastingLightBuildsNoShadowPasses) {
+    Scene scene;
+    scene.setLight(distantLight("/key", false));
+    RenderPlan plan = makeRenderPlan(scene, RenderSettings{}, cameraAtPlusZ(), castingStrands());
+    EXPECT_TRUE(shadowPassNames(plan).empty());
+    EXPECT_EQ(plan.graph.find("strands")->reads, (std::vector<FrameResource>{"strands", "color", "depth"}));
+}
+
+TEST(RenderPlan, NothingReadsShadowsUnderFlatShadingOrWithShadowsOff) {
+    Scene scene;
+    scene.setLight(distantLight("/key"));
+    StrandSummary flat = castingStrands();
+    flat.anyLit = false;
+    RenderPlan flatPlan = makeRenderPlan(scene, RenderSettings{}, cameraAtPlusZ(), flat);
+    ASSERT_EQ(shadowPassNames(flatPlan).size(), 2u);
+    EXPECT_FALSE(flatPlan.isEnabled("shadowDepth /key"));
+    EXPECT_FALSE(flatPlan.isEnabled("deepOpacity /key"));
+    const std::string flatWhy = flatPlan.describe();
+    EXPECT_NE(flatWhy.find("flat-shaded, so no pass reads lights or their shadows; not built: nothing reads its "
+                           "output (deepOpacity /key)"),
+              std::string::npos)
+        << flatWhy;
+
+    RenderSettings off;
+    off.set("shadowMode", "off");
+    RenderPlan offPlan = makeRenderPlan(scene, off, cameraAtPlusZ(), castingStrands());
+    EXPECT_FALSE(offPlan.isEnabled("shadowDepth /key"));
+    EXPECT_EQ(offPlan.graph.find("shadowDepth /key")->reason, "shadowMode=off");
+    EXPECT_FALSE(reads(offPlan, "strands", "deepOpacity /key"));
+}
+
+TEST(RenderPlan, TheReferenceKeepsEveryLightViewFragment) {
+    Scene scene;
+    scene.setLight(distantLight("/key"));
+    RenderSettings settings;
+    settings.set("shadowMode", "reference");
+    RenderPlan plan = makeRenderPlan(scene, settings, cameraAtPlusZ(), castingStrands());
+    EXPECT_EQ(shadowPassNames(plan), std::vector<std::string>{"shadowFragments /key"});
+    EXPECT_TRUE(plan.isEnabled("shadowFragments /key"));
+    EXPECT_TRUE(reads(plan, "strands", "shadowFragments /key"));
+}
+
+TEST(RenderPlan, ALightInsideTheHairCastsNothingAndSaysWhy) {
+    Scene scene;
+    LightPrim inside = distantLight("/bulb");
+    inside.type = LightType::Sphere;  // at the origin, inside the casters
+    scene.setLight(inside);
+    RenderPlan plan = makeRenderPlan(scene, RenderSettings{}, cameraAtPlusZ(), castingStrands());
+    EXPECT_FALSE(plan.isEnabled("shadowDepth /bulb"));
+    EXPECT_NE(plan.graph.find("shadowDepth /bulb")->reason.find("no shadows from this light: the light is inside"),
+              std::string::npos);
+    EXPECT_FALSE(reads(plan, "strands", "deepOpacity /bulb"));
+    EXPECT_TRUE(plan.isEnabled("strands"));
+}
+
+TEST(RenderPlan, TheCameraLightCastsToo) {
+    RenderPlan plan = makeRenderPlan(Scene{}, RenderSettings{}, cameraAtPlusZ(), castingStrands());
+    ASSERT_TRUE(plan.cameraLight);
+    EXPECT_EQ(shadowPassNames(plan), (std::vector<std::string>{"shadowDepth camera light", "deepOpacity camera light"}));
+    EXPECT_TRUE(reads(plan, "strands", "deepOpacity camera light"));
 }

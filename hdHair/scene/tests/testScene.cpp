@@ -114,6 +114,11 @@ TEST(Scene, SettingAnEqualPrimKeepsItsVersion) {
     light.intensity = 2.0f;
     scene.setLight(light);
     EXPECT_GT(scene.lights().at("/key").version, lightVersion);
+    // Turning its shadows off is a change too (fields() must list it).
+    const uint64_t litVersion = scene.lights().at("/key").version;
+    light.shadowEnable = false;
+    scene.setLight(light);
+    EXPECT_GT(scene.lights().at("/key").version, litVersion);
 }
 
 TEST(Scene, UpdateFromKeepsUnchangedPrimsAndDropsMissingOnes) {

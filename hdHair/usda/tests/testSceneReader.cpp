@@ -263,6 +263,7 @@ def DistantLight "distant"
     color3f inputs:color = (1, 0.5, 0.25)
     float inputs:angle = 2
     bool inputs:normalize = true
+    bool inputs:shadow:enable = false
 }
 def SphereLight "sphere"
 {
@@ -294,6 +295,7 @@ def SphereLight "old"
     float radius = 2
     float shaping:cone:angle = 45
     float shaping:cone:softness = 0.5
+    bool shadow:enable = 0
 }
 def SphereLight "both"
 {
@@ -315,6 +317,7 @@ def SphereLight "both"
     EXPECT_FLOAT_EQ(distant.angle, 2.0f);
     EXPECT_TRUE(distant.normalize);
     EXPECT_TRUE(distant.visible);
+    EXPECT_FALSE(distant.shadowEnable);
 
     const LightPrim& sphere = light("/sphere");
     EXPECT_EQ(sphere.type, LightType::Sphere);
@@ -324,6 +327,7 @@ def SphereLight "both"
     EXPECT_FLOAT_EQ(sphere.colorTemperature, 3200.0f);
     EXPECT_FLOAT_EQ(sphere.coneAngle, 30.0f);
     EXPECT_FLOAT_EQ(sphere.coneSoftness, 0.2f);
+    EXPECT_TRUE(sphere.shadowEnable);  // ShadowAPI's fallback
 
     const LightPrim& rect = light("/rect");
     EXPECT_EQ(rect.type, LightType::Rect);
@@ -344,6 +348,7 @@ def SphereLight "both"
     EXPECT_FLOAT_EQ(old.radius, 2.0f);
     EXPECT_FLOAT_EQ(old.coneAngle, 45.0f);
     EXPECT_FLOAT_EQ(old.coneSoftness, 0.5f);
+    EXPECT_FALSE(old.shadowEnable);
     // The "inputs:" name wins when both are authored.
     EXPECT_FLOAT_EQ(light("/both").intensity, 4.0f);
 }

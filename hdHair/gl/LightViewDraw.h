@@ -1,0 +1,32 @@
+#pragma once
+// Draws the frame's strands through a light's view, for the passes that
+// build shadows (ShadowMapPass, ShadowReferencePass): the strand stages
+// (strand.vert/.tesc/.tese) with the light view's frame uniforms (ribbons
+// facing the light, the shared tessellation view, the coverage rule in the
+// light's pixels) and the shadow uniforms naming the light (entry 0), under
+// whatever fragment shader and GL state the caller set up.
+
+#include <vector>
+
+#include "hdHair/gl/GlObjects.h"
+#include "hdHair/gl/SegmentRange.h"
+#include "hdHair/gl/StrandGeometry.h"
+#include "hdHair/gl/UniformBlocks.h"
+
+namespace hdhair::gl {
+
+class LightViewDraw {
+public:
+    LightViewDraw();
+
+    // Binds the blocks (frame at 0, shadows at 2), the geometry and
+    // `program`, and draws `ranges` unordered.
+    void draw(const Program& program, const StrandGeometry& geometry, const std::vector<SegmentRange>& ranges,
+              const FrameUniforms& lightView, const ShadowUniforms& light);
+
+private:
+    VertexArray emptyVertexArray_;
+    Buffer frameBlock_, shadowBlock_, order_;
+};
+
+}  // namespace hdhair::gl

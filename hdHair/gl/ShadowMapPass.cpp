@@ -1,0 +1,38 @@
+#include "hdHair/gl/ShadowMapPass.h"
+
+namespace hdhair::gl {
+
+ShadowMapPass::ShadowMapPass()
+    : depthProgram_(createProgram({"strand.vert", "strand.tesc", "strand.tese", "shadowDepth.frag"})),
+      opacityProgram_(createProgram({"strand.vert", "strand.tesc", "strand.tese", "deepOpacity.frag"})) {
+    checkGlError("setting up the shadow map passes");
+}
+
+void ShadowMapPass::renderDepth(ShadowMapStorage& storage, const StrandGeometry& geometry,
+                                const std::vector<SegmentRange>& ranges, const FrameUniforms& lightView,
+                                const ShadowUniforms& light) {
+    storage.bindDepthTarget(int(light.lightMap[0].x));
+    // The least depth wins, in any drawing order.
+    glEnable(GL_BLEND);
+    glBlendEquation(GL_MIN);
+    draw_.draw(depthProgram_, geometry, ranges, lightView, light);
+    glBlendEquation(GL_FUNC_ADD);
+    glDisable(GL_BLEND);
+    checkGlError("drawing a shadow depth map");
+}
+
+void ShadowMapPass::renderOpacity(ShadowMapStorage& storage, const StrandGeometry& geometry,
+                                  const std::vector<SegmentRange>& ranges, const FrameUniforms& lightView,
+                                  const ShadowUniforms& light) {
+    storage.bindOpacityTargets(int(light.lightMap[0].x));
+    storage.bindForLookup();  // the nearest depths, drawn by renderDepth
+    // Sums in any drawing order (thesis section 2.7.2: additive blending).
+    glEnable(GL_BLEND);
+    glBlendEquation(GL_FUNC_ADD);
+    glBlendFunc(GL_ONE, GL_ONE);
+    draw_.draw(opacityProgram_, geometry, ranges, lightView, light);
+    glDisable(GL_BLEND);
+    checkGlError("drawing deep opacity layers");
+}
+
+}  // namespace hdhair::gl

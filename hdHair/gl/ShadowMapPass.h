@@ -1,0 +1,36 @@
+#pragma once
+// Builds one light's deep opacity map (Yuksel & Keyser 2008, as Svoboda 2012
+// section 2.7 implemented them) into its slot of gl::ShadowMapStorage: the
+// nearest hair per texel (shadowDepth.frag, min-blended linear depth), then
+// every fragment's alpha added into the layers behind it (deepOpacity.frag,
+// additive blending into up to 8 RGBA16F draw buffers). Both passes draw the
+// strands the camera draws, through the light's view (LightViewDraw).
+
+#include <vector>
+
+#include "hdHair/gl/GlObjects.h"
+#include "hdHair/gl/LightViewDraw.h"
+#include "hdHair/gl/SegmentRange.h"
+#include "hdHair/gl/ShadowMapStorage.h"
+#include "hdHair/gl/StrandGeometry.h"
+#include "hdHair/gl/UniformBlocks.h"
+
+namespace hdhair::gl {
+
+class ShadowMapPass {
+public:
+    ShadowMapPass();  // compiles both programs; throws on driver errors
+
+    // `light` names the light as entry 0 (its slot, view and layers).
+    void renderDepth(ShadowMapStorage& storage, const StrandGeometry& geometry, const std::vector<SegmentRange>& ranges,
+                     const FrameUniforms& lightView, const ShadowUniforms& light);
+    void renderOpacity(ShadowMapStorage& storage, const StrandGeometry& geometry,
+                       const std::vector<SegmentRange>& ranges, const FrameUniforms& lightView,
+                       const ShadowUniforms& light);
+
+private:
+    Program depthProgram_, opacityProgram_;
+    LightViewDraw draw_;
+};
+
+}  // namespace hdhair::gl

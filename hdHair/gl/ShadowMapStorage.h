@@ -1,0 +1,49 @@
+#pragma once
+// Where every light's deep opacity map lives: one slot per shadow-casting
+// light (hdHair/render/ShadowMapCache.h assigns them), in two 2D array
+// textures, so that the lookup needs two texture units however many lights a
+// pass shades (16 at most, kMaxLightsPerPass): the nearest hair's linear depth
+// (R32F, one layer a slot) and the opacity layers (RGBA16F, 16-bit floats as
+// in the thesis, section 2.7.2: 4 layers a texel, ceil(layers / 4) array
+// layers a slot). Maps are kept between frames; changing the resolution, the
+// layer count or the number of slots reallocates, which loses them (the
+// cache rebuilds them all then).
+//
+// Half floats add alpha exactly to 2048 x 2^-11 steps; past that, sums of
+// faint fragments round away (at an opacity of 8 a step below 2^-8 is lost),
+// but by then exp(-8) = 0.0003 of the light is left: the loss cannot show.
+
+#include "hdHair/gl/GlObjects.h"
+
+namespace hdhair::gl {
+
+class ShadowMapStorage {
+public:
+    ShadowMapStorage();  // one 1x1 slot, so the lookup always has textures to bind
+
+    // Makes room for `slots` maps of resolution^2 texels and `layerTargets`
+    // RGBA16F layers each; reallocates (contents lost) only when they change.
+    void ensure(int resolution, int layerTargets, int slots);
+
+    // Binds the framebuffer that draws slot `slot`'s nearest depth, cleared
+    // to "no hair" (HDHAIR_NO_HAIR in shaders/include/shadows.glsl), with the
+    // viewport set.
+    void bindDepthTarget(int slot);
+    // Binds slot `slot`'s opacity layers as draw buffers 0..targets-1,
+    // cleared to 0, with the viewport set.
+    void bindOpacityTargets(int slot);
+    // The depth array at texture unit 2 and the opacity array at unit 3
+    // (shadowDepths and shadowOpacity in shadows.glsl).
+    void bindForLookup() const;
+
+    int resolution() const { return resolution_; }
+
+private:
+    void allocate();
+
+    Texture depths_, opacity_;
+    Framebuffer framebuffer_;
+    int resolution_ = 0, targets_ = 0, slots_ = 0;
+};
+
+}  // namespace hdhair::gl

@@ -1,0 +1,72 @@
+#pragma once
+// Which shadow maps a frame builds and which it keeps from an earlier frame,
+// decided on the CPU before any GL work (the GL side, gl::ShadowMapStorage,
+// holds one slot per light and does what this says).
+//
+// A light's map is rebuilt only when something it depends on changed:
+//   - it is new to the renderer, or its slot storage grew;
+//   - its light view (ShadowLightView: the light's position or direction,
+//     and the casters' bounds it is fitted to; the camera light's view
+//     follows the camera, so its map does too);
+//   - the casters: any change of the strands on the GPU (castersVersion);
+//   - the shadow and tessellation settings (settingsKey);
+//   - the tessellation view (TessellationView.h), re-based when the camera
+//     leaves its tolerance.
+// Intensity, colour and other shading-only edits keep the map. Otherwise
+// the map is kept: moving only the camera (within the tessellation
+// tolerance) rebuilds nothing but the camera light's map.
+
+#include <cstdint>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "hdHair/render/ShadowLightView.h"
+#include "hdHair/render/TessellationView.h"
+
+namespace hdhair {
+
+struct CameraView;
+
+struct ShadowMapRequest {
+    std::string key;            // the light's path, or "camera light"
+    ShadowLightView view;       // valid
+    bool followsCamera = false;  // the camera light
+};
+
+struct ShadowMapDecision {
+    int slot = 0;        // where gl::ShadowMapStorage holds it
+    bool rebuild = true;
+    std::string reason;  // "rebuilt: ..." or "kept: ..."
+};
+
+struct ShadowFrame {
+    std::vector<ShadowMapDecision> maps;  // one per request, in order
+    TessellationView tessellation;        // what every pass's levels come from this frame
+    int capacity = 0;                     // slots the storage must hold
+};
+
+class ShadowMapCache {
+public:
+    // rebuildTogether: the maps share storage that cannot be rebuilt light by
+    // light (shadowMode=reference's fragment pool): any rebuild rebuilds all.
+    ShadowFrame update(const std::vector<ShadowMapRequest>& requests, const std::string& settingsKey,
+                       uint64_t castersVersion, const CameraView& camera, const CasterBounds& casters,
+                       bool rebuildTogether);
+    // Drops a light's map (it could not be built): the next frame builds it again.
+    void forget(const std::string& key) { held_.erase(key); }
+
+private:
+    struct Held {
+        int slot = 0;
+        ShadowLightView view;
+        std::string settingsKey;
+        uint64_t castersVersion = 0, tessellationId = 0;
+    };
+    std::map<std::string, Held> held_;
+    int capacity_ = 0;
+    TessellationView tessellation_;
+    uint64_t nextTessellationId_ = 1;
+};
+
+}  // namespace hdhair

@@ -1,0 +1,73 @@
+#include "hdHair/render/ShadowPassUniforms.h"
+
+#include "hdHair/render/DeepOpacityLayers.h"
+
+namespace hdhair {
+
+namespace {
+
+int modeOf(ShadowMode mode) {
+    switch (mode) {
+    case ShadowMode::DeepOpacity: return gl::kShadowModeDeepOpacity;
+    case ShadowMode::Reference: return gl::kShadowModeReference;
+    case ShadowMode::Off: break;
+    }
+    return gl::kShadowModeOff;
+}
+
+// Everything but the lights.
+gl::ShadowUniforms common(const ShadowPlan& shadows) {
+    gl::ShadowUniforms uniforms;
+    for (size_t i = 0; i < shadows.boundaries.size() && i < 4 * gl::kMaxShadowLayerVectors; ++i)
+        uniforms.layerBoundaries[i / 4][int(i % 4)] = shadows.boundaries[i];
+    uniforms.mode = glm::ivec4(modeOf(shadows.mode), shadows.layers, shadows.bilinear ? 1 : 0, shadows.resolution);
+    uniforms.extinction = glm::vec4(kShadowExtinction, 0.0f, 0.0f, 0.0f);
+    for (glm::vec4& map : uniforms.lightMap) map.x = -1.0f;
+    return uniforms;
+}
+
+// Entry `entry` describes planned shadow `shadow`; no slot, no shadow.
+void setEntry(gl::ShadowUniforms& uniforms, int entry, const ShadowPlan& shadows, const PlannedShadow& shadow) {
+    const ShadowLightView& view = shadow.view;
+    uniforms.lightViewProjection[entry] = glm::mat4(view.projection * view.view);
+    uniforms.lightEye[entry] = glm::vec4(glm::vec3(view.eye), 0.0f);
+    uniforms.lightForward[entry] = glm::vec4(glm::vec3(view.forward), 0.0f);
+    const bool mapped = view.valid && shadow.slot >= 0 && shadows.mode != ShadowMode::Off;
+    uniforms.lightMap[entry] = glm::vec4(mapped ? float(shadow.slot) : -1.0f,
+                                         float(shadows.layerDepth * (view.farDepth - view.nearDepth)),
+                                         float(view.texelSize), view.orthographic ? 0.0f : 1.0f);
+}
+
+}  // namespace
+
+gl::ShadowUniforms batchShadowUniforms(const RenderPlan& plan, size_t batch) {
+    gl::ShadowUniforms uniforms = common(plan.shadows);
+    auto [begin, end] = plan.lightBatches[batch];
+    for (size_t light = begin; light < end && light - begin < size_t(gl::kMaxLightsPerPass); ++light) {
+        const int shadow = plan.shadows.shadowOf(light);
+        if (shadow >= 0) setEntry(uniforms, int(light - begin), plan.shadows, plan.shadows.lights[size_t(shadow)]);
+    }
+    return uniforms;
+}
+
+gl::ShadowUniforms lightShadowUniforms(const RenderPlan& plan, size_t shadow) {
+    gl::ShadowUniforms uniforms = common(plan.shadows);
+    setEntry(uniforms, 0, plan.shadows, plan.shadows.lights[shadow]);
+    return uniforms;
+}
+
+gl::FrameUniforms lightViewFrameUniforms(const RenderPlan& plan, size_t shadow, const gl::FrameUniforms& camera) {
+    const ShadowLightView& view = plan.shadows.lights[shadow].view;
+    gl::FrameUniforms frame = camera;
+    frame.viewProjection = glm::mat4(view.projection * view.view);
+    frame.cameraPosition = glm::vec4(glm::vec3(view.eye), view.orthographic ? 0.0f : 1.0f);
+    frame.cameraForward = glm::vec4(glm::vec3(view.forward), 0.0f);
+    frame.viewportSize = glm::vec2(float(view.resolution));
+    frame.pixelsPerUnit = float(view.pixelsPerUnit);
+    frame.minPixelWidth = float(plan.shadows.minPixelWidth);
+    frame.drawMode = 1;
+    frame.orderedDraw = 0;
+    return frame;
+}
+
+}  // namespace hdhair

@@ -1,0 +1,19 @@
+#pragma once
+// What the GPU is told about shadows, from the plan: the shadow uniforms of
+// a light batch (entry i for its i-th light) and of one light's shadow
+// passes (entry 0), and the frame uniforms of a light's view.
+
+#include "hdHair/gl/UniformBlocks.h"
+#include "hdHair/render/RenderPlan.h"
+
+namespace hdhair {
+
+gl::ShadowUniforms batchShadowUniforms(const RenderPlan& plan, size_t batch);
+gl::ShadowUniforms lightShadowUniforms(const RenderPlan& plan, size_t shadow);
+
+// The camera's frame seen from a light: its tessellation view and settings
+// kept, the light's projection, eye and pixels, ribbons facing the light,
+// the coverage rule at plan.shadows.minPixelWidth, unordered.
+gl::FrameUniforms lightViewFrameUniforms(const RenderPlan& plan, size_t shadow, const gl::FrameUniforms& camera);
+
+}  // namespace hdhair

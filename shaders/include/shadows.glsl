@@ -1,0 +1,109 @@
+// How much of each light of a pass reaches a strand: the transmittance of
+// the hair in front of it, from deep opacity maps (Yuksel & Keyser 2008, as
+// Svoboda 2012 section 2.7 implemented them) or, with shadowMode=reference,
+// from every fragment the light view saw. hdHair/render/DeepOpacityLayers.h
+// gives the layers, the lookup and k; hdHair/gl/UniformBlocks.h
+// ShadowUniforms mirrors the block. Needs lights.glsl (HDHAIR_MAX_LIGHTS)
+// and shadowFragmentLists.glsl.
+#define HDHAIR_SHADOW_OFF 0
+#define HDHAIR_SHADOW_DEEP_OPACITY 1
+#define HDHAIR_SHADOW_REFERENCE 2
+// The depth pass's clear value: no hair in this texel.
+#define HDHAIR_NO_HAIR 3.0e38
+
+layout(std140, binding = 2) uniform ShadowUniforms {
+    mat4 lightViewProjection[HDHAIR_MAX_LIGHTS];  // world to the light view's clip space
+    vec4 lightEye[HDHAIR_MAX_LIGHTS];              // xyz: the light view's eye
+    vec4 lightForward[HDHAIR_MAX_LIGHTS];          // xyz: its unit viewing direction
+    // x: the map's slot (-1: no shadow from this light), y: d_K (world units),
+    // z: a texel's world size (at linear depth 1 when perspective),
+    // w: 1 perspective, 0 orthographic.
+    vec4 lightMap[HDHAIR_MAX_LIGHTS];
+    vec4 layerBoundaries[8];  // d_k / d_K for layers k = 1..32, 4 a vec4
+    ivec4 mode;               // x: HDHAIR_SHADOW_*, y: layers, z: 0 nearest, 1 bilinear; w: resolution
+    vec4 extinction;          // x: k of T = exp(-k opacity)
+} shadows;
+
+// Per light slot: the nearest hair's linear depth, and the layers, 4 a texel
+// of RGBA16F, ceil(layers / 4) array layers a slot.
+layout(binding = 2) uniform sampler2DArray shadowDepths;
+layout(binding = 3) uniform sampler2DArray shadowOpacity;
+
+// Linear depth in light i's view: world units along its viewing direction.
+float shadowLinearDepth(int i, vec3 position) {
+    return dot(position - shadows.lightEye[i].xyz, shadows.lightForward[i].xyz);
+}
+
+int shadowSlot(int i) { return int(shadows.lightMap[i].x); }
+
+float shadowLayerBoundary(int layer) { return shadows.layerBoundaries[layer / 4][layer % 4]; }
+
+// Opacity in front of linear depth z at one texel of light i's deep opacity
+// map: 0 in front of the nearest hair (or where there is none), linear
+// between layers, the last layer's beyond it.
+float deepOpacityAt(int i, ivec2 texel, float z) {
+    int slot = shadowSlot(i);
+    float d = z - texelFetch(shadowDepths, ivec3(texel, slot), 0).r;
+    if (d <= 0.0) return 0.0;
+    int layers = shadows.mode.y;
+    int targets = (layers + 3) / 4;
+    float scale = shadows.lightMap[i].y;
+    float previousDepth = 0.0, previousOpacity = 0.0;
+    vec4 target = vec4(0.0);
+    for (int layer = 0; layer < layers; ++layer) {
+        if (layer % 4 == 0) target = texelFetch(shadowOpacity, ivec3(texel, slot * targets + layer / 4), 0);
+        float boundary = shadowLayerBoundary(layer) * scale;
+        float opacity = target[layer % 4];
+        if (d < boundary)
+            return mix(previousOpacity, opacity, (d - previousDepth) / max(boundary - previousDepth, 1e-30));
+        previousDepth = boundary;
+        previousOpacity = opacity;
+    }
+    return previousOpacity;
+}
+
+// The reference: every fragment of the texel nearer than z, exactly what
+// the layers approximate (so the strand's own fragments count too when they
+// are nearer, as they do in the layers).
+float referenceOpacityAt(int i, ivec2 texel, float z) {
+    float opacity = 0.0;
+    uint end = uint(HDHAIR_SHADOW_NODE_POOLS) * shadowPoolSize();
+    for (uint node = imageLoad(shadowListHeads, ivec3(texel, shadowSlot(i))).r; node < end;) {
+        ShadowNode fragment = readShadowNode(node);
+        if (fragment.depth < z) opacity += fragment.alpha;
+        node = fragment.next;
+    }
+    return opacity;
+}
+
+float shadowTransmittanceAt(int i, ivec2 texel, float z) {
+    if (any(lessThan(texel, ivec2(0))) || any(greaterThanEqual(texel, ivec2(shadows.mode.w)))) return 1.0;
+    float opacity = shadows.mode.x == HDHAIR_SHADOW_REFERENCE ? referenceOpacityAt(i, texel, z)
+                                                              : deepOpacityAt(i, texel, z);
+    return exp(-shadows.extinction.x * opacity);
+}
+
+// The fraction of light i that reaches `centre`, a point on a strand's
+// centre line. Bias: one texel's world size, so that where the camera's
+// tessellation and the light's rasterisation of the same strand disagree by
+// less than a texel the strand does not shadow itself.
+float shadowTransmittance(int i, vec3 centre) {
+    if (shadows.mode.x == HDHAIR_SHADOW_OFF || shadows.lightMap[i].x < 0.0) return 1.0;
+    vec4 clip = shadows.lightViewProjection[i] * vec4(centre, 1.0);
+    if (clip.w <= 0.0) return 1.0;  // behind a perspective light's eye: outside its view
+    vec2 position = (clip.xy / clip.w * 0.5 + 0.5) * float(shadows.mode.w);
+    float z = shadowLinearDepth(i, centre);
+    z -= shadows.lightMap[i].z * (shadows.lightMap[i].w > 0.5 ? z : 1.0);
+    if (shadows.mode.z == 0) return shadowTransmittanceAt(i, ivec2(floor(position)), z);
+    // Bilinear: the four nearest texels' transmittances, each against its
+    // own nearest hair (z0-relative values cannot be filtered by the
+    // hardware: thesis section 1.5.4), weighted by distance.
+    vec2 corner = position - 0.5;
+    ivec2 base = ivec2(floor(corner));
+    vec2 w = corner - vec2(base);
+    float t00 = shadowTransmittanceAt(i, base, z);
+    float t10 = shadowTransmittanceAt(i, base + ivec2(1, 0), z);
+    float t01 = shadowTransmittanceAt(i, base + ivec2(0, 1), z);
+    float t11 = shadowTransmittanceAt(i, base + ivec2(1, 1), z);
+    return mix(mix(t00, t10, w.x), mix(t01, t11, w.x), w.y);
+}

@@ -1,0 +1,363 @@
+// Hair self-shadowing: deep opacity maps and their reference
+// (hdHair/render/DeepOpacityLayers.h, ShadowMapCache.h, ShadowLightView.h),
+// rendered. Transmittance is measured as the ratio of a pixel's colour with
+// shadows to its colour without: shadows scale each light's irradiance and
+// nothing else, so the ratio is T wherever one light shades.
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <gtest/gtest.h>
+
+#include "DistantLight.h"
+#include "OrthographicView.h"
+#include "StageRendering.h"
+#include "hdHair/image/ImageComparison.h"
+#include "hdHair/render/CameraView.h"
+#include "hdHair/scene/Scene.h"
+#include "hdHair/scene/tests/AuthoredPrimvar.h"
+
+using namespace hdhair;
+using hdhair::test::authoredPrimvar;
+using namespace hdhair::testenv;
+
+namespace {
+
+Primvar constant(const std::string& name, std::vector<float> values) {
+    const int tupleSize = int(values.size());
+    return authoredPrimvar(name, Interpolation::Constant, tupleSize, std::move(values));
+}
+
+// Straight white strands along X from x = -0.95 to 0.95, at (y, z) each.
+CurvesPrim strandsAlongX(const std::string& path, const std::vector<glm::vec2>& yz, float width, float opacity) {
+    CurvesPrim prim;
+    prim.path = path;
+    prim.type = CurveType::Linear;
+    for (const glm::vec2& p : yz) {
+        prim.curveVertexCounts.push_back(2);
+        prim.points.push_back({-0.95f, p.x, p.y});
+        prim.points.push_back({0.95f, p.x, p.y});
+    }
+    prim.primvars["widths"] = constant("widths", {width});
+    prim.primvars["displayColor"] = constant("displayColor", {1.0f, 1.0f, 1.0f});
+    prim.primvars["displayOpacity"] = constant("displayOpacity", {opacity});
+    return prim;
+}
+
+// A slab of hair of known density, lit from +Y: `strands` strands along X,
+// their (y, z) spread over [-1, 1]^2 by Roberts' R2 sequence (a
+// low-discrepancy sequence: every column of light texels, and every row of
+// the camera's pixels, meets close to its share of strands, without the
+// Poisson spread and the Jensen bias a random slab would add). Each strand
+// is kSlabWidth wide with opacity `opacity`: a ray at depth d below the top
+// (y = 1) has met, per unit area of the y-z plane, strands / 4 * d strands,
+// each covering kSlabWidth around it with alpha `opacity`, so its opacity is
+// sigma d, sigma = strands / 4 * width * opacity (sub-texel strands, drawn a
+// texel wide with alpha scaled down, sum to the same).
+constexpr float kSlabWidth = 0.004f;
+constexpr float kAboveSlab = 1.15f;  // one strand above the slab: in front of all hair
+
+double slabSigma(int strands, float opacity) { return strands / 4.0 * kSlabWidth * opacity; }
+
+Scene slabScene(int strands = 1000, float opacity = 0.5f) {
+    // R2: the n-th point is frac(0.5 + n / g, 0.5 + n / g^2), g the plastic number.
+    const double g = 1.32471795724474602596;
+    std::vector<glm::vec2> yz;
+    for (int n = 0; n < strands; ++n)
+        yz.push_back({float(1.0 - 2.0 * std::fmod(0.5 + n / g, 1.0)),
+                      float(-1.0 + 2.0 * std::fmod(0.5 + n / (g * g), 1.0))});
+    Scene scene;
+    scene.setCurves(strandsAlongX("/slab", yz, kSlabWidth, opacity));
+    scene.setCurves(strandsAlongX("/above", {{kAboveSlab, 0.0f}}, kSlabWidth, opacity));
+    scene.setLight(distantLightFrom({0.0, 1.0, 0.0}));
+    return scene;
+}
+
+RenderResult render(const Scene& scene, const CameraView& camera, const std::vector<std::string>& assignments,
+                    Diagnostics* diagnostics = nullptr) {
+    RenderSettings settings;
+    for (const std::string& assignment : assignments) settings.setFromAssignment(assignment);
+    Diagnostics own;
+    return sharedRenderer().render(scene, camera, settings, diagnostics ? *diagnostics : own);
+}
+
+// Per image row, the summed colour of columns [16, width - 16).
+std::vector<double> rowSums(const Image& image) {
+    std::vector<double> sums(size_t(image.height), 0.0);
+    for (int y = 0; y < image.height; ++y)
+        for (int x = 16; x < image.width - 16; ++x)
+            for (int c = 0; c < 3; ++c) sums[size_t(y)] += image.at(x, y, c);
+    return sums;
+}
+
+// The world height of a pixel row's centre in orthographicView(2.4, pixels).
+double rowHeight(int row, int pixels) { return 1.2 - (row + 0.5) * 2.4 / pixels; }
+
+bool allFinite(const Image& image) {
+    return std::all_of(image.pixels.begin(), image.pixels.end(), [](float v) { return std::isfinite(v); });
+}
+
+std::vector<std::string> passNames(const RenderResult& result) {
+    std::vector<std::string> names;
+    for (const PassTiming& pass : result.stats.passes) names.push_back(pass.name);
+    return names;
+}
+
+bool ranAShadowPass(const RenderResult& result) {
+    for (const std::string& name : passNames(result))
+        if (name.rfind("shadow", 0) == 0 || name.rfind("deepOpacity", 0) == 0) return true;
+    return false;
+}
+
+}  // namespace
+
+class SlabTransmittance : public ::testing::TestWithParam<const char*> {};
+
+// T = exp(-k opacity) with k = kShadowExtinction = 1, through a slab whose
+// opacity grows linearly with depth: -ln T must follow k sigma d row by row,
+// fall monotonically with depth, and be 0 (T = 1) above the slab. Deep
+// opacity maps with 15 layers: with 3, linear interpolation across the last
+// layer (which reaches the bounds, past the slab's last strand) adds up to
+// 8 % here, which MoreLayersMoveTowardTheReference measures instead.
+TEST_P(SlabTransmittance, FollowsExpOfMinusKTimesOpacity) {
+    // Many faint strands: 0.026 alpha per texel, 29 strands a unit of depth
+    // in each texel column.
+    const int strands = 7500;
+    const float opacity = 0.1f;
+    const double sigma = slabSigma(strands, opacity);  // 0.75 per unit depth
+    // k as DeepOpacityLayers.h states it (kShadowExtinction), written out:
+    // the expectation must not follow the code it checks.
+    const double k = 1.0;
+    const Scene scene = slabScene(strands, opacity);
+    const CameraView camera = orthographicView(2.4, 64);
+    const std::vector<std::string> settings = {std::string("shadowMode=") + GetParam(), "shadowLayers=15",
+                                               "shadowMapResolution=128"};
+    const RenderResult on = render(scene, camera, settings);
+    const RenderResult off = render(scene, camera, {"shadowMode=off"});
+    ASSERT_EQ(on.stats.shadowMapsRebuilt, 1u);
+    const std::vector<double> shadowed = rowSums(on.color), lit = rowSums(off.color);
+
+    std::vector<double> transmittance(64, -1.0);
+    int checked = 0;
+    double worst = 0.0;
+    for (int row = 0; row < 64; ++row) {
+        const double y = rowHeight(row, 64);
+        if (lit[size_t(row)] <= 0.0) continue;
+        transmittance[size_t(row)] = shadowed[size_t(row)] / lit[size_t(row)];
+        if (std::abs(y - kAboveSlab) < 0.01) {
+            // In front of the first strand: nothing shadows it.
+            EXPECT_NEAR(transmittance[size_t(row)], 1.0, 1e-4) << "above the slab";
+            continue;
+        }
+        if (y > 0.95 || y < -0.95) continue;  // the slab's faces
+        const double depth = 1.0 - y;
+        const double expected = k * sigma * depth;
+        const double measured = -std::log(transmittance[size_t(row)]);
+        // Measured: at most 0.046 (deepOpacity) and 0.031 (reference) below
+        // k sigma d: the lookup's bias of one texel (sigma x 0.016 = 0.012)
+        // and about 2 % from averaging exp(-sum) over texel columns that
+        // met a strand more or fewer.
+        EXPECT_NEAR(measured, expected, 0.02 + 0.04 * expected) << "row " << row << ", depth " << depth;
+        worst = std::max(worst, std::abs(measured - expected));
+        if (row % 8 == 0) std::printf("%s, depth %.3f: -ln T %.4f, k sigma d %.4f\n", GetParam(), depth, measured, expected);
+        // Two rows (0.075 deeper, 0.056 more opacity) always darker.
+        if (row >= 2 && transmittance[size_t(row - 2)] >= 0.0 && rowHeight(row - 2, 64) <= 0.95) {
+            EXPECT_LT(transmittance[size_t(row)], transmittance[size_t(row - 2)]) << "row " << row;
+        }
+        ++checked;
+    }
+    std::printf("%s: largest |-ln T - k sigma d| %.4f over %d rows\n", GetParam(), worst, checked);
+    EXPECT_GT(checked, 45);
+}
+
+INSTANTIATE_TEST_SUITE_P(Shadows, SlabTransmittance, ::testing::Values("deepOpacity", "reference"));
+
+TEST(Shadows, MoreLayersMoveTowardTheReference) {
+    StageRenderRequest request{"examples/dense_clump.usda", "/World/main_cam", 96, 0.0,
+                               {"shadowMode=reference", "shadowMapResolution=256"}};
+    const Image reference = renderStage(request).result.color;
+    std::vector<double> errors;
+    for (const char* layers : {"3", "15"}) {
+        request.settings = {"shadowMapResolution=256", std::string("shadowLayers=") + layers};
+        errors.push_back(compareImages(renderStage(request).result.color, reference, exactWithin(1.0 / 255.0))
+                             .rootMeanSquare);
+    }
+    std::printf("RMSE against the reference: 3 layers %.5f, 15 layers %.5f\n", errors[0], errors[1]);
+    EXPECT_LT(errors[1], 0.7 * errors[0]) << "15 layers must be clearly closer to the reference than 3";
+}
+
+TEST(Shadows, MapsAreKeptWhenOnlyTheCameraMovesAndRebuiltWhenALightDoes) {
+    Diagnostics diagnostics;
+    Scene scene;
+    StageRenderRequest request{"examples/straight_strands.usda", "/World/main_cam", 96, 0.0, {}};
+    scene = readStage(request, diagnostics);
+    CameraView camera = stageCamera(scene, request, sharedRenderer(), diagnostics);
+    const std::vector<std::string> settings = {"shadowMapResolution=128"};
+    RenderResult first = render(scene, camera, settings);
+    EXPECT_EQ(first.stats.shadowMapsRebuilt, 2u);
+    EXPECT_TRUE(ranAShadowPass(first));
+
+    // The camera slides a little: both maps kept, no shadow pass runs.
+    camera.view = glm::translate(glm::dmat4(1.0), glm::dvec3(0.02, 0.0, 0.0)) * camera.view;
+    RenderResult moved = render(scene, camera, settings);
+    EXPECT_EQ(moved.stats.shadowMapsRebuilt, 0u);
+    EXPECT_EQ(moved.stats.shadowMapsKept, 2u);
+    EXPECT_FALSE(ranAShadowPass(moved));
+    EXPECT_NE(moved.stats.toJson()["plan"].dump().find("kept: light, hair, settings and tessellation unchanged"),
+              std::string::npos);
+
+    // An intensity edit changes no map; turning a light rebuilds its own.
+    std::string key;
+    for (const auto& [path, entry] : scene.lights())
+        if (entry.prim->type == LightType::Distant) key = path;
+    ASSERT_FALSE(key.empty());
+    LightPrim light = *scene.lights().at(key).prim;
+    light.intensity *= 2.0f;
+    scene.setLight(light);
+    EXPECT_EQ(render(scene, camera, settings).stats.shadowMapsRebuilt, 0u);
+    light.worldTransform = glm::rotate(glm::dmat4(1.0), 0.2, glm::dvec3(0, 1, 0)) * light.worldTransform;
+    scene.setLight(light);
+    RenderResult turned = render(scene, camera, settings);
+    EXPECT_EQ(turned.stats.shadowMapsRebuilt, 1u);
+    EXPECT_EQ(turned.stats.shadowMapsKept, 1u);
+    EXPECT_EQ(passNames(turned), (std::vector<std::string>{"prepareCurves", "upload", "sort", "shadowDepth " + key,
+                                                           "deepOpacity " + key, "clear", "strands", "readback"}));
+
+    // The kept maps shade exactly as freshly built ones.
+    Renderer fresh(gl::GlBackend::Egl);
+    RenderSettings renderSettings = RenderSettings::fromAssignments(Complexity::Low, settings);
+    ImageComparison comparison = compareImages(render(scene, camera, settings).color,
+                                               fresh.render(scene, camera, renderSettings, diagnostics).color,
+                                               exactWithin(1e-6));
+    EXPECT_TRUE(comparison.passed) << comparison.description;
+}
+
+TEST(Shadows, TheCameraLightsMapFollowsTheCamera) {
+    Scene scene = slabScene();
+    scene.remove("/light");  // no stage light: the camera light shines, and casts
+    CameraView camera = orthographicView(2.4, 48);
+    EXPECT_EQ(render(scene, camera, {"shadowMapResolution=64"}).stats.shadowMapsRebuilt, 1u);
+    EXPECT_EQ(render(scene, camera, {"shadowMapResolution=64"}).stats.shadowMapsKept, 1u);
+    camera.view = glm::rotate(glm::dmat4(1.0), 0.05, glm::dvec3(0, 1, 0)) * camera.view;
+    RenderResult moved = render(scene, camera, {"shadowMapResolution=64"});
+    EXPECT_EQ(moved.stats.shadowMapsRebuilt, 1u);
+    EXPECT_EQ(moved.stats.shadowMaps[0]["reason"], "rebuilt: the camera moved, and the camera light with it");
+}
+
+TEST(Shadows, AStageWithoutShadowCastingLightsBuildsNoShadowPasses) {
+    Scene scene = slabScene();
+    LightPrim light = *scene.lights().at("/light").prim;
+    light.shadowEnable = false;
+    scene.setLight(light);
+    const CameraView camera = orthographicView(2.4, 32);
+    RenderResult result = render(scene, camera, {});
+    EXPECT_EQ(result.stats.shadowMapsRebuilt + result.stats.shadowMapsKept, 0u);
+    for (const auto& pass : result.stats.toJson()["plan"]) {
+        const std::string name = pass["pass"];
+        EXPECT_TRUE(name.rfind("shadow", 0) != 0 && name.rfind("deepOpacity", 0) != 0) << name;
+    }
+    // Flat shading reads no light: the maps are planned but not built, and say why.
+    light.shadowEnable = true;
+    scene.setLight(light);
+    RenderResult flat = render(scene, camera, {"shadingModel=flat"});
+    EXPECT_FALSE(ranAShadowPass(flat));
+    EXPECT_NE(flat.stats.toJson()["plan"].dump().find("every prim is flat-shaded, so no pass reads lights or their "
+                                                      "shadows; not built: nothing reads its output"),
+              std::string::npos);
+}
+
+TEST(Shadows, KajiyaKayAndMarschnerAreShadowedAlike) {
+    const Scene scene = slabScene();
+    const CameraView camera = orthographicView(2.4, 64);
+    std::vector<double> transmittances;
+    for (const char* model : {"kajiyaKay", "marschner"}) {
+        const std::string setting = std::string("shadingModel=") + model;
+        const std::vector<double> on = rowSums(render(scene, camera, {setting, "shadowMapResolution=128"}).color);
+        const std::vector<double> off = rowSums(render(scene, camera, {setting, "shadowMode=off"}).color);
+        transmittances.push_back(on[48] / off[48]);  // y = -0.3: deep in the slab
+    }
+    EXPECT_LT(transmittances[0], 0.6);
+    EXPECT_NEAR(transmittances[0], transmittances[1], 1e-3);
+}
+
+TEST(Shadows, LightsBeyondTheFirstBatchKeepTheirMaps) {
+    Scene scene = slabScene();
+    for (int i = 1; i < 5; ++i)
+        scene.setLight(distantLightFrom({0.1 * i, 1.0, 0.05 * i}, "/light" + std::to_string(i), 0.5f));
+    const CameraView camera = orthographicView(2.4, 48);
+    const RenderResult split = render(scene, camera, {"lightsPerPass=4", "shadowMapResolution=64"});
+    EXPECT_EQ(split.stats.shadowMapsRebuilt, 5u);
+    EXPECT_EQ(split.stats.lightPasses, 2u);
+    const RenderResult together = render(scene, camera, {"lightsPerPass=16", "shadowMapResolution=64"});
+    EXPECT_EQ(together.stats.shadowMapsKept, 5u) << "batching does not change a map";
+    ImageComparison comparison = compareImages(split.color, together.color, exactWithin(1.0 / 255.0));
+    EXPECT_TRUE(comparison.passed) << comparison.description;
+}
+
+TEST(Shadows, HardCasesStayFiniteAndSayWhatTheyDid) {
+    const CameraView camera = orthographicView(2.4, 48);
+    auto renderChecked = [&](const Scene& scene, std::vector<std::string> settings, Diagnostics* diagnostics) {
+        settings.push_back("shadowMapResolution=64");
+        RenderResult result = render(scene, camera, settings, diagnostics);
+        EXPECT_TRUE(allFinite(result.color));
+        return result;
+    };
+    {
+        // All hair at one depth from the light: nothing is in front of anything.
+        Scene scene;
+        std::vector<glm::vec2> yz;
+        for (int i = 0; i < 40; ++i) yz.push_back({0.0f, -1.0f + 0.05f * float(i)});
+        scene.setCurves(strandsAlongX("/flat", yz, 0.02f, 0.8f));
+        scene.setLight(distantLightFrom({0.0, 1.0, 0.0}));
+        Diagnostics diagnostics;
+        const Image on = renderChecked(scene, {}, &diagnostics).color;
+        const Image off = renderChecked(scene, {"shadowMode=off"}, &diagnostics).color;
+        ImageComparison comparison = compareImages(on, off, exactWithin(1e-5));
+        EXPECT_TRUE(comparison.passed) << "one depth: " << comparison.description;
+        EXPECT_EQ(diagnostics.warningCount(), 0u);
+    }
+    {
+        // The light along the strands, and a single strand.
+        Scene scene;
+        scene.setCurves(strandsAlongX("/one", {{0.0f, 0.0f}}, 0.05f, 0.7f));
+        scene.setLight(distantLightFrom({1.0, 0.0, 0.0}));
+        Diagnostics diagnostics;
+        RenderResult result = renderChecked(scene, {}, &diagnostics);
+        EXPECT_EQ(result.stats.shadowMapsRebuilt, 1u);
+        EXPECT_GT(coverage(result.color), 0.0);
+        EXPECT_EQ(diagnostics.warningCount(), 0u);
+    }
+    {
+        // Zero opacity: nothing drawn, nothing cast.
+        Scene scene;
+        scene.setCurves(strandsAlongX("/ghost", {{0.0f, 0.0f}, {0.5f, 0.0f}}, 0.05f, 0.0f));
+        scene.setLight(distantLightFrom({0.0, 1.0, 0.0}));
+        Diagnostics diagnostics;
+        const Image image = renderChecked(scene, {}, &diagnostics).color;
+        EXPECT_EQ(*std::max_element(image.pixels.begin(), image.pixels.end()), 0.0f);
+    }
+    for (glm::dvec3 position : {glm::dvec3(0.0, 0.0, 0.0), glm::dvec3(0.95, 0.0, 0.0)}) {
+        // A sphere light inside, then touching, the hair's bounds: no map,
+        // a warning, and the light still shades unshadowed.
+        Scene scene = slabScene();
+        scene.remove("/light");
+        LightPrim bulb;
+        bulb.path = "/bulb";
+        bulb.type = LightType::Sphere;
+        bulb.intensity = 0.5f;
+        bulb.worldTransform = glm::translate(glm::dmat4(1.0), position);
+        scene.setLight(bulb);
+        Diagnostics diagnostics;
+        const RenderResult on = renderChecked(scene, {}, &diagnostics);
+        ASSERT_EQ(diagnostics.warningCount(), 1u);
+        EXPECT_EQ(diagnostics.warnings()[0].where, "/bulb");
+        EXPECT_NE(diagnostics.warnings()[0].message.find("inside or too close to the hair's bounds"), std::string::npos);
+        EXPECT_EQ(on.stats.shadowMapsRebuilt, 0u);
+        const RenderResult off = renderChecked(scene, {"shadowMode=off"}, &diagnostics);
+        ImageComparison comparison = compareImages(on.color, off.color, exactWithin(1e-6));
+        EXPECT_TRUE(comparison.passed) << comparison.description;
+    }
+}
