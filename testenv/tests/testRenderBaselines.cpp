@@ -64,13 +64,24 @@ BaselineTolerance strandEdges(size_t outliers) {
     return {{2.0 / 255.0, 0.0025, 0.25, outliers}, {1.0 / 255.0, 0.0025, 0.25, outliers}};
 }
 
+// Strands self-shadowed by the camera light: the shadow follows each sample
+// point along the strand, so the sub-pixel shift moves more shades a little.
+// Measured: 0.30 % (wavy strands) and 0.37 % (framing camera) of covered
+// pixels over 1/255 in linear values; allowed 0.55 %, half as much again,
+// below the weakest defect's 0.75 %.
+BaselineTolerance shadowedStrandEdges(size_t outliers) {
+    BaselineTolerance tolerance = strandEdges(outliers);
+    tolerance.linear.allowedShareOverThreshold = 0.0055;
+    return tolerance;
+}
+
 // Per stage (all time codes of a stage share it), with the outliers the
 // sub-pixel shift makes at the baseline width in brackets.
 const std::map<std::string, BaselineTolerance>& baselineTolerances() {
     static const std::map<std::string, BaselineTolerance> tolerances = {
         {"straight_strands", strandEdges(81)},  // (54) 40 strands tapering to 0.02 cm
-        {"wavy_strands", strandEdges(90)},      // (60) 60 strands, sub-pixel at their tips
-        {"framing_camera", strandEdges(75)},    // (50) the wavy strands through the framing camera
+        {"wavy_strands", shadowedStrandEdges(90)},    // (60) 60 strands, sub-pixel at their tips
+        {"framing_camera", shadowedStrandEdges(75)},  // (50) the wavy strands through the framing camera
         // 4,000 strands mostly under a pixel wide: the shift changes the
         // coverage of thousands of pixels a little rather than a few edges a
         // lot: 2.8 % of covered pixels move over 3/255 in the display image,
