@@ -8,9 +8,12 @@
 // nearest depth name the mesh where it is the nearest thing
 // (hdHair/render/NearestStrandRule.h).
 // Meshes are two-sided: no face is culled, and a face seen from the back is
-// lit as its back (the normal reversed).
+// lit as its back (the normal reversed). They receive the hair's shadows
+// (the deep opacity maps of the batch's lights), not their own.
 #include "include/lights.glsl"
 #include "include/meshGeometry.glsl"
+#include "include/shadowFragmentLists.glsl"
+#include "include/shadows.glsl"
 
 layout(location = 0) in vec3 worldPosition;
 layout(location = 1) in vec3 worldNormal;
@@ -36,6 +39,8 @@ void main() {
         for (int i = 0; i < lights.lightCount.x; ++i) {
             vec3 l;
             vec3 irradiance = lightIrradiance(i, worldPosition, l);
+            if (all(equal(irradiance, vec3(0.0)))) continue;  // unlit here: no shadow lookup
+            irradiance *= hairShadowTransmittance(i, worldPosition);
             radiance += irradiance * (max(dot(n, l), 0.0) * inversePi) * color;
         }
     } else {

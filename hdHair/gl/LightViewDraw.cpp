@@ -10,13 +10,17 @@ LightViewDraw::LightViewDraw()
       shadowBlock_(createBuffer(nullptr, sizeof(ShadowUniforms), GL_DYNAMIC_STORAGE_BIT)),
       order_(createBuffer(nullptr, sizeof(uint32_t))) {}
 
-void LightViewDraw::draw(const Program& program, const StrandGeometry& geometry,
-                         const std::vector<SegmentRange>& ranges, const FrameUniforms& lightView,
-                         const ShadowUniforms& light) {
+void LightViewDraw::bindBlocks(const FrameUniforms& lightView, const ShadowUniforms& light) {
     glNamedBufferSubData(frameBlock_.get(), 0, sizeof(lightView), &lightView);
     glNamedBufferSubData(shadowBlock_.get(), 0, sizeof(light), &light);
     glBindBufferBase(GL_UNIFORM_BUFFER, 0, frameBlock_.get());
     glBindBufferBase(GL_UNIFORM_BUFFER, 2, shadowBlock_.get());
+}
+
+void LightViewDraw::draw(const Program& program, const StrandGeometry& geometry,
+                         const std::vector<SegmentRange>& ranges, const FrameUniforms& lightView,
+                         const ShadowUniforms& light) {
+    bindBlocks(lightView, light);
     geometry.bind();
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, order_.get());  // declared, unread (orderedDraw is 0)
     glBindVertexArray(emptyVertexArray_.get());

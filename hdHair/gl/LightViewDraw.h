@@ -19,8 +19,10 @@ class LightViewDraw {
 public:
     LightViewDraw();
 
-    // Binds the blocks (frame at 0, shadows at 2), the geometry and
-    // `program`, and draws `ranges` unordered.
+    // Binds the blocks (frame at 0, shadows at 2).
+    void bindBlocks(const FrameUniforms& lightView, const ShadowUniforms& light);
+    // Binds the blocks, the geometry and `program`, and draws `ranges`
+    // unordered.
     void draw(const Program& program, const StrandGeometry& geometry, const std::vector<SegmentRange>& ranges,
               const FrameUniforms& lightView, const ShadowUniforms& light);
 

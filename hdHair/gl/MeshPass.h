@@ -2,8 +2,8 @@
 // Draws meshes (MeshGeometry) as opaque triangles from any view-projection:
 // depth tested (LESS) and written, no face culled. Shaded, they write colour
 // (Lambert under the bound light block, or displayColor unlit), the ids and
-// the nearest depth, as the frame's other opaque geometry would; depth only,
-// they write nothing but depth, for a depth map seen from a light.
+// the nearest depth, as the frame's other opaque geometry would; seen from a
+// light, they write the nearest mesh's linear depth (ShadowMapPass).
 
 #include <cstddef>
 #include <vector>
@@ -28,7 +28,7 @@ struct MeshDraw {
 enum class MeshShading {
     Lit,       // Lambert under the light block at binding 1 (StrandPass::setUniforms)
     Unlit,     // displayColor, in the first light batch only (LightUniforms::lightCount.y == 0)
-    DepthOnly  // depth alone: no colour, id or nearest-depth writes
+    LightDepth  // linear depth in the light view of the bound shadow uniforms' entry 0, min-blended
 };
 
 class MeshPass {
@@ -36,12 +36,13 @@ public:
     MeshPass();  // compiles the programs; throws on driver errors
 
     // Draws into the bound framebuffer. Shaded draws need the light block
-    // bound (binding 1), also when unlit (the batch number).
+    // bound (binding 1), also when unlit (the batch number), and the shadow
+    // block (binding 2) with its maps; LightDepth draws the shadow block.
     void draw(const MeshGeometry& geometry, const std::vector<MeshDraw>& draws, const glm::mat4& viewProjection,
               MeshShading shading);
 
 private:
-    Program shaded_, depthOnly_;
+    Program shaded_, lightDepth_;
     VertexArray emptyVertexArray_;  // core profile draws need one bound
 };
 

@@ -35,4 +35,13 @@ void ShadowMapPass::renderOpacity(ShadowMapStorage& storage, const StrandGeometr
     checkGlError("drawing deep opacity layers");
 }
 
+void ShadowMapPass::renderMeshDepth(ShadowMapStorage& storage, MeshPass& meshPass, const MeshGeometry& meshes,
+                                    const std::vector<MeshDraw>& draws, const FrameUniforms& lightView,
+                                    const ShadowUniforms& light) {
+    storage.bindMeshDepthTarget(int(light.lightMap[0].x));
+    draw_.bindBlocks(lightView, light);
+    meshPass.draw(meshes, draws, lightView.viewProjection, MeshShading::LightDepth);
+    checkGlError("drawing a mesh shadow depth map");
+}
+
 }  // namespace hdhair::gl

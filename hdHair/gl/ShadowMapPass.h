@@ -4,12 +4,16 @@
 // nearest hair per texel (shadowDepth.frag, min-blended linear depth), then
 // every fragment's alpha added into the layers behind it (deepOpacity.frag,
 // additive blending into up to 8 RGBA16F draw buffers). Both passes draw the
-// strands the camera draws, through the light's view (LightViewDraw).
+// strands the camera draws, through the light's view (LightViewDraw). Meshes
+// add a third: the nearest mesh per texel (meshShadowDepth.frag), the opaque
+// occluders strands test against.
 
 #include <vector>
 
 #include "hdHair/gl/GlObjects.h"
 #include "hdHair/gl/LightViewDraw.h"
+#include "hdHair/gl/MeshGeometry.h"
+#include "hdHair/gl/MeshPass.h"
 #include "hdHair/gl/SegmentRange.h"
 #include "hdHair/gl/ShadowMapStorage.h"
 #include "hdHair/gl/StrandGeometry.h"
@@ -27,6 +31,9 @@ public:
     void renderOpacity(ShadowMapStorage& storage, const StrandGeometry& geometry,
                        const std::vector<SegmentRange>& ranges, const FrameUniforms& lightView,
                        const ShadowUniforms& light);
+    void renderMeshDepth(ShadowMapStorage& storage, MeshPass& meshPass, const MeshGeometry& meshes,
+                         const std::vector<MeshDraw>& draws, const FrameUniforms& lightView,
+                         const ShadowUniforms& light);
 
 private:
     Program depthProgram_, opacityProgram_;

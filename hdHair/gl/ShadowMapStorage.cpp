@@ -38,12 +38,17 @@ void ShadowMapStorage::ensure(int resolution, int layerTargets, int slots) {
 void ShadowMapStorage::allocate() {
     depths_ = arrayTexture(GL_R32F, resolution_, slots_);
     opacity_ = arrayTexture(GL_RGBA16F, resolution_, slots_ * targets_);
+    meshDepths_ = arrayTexture(GL_R32F, resolution_, slots_);
     checkGlError("allocating shadow maps");
 }
 
-void ShadowMapStorage::bindDepthTarget(int slot) {
+void ShadowMapStorage::bindDepthTarget(int slot) { bindNearestDepthTarget(depths_, slot); }
+
+void ShadowMapStorage::bindMeshDepthTarget(int slot) { bindNearestDepthTarget(meshDepths_, slot); }
+
+void ShadowMapStorage::bindNearestDepthTarget(const Texture& depths, int slot) {
     for (int i = 1; i < 8; ++i) glNamedFramebufferTexture(framebuffer_.get(), GLenum(GL_COLOR_ATTACHMENT0 + i), 0, 0);
-    glNamedFramebufferTextureLayer(framebuffer_.get(), GL_COLOR_ATTACHMENT0, depths_.get(), 0, slot);
+    glNamedFramebufferTextureLayer(framebuffer_.get(), GL_COLOR_ATTACHMENT0, depths.get(), 0, slot);
     glNamedFramebufferDrawBuffer(framebuffer_.get(), GL_COLOR_ATTACHMENT0);
     glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_.get());
     glViewport(0, 0, resolution_, resolution_);
@@ -75,6 +80,7 @@ void ShadowMapStorage::bindOpacityTargets(int slot) {
 void ShadowMapStorage::bindForLookup() const {
     glBindTextureUnit(2, depths_.get());
     glBindTextureUnit(3, opacity_.get());
+    glBindTextureUnit(4, meshDepths_.get());
 }
 
 }  // namespace hdhair::gl

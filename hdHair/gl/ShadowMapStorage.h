@@ -1,11 +1,11 @@
 #pragma once
 // Where every light's deep opacity map lives: one slot per shadow-casting
-// light (hdHair/render/ShadowMapCache.h assigns them), in two 2D array
-// textures, so that the lookup needs two texture units however many lights a
-// pass shades (16 at most, kMaxLightsPerPass): the nearest hair's linear depth
-// (R32F, one layer a slot) and the opacity layers (RGBA16F, 16-bit floats as
-// in the thesis, section 2.7.2: 4 layers a texel, ceil(layers / 4) array
-// layers a slot). Maps are kept between frames; changing the resolution, the
+// light (hdHair/render/ShadowMapCache.h assigns them), in three 2D array
+// textures, so that the lookup needs three texture units however many lights
+// a pass shades (16 at most, kMaxLightsPerPass): the nearest hair's linear
+// depth (R32F, one layer a slot), the opacity layers (RGBA16F, 16-bit floats
+// as in the thesis, section 2.7.2: 4 layers a texel, ceil(layers / 4) array
+// layers a slot) and the nearest mesh's linear depth (R32F, one layer a slot). Maps are kept between frames; changing the resolution, the
 // layer count or the number of slots reallocates, which loses them (the
 // cache rebuilds them all then).
 //
@@ -29,19 +29,25 @@ public:
     // to "no hair" (HDHAIR_NO_HAIR in shaders/include/shadows.glsl), with the
     // viewport set.
     void bindDepthTarget(int slot);
+    // The same for slot `slot`'s nearest mesh depth.
+    void bindMeshDepthTarget(int slot);
     // Binds slot `slot`'s opacity layers as draw buffers 0..targets-1,
     // cleared to 0, with the viewport set.
     void bindOpacityTargets(int slot);
-    // The depth array at texture unit 2 and the opacity array at unit 3
-    // (shadowDepths and shadowOpacity in shadows.glsl).
+    // The depth array at texture unit 2, the opacity array at unit 3 and the
+    // mesh depth array at unit 4 (shadowDepths, shadowOpacity and
+    // shadowMeshDepths in shaders/include/shadows.glsl).
     void bindForLookup() const;
 
     int resolution() const { return resolution_; }
 
 private:
     void allocate();
+    // Binds layer `slot` of `depths` as the only draw buffer, cleared to
+    // "nothing here".
+    void bindNearestDepthTarget(const Texture& depths, int slot);
 
-    Texture depths_, opacity_;
+    Texture depths_, opacity_, meshDepths_;
     Framebuffer framebuffer_;
     int resolution_ = 0, targets_ = 0, slots_ = 0;
 };

@@ -64,8 +64,11 @@ struct ShadowUniforms {
     // (0 nearest, 1 bilinear); w: the maps' resolution.
     glm::ivec4 mode{0};
     glm::vec4 extinction{1.0f, 0.0f, 0.0f, 0.0f};  // x: k of T = exp(-k opacity)
+    // x: 1 when meshes cast shadows: every slot's mesh depth (the nearest
+    // mesh in the light's view) is current and hides the strands behind it.
+    glm::ivec4 occluders{0};
 };
-static_assert(sizeof(ShadowUniforms) == 64 * kMaxLightsPerPass + 48 * kMaxLightsPerPass + 16 * 8 + 32,
+static_assert(sizeof(ShadowUniforms) == 64 * kMaxLightsPerPass + 48 * kMaxLightsPerPass + 16 * 8 + 48,
               "std140 layout of ShadowUniforms");
 constexpr int kShadowModeOff = 0, kShadowModeDeepOpacity = 1, kShadowModeReference = 2;
 

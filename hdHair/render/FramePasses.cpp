@@ -195,6 +195,16 @@ void deepOpacity(FrameContext& context, size_t shadow) {
                                           lightShadowUniforms(context.plan, shadow));
 }
 
+// "meshShadow L": the nearest mesh in light L's view.
+void meshShadow(FrameContext& context, size_t shadow) {
+    prepareShadowMaps(context);
+    FrameResources& resources = context.resources;
+    resources.shadowMapPass.renderMeshDepth(resources.shadowMaps, resources.meshPass, resources.meshes,
+                                            context.inputs.meshes.draws,
+                                            lightViewFrameUniforms(context.plan, shadow, context.inputs.frame),
+                                            lightShadowUniforms(context.plan, shadow));
+}
+
 // "shadowFragments L": every fragment of light L's view (shadowMode=reference).
 void shadowFragments(FrameContext& context, size_t shadow) {
     FrameResources& resources = context.resources;
@@ -256,6 +266,7 @@ void runFramePass(const FramePass& pass, FrameContext& context) {
     if (name.rfind("lightBatch ", 0) == 0) return lightBatch(context, std::stoul(name.substr(11)) - 1);
     if (name.rfind("shadowDepth ", 0) == 0) return shadowDepth(context, shadowNamed(context.plan, name.substr(12)));
     if (name.rfind("deepOpacity ", 0) == 0) return deepOpacity(context, shadowNamed(context.plan, name.substr(12)));
+    if (name.rfind("meshShadow ", 0) == 0) return meshShadow(context, shadowNamed(context.plan, name.substr(11)));
     if (name.rfind("shadowFragments ", 0) == 0)
         return shadowFragments(context, shadowNamed(context.plan, name.substr(16)));
     if (name == "readback") return readback(context);

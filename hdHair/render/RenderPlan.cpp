@@ -87,7 +87,7 @@ std::vector<FrameResource> strandReads(TransparencyPath path, std::vector<FrameR
 
 // The shadow settings, and a planned shadow for every light that casts one
 // (its view fitted to the casters, or why it cannot be).
-void planShadows(RenderPlan& plan, const RenderSettings& settings, const StrandSummary& strands) {
+void planShadows(RenderPlan& plan, const RenderSettings& settings, const StrandSummary& strands, bool anyMeshes) {
     ShadowPlan& shadows = plan.shadows;
     const std::string mode = settings.getToken("shadowMode");
     shadows.mode = mode == "reference" ? ShadowMode::Reference : mode == "off" ? ShadowMode::Off
@@ -100,6 +100,7 @@ void planShadows(RenderPlan& plan, const RenderSettings& settings, const StrandS
     shadows.bilinear = settings.getToken("shadowFilter") == "bilinear";
     shadows.resolution = settings.getInt("shadowMapResolution");
     shadows.minPixelWidth = settings.getFloat("minPixelWidth");
+    shadows.meshesCast = anyMeshes && shadows.mode != ShadowMode::Off;
     for (size_t i = 0; i < plan.lights.lights.size(); ++i) {
         const ShadingLight& light = plan.lights.lights[i];
         if (!light.castsShadow) continue;
@@ -132,16 +133,20 @@ void addShadowPasses(FrameGraph& graph, const RenderPlan& plan, const PlannedSha
     if (shadows.mode == ShadowMode::Reference) {
         graph.add(FramePass{"shadowFragments " + key, {"strands"}, {"shadowFragments " + key}, wanted,
                             why + (wanted ? ": every fragment kept per texel, the reference (slow)" : "") + flat});
-        return;
+    } else {
+        graph.add(FramePass{"shadowDepth " + key, {"strands"}, {"hairDepth " + key}, wanted,
+                            why + (wanted ? ": the nearest hair per texel" : "") + flat});
+        graph.add(FramePass{"deepOpacity " + key, {"strands", "hairDepth " + key}, {"deepOpacity " + key}, wanted,
+                            (wanted ? why + fmt::format(": {} opacity layers behind it, the last {} of the hair's "
+                                                        "depth along the light",
+                                                        shadows.layers, shadows.layerDepth)
+                                    : why) +
+                                flat});
     }
-    graph.add(FramePass{"shadowDepth " + key, {"strands"}, {"hairDepth " + key}, wanted,
-                        why + (wanted ? ": the nearest hair per texel" : "") + flat});
-    graph.add(FramePass{"deepOpacity " + key, {"strands", "hairDepth " + key}, {"deepOpacity " + key}, wanted,
-                        (wanted ? why + fmt::format(": {} opacity layers behind it, the last {} of the hair's depth "
-                                                    "along the light",
-                                                    shadows.layers, shadows.layerDepth)
-                                : why) +
-                            flat});
+    if (shadows.meshesCast)
+        graph.add(FramePass{"meshShadow " + key, {"meshGeometry"}, {shadows.meshResourceOf(shadow)}, wanted,
+                            why + (wanted ? ": the nearest mesh per texel, opaque: the hair behind it is unlit" : "") +
+                                flat});
 }
 
 // The shadow maps light batch `batch` reads: those of its lights that have one.
@@ -150,8 +155,9 @@ std::vector<FrameResource> batchShadowReads(const RenderPlan& plan, size_t batch
     if (plan.shadows.mode == ShadowMode::Off) return reads;
     for (size_t light = plan.lightBatches[batch].first; light < plan.lightBatches[batch].second; ++light) {
         int shadow = plan.shadows.shadowOf(light);
-        if (shadow >= 0 && plan.shadows.lights[size_t(shadow)].view.valid)
-            reads.push_back(plan.shadows.resourceOf(plan.shadows.lights[size_t(shadow)]));
+        if (shadow < 0 || !plan.shadows.lights[size_t(shadow)].view.valid) continue;
+        reads.push_back(plan.shadows.resourceOf(plan.shadows.lights[size_t(shadow)]));
+        if (plan.shadows.meshesCast) reads.push_back(plan.shadows.meshResourceOf(plan.shadows.lights[size_t(shadow)]));
     }
     return reads;
 }
@@ -163,7 +169,7 @@ void RenderPlan::setShadowMap(size_t shadow, int slot, bool rebuild, const std::
     planned.slot = slot;
     planned.rebuild = rebuild;
     planned.reason = reason;
-    for (const char* kind : {"shadowDepth ", "deepOpacity ", "shadowFragments "}) {
+    for (const char* kind : {"shadowDepth ", "deepOpacity ", "shadowFragments ", "meshShadow "}) {
         FramePass* pass = graph.find(kind + planned.key);
         if (!pass || !pass->wanted) continue;
         if (rebuild) {
@@ -173,7 +179,10 @@ void RenderPlan::setShadowMap(size_t shadow, int slot, bool rebuild, const std::
             pass->reason = reason;
         }
     }
-    if (!rebuild) graph.input(shadows.resourceOf(planned));
+    if (!rebuild) {
+        graph.input(shadows.resourceOf(planned));
+        if (shadows.meshesCast) graph.input(shadows.meshResourceOf(planned));
+    }
     graph.compile();
 }
 
@@ -250,7 +259,7 @@ RenderPlan makeRenderPlan(const Scene& scene, const RenderSettings& settings, co
         }
     }
 
-    planShadows(plan, settings, strands);
+    planShadows(plan, settings, strands, anyMeshes);
 
     // Transparency: what was asked for, unless the stage does not need it.
     std::string requested = settings.getToken("transparency");

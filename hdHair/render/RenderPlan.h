@@ -68,6 +68,10 @@ struct ShadowPlan {
     // The resource light `shadow` gives the strand passes ("deepOpacity L",
     // "shadowFragments L").
     std::string resourceOf(const PlannedShadow& shadow) const;
+    // Meshes are drawn, so every map has their depth too ("meshDepth L",
+    // the opaque occluders strands test against).
+    bool meshesCast = false;
+    std::string meshResourceOf(const PlannedShadow& shadow) const { return "meshDepth " + shadow.key; }
     // Index into `lights` of light `light`'s shadow, or -1.
     int shadowOf(size_t light) const;
 };
@@ -87,6 +91,7 @@ struct MeshSummary {
 //   shadowDepth L      strands -> hairDepth L       per shadow-casting light L: its nearest hair
 //   deepOpacity L      strands, hairDepth L -> deepOpacity L   its opacity layers
 //   shadowFragments L  strands -> shadowFragments L  shadowMode=reference instead: every fragment
+//   meshShadow L       meshGeometry -> meshDepth L  with meshes: the nearest mesh, which hides the hair behind it
 //                 (a map kept from an earlier frame is an input of the graph instead)
 //   clear         -> color, depth[, ids]            the frame's targets, empty
 //   meshes        meshGeometry, color, depth[, ids] -> color, depth[, ids]   opaque, lights of batch 1

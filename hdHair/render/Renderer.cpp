@@ -386,6 +386,8 @@ RenderResult Renderer::render(const Scene& scene, const CameraView& camera, cons
 
     MeshSummary meshSummary;
     inputs.meshes = meshUpload(scene, meshSummary);
+    // Meshes occlude the lights too: a changed mesh changes every shadow.
+    if (inputs.meshes.changed) ++castersVersion_;
     result.plan =
         makeRenderPlan(scene, settings, camera, summary, outputs.ids, meshSummary, outputs.gpuDisplay != nullptr);
     RenderPlan& plan = result.plan;

@@ -22,12 +22,16 @@ layout(std140, binding = 2) uniform ShadowUniforms {
     vec4 layerBoundaries[8];  // d_k / d_K for layers k = 1..32, 4 a vec4
     ivec4 mode;               // x: HDHAIR_SHADOW_*, y: layers, z: 0 nearest, 1 bilinear; w: resolution
     vec4 extinction;          // x: k of T = exp(-k opacity)
+    ivec4 occluders;          // x: 1 when shadowMeshDepths holds the meshes of every slot
 } shadows;
 
 // Per light slot: the nearest hair's linear depth, and the layers, 4 a texel
 // of RGBA16F, ceil(layers / 4) array layers a slot.
 layout(binding = 2) uniform sampler2DArray shadowDepths;
 layout(binding = 3) uniform sampler2DArray shadowOpacity;
+// Per light slot: the nearest mesh's linear depth (R32F; HDHAIR_NO_HAIR
+// where there is none). Meshes are opaque: what lies behind gets no light.
+layout(binding = 4) uniform sampler2DArray shadowMeshDepths;
 
 // Linear depth in light i's view: world units along its viewing direction.
 float shadowLinearDepth(int i, vec3 position) {
@@ -76,34 +80,46 @@ float referenceOpacityAt(int i, ivec2 texel, float z) {
     return opacity;
 }
 
-float shadowTransmittanceAt(int i, ivec2 texel, float z) {
+// `meshesOcclude`: whether the meshes' depth counts too (strands); meshes
+// themselves receive only the hair's shadow (a mesh would shadow itself).
+float shadowTransmittanceAt(int i, ivec2 texel, float z, bool meshesOcclude) {
     if (any(lessThan(texel, ivec2(0))) || any(greaterThanEqual(texel, ivec2(shadows.mode.w)))) return 1.0;
+    if (meshesOcclude && shadows.occluders.x != 0 &&
+        z > texelFetch(shadowMeshDepths, ivec3(texel, shadowSlot(i)), 0).r)
+        return 0.0;
     float opacity = shadows.mode.x == HDHAIR_SHADOW_REFERENCE ? referenceOpacityAt(i, texel, z)
                                                               : deepOpacityAt(i, texel, z);
     return exp(-shadows.extinction.x * opacity);
 }
 
-// The fraction of light i that reaches `centre`, a point on a strand's
-// centre line. Bias: one texel's world size, so that where the camera's
-// tessellation and the light's rasterisation of the same strand disagree by
-// less than a texel the strand does not shadow itself.
-float shadowTransmittance(int i, vec3 centre) {
+// The fraction of light i that reaches `point`: a point on a strand's
+// centre line (`meshesOcclude` true) or on a mesh (false). Bias: one texel's
+// world size, so that where the camera's tessellation and the light's
+// rasterisation of the same strand disagree by less than a texel the strand
+// does not shadow itself.
+float shadowTransmittanceFrom(int i, vec3 point, bool meshesOcclude) {
     if (shadows.mode.x == HDHAIR_SHADOW_OFF || shadows.lightMap[i].x < 0.0) return 1.0;
-    vec4 clip = shadows.lightViewProjection[i] * vec4(centre, 1.0);
+    vec4 clip = shadows.lightViewProjection[i] * vec4(point, 1.0);
     if (clip.w <= 0.0) return 1.0;  // behind a perspective light's eye: outside its view
     vec2 position = (clip.xy / clip.w * 0.5 + 0.5) * float(shadows.mode.w);
-    float z = shadowLinearDepth(i, centre);
+    float z = shadowLinearDepth(i, point);
     z -= shadows.lightMap[i].z * (shadows.lightMap[i].w > 0.5 ? z : 1.0);
-    if (shadows.mode.z == 0) return shadowTransmittanceAt(i, ivec2(floor(position)), z);
+    if (shadows.mode.z == 0) return shadowTransmittanceAt(i, ivec2(floor(position)), z, meshesOcclude);
     // Bilinear: the four nearest texels' transmittances, each against its
     // own nearest hair (z0-relative values cannot be filtered by the
     // hardware: thesis section 1.5.4), weighted by distance.
     vec2 corner = position - 0.5;
     ivec2 base = ivec2(floor(corner));
     vec2 w = corner - vec2(base);
-    float t00 = shadowTransmittanceAt(i, base, z);
-    float t10 = shadowTransmittanceAt(i, base + ivec2(1, 0), z);
-    float t01 = shadowTransmittanceAt(i, base + ivec2(0, 1), z);
-    float t11 = shadowTransmittanceAt(i, base + ivec2(1, 1), z);
+    float t00 = shadowTransmittanceAt(i, base, z, meshesOcclude);
+    float t10 = shadowTransmittanceAt(i, base + ivec2(1, 0), z, meshesOcclude);
+    float t01 = shadowTransmittanceAt(i, base + ivec2(0, 1), z, meshesOcclude);
+    float t11 = shadowTransmittanceAt(i, base + ivec2(1, 1), z, meshesOcclude);
     return mix(mix(t00, t10, w.x), mix(t01, t11, w.x), w.y);
 }
+
+// What reaches a strand: through the hair and past the meshes.
+float shadowTransmittance(int i, vec3 centre) { return shadowTransmittanceFrom(i, centre, true); }
+
+// What reaches a mesh: through the hair.
+float hairShadowTransmittance(int i, vec3 point) { return shadowTransmittanceFrom(i, point, false); }

@@ -78,6 +78,7 @@ const std::vector<Block>& blocks() {
              {"layerBoundaries[0]", offsetof(ShadowUniforms, layerBoundaries), kVec4, kMaxShadowLayerVectors},
              {"mode", offsetof(ShadowUniforms, mode)},
              {"extinction", offsetof(ShadowUniforms, extinction)},
+             {"occluders", offsetof(ShadowUniforms, occluders)},
          }},
         // An unsized array of HairMaterial: each element laid out as GpuHairMaterial.
         {GL_SHADER_STORAGE_BLOCK, GL_BUFFER_VARIABLE, "HairMaterials", "materials[0].", sizeof(GpuHairMaterial), true,

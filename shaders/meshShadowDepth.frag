@@ -1,0 +1,16 @@
+#version 450 core
+#extension GL_GOOGLE_include_directive : require
+// The nearest mesh per texel of a light's view, as linear depth (world units
+// along the light's viewing direction), min-blended into an R32F layer
+// cleared to HDHAIR_NO_HAIR: the opaque occluders the strands test against
+// (shadows.glsl). The meshes come through mesh.vert with the light's
+// view-projection; the light is entry 0 of the shadow uniforms.
+#include "include/lights.glsl"
+#include "include/shadowFragmentLists.glsl"
+#include "include/shadows.glsl"
+
+layout(location = 0) in vec3 worldPosition;
+
+layout(location = 0) out float outDepth;
+
+void main() { outDepth = shadowLinearDepth(0, worldPosition); }
