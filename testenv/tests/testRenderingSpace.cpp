@@ -157,7 +157,7 @@ TEST(RenderingSpace, AGreyStageRendersTheSameGreyInEitherSpace) {
     EXPECT_GT(comparison.coveredPixels, 500u);
 }
 
-TEST(RenderingSpace, DisplayImagesThroughEveryShippedViewAgreeEitherWay) {
+TEST(RenderingSpace, DisplayImagesThroughTheSrgbAndAcesViewsAgreeEitherWay) {
     // A coloured groom under the (white) camera light: each render shown
     // from its own rendering space gives the same display image.
     StageRenderRequest request;
@@ -166,7 +166,9 @@ TEST(RenderingSpace, DisplayImagesThroughEveryShippedViewAgreeEitherWay) {
     const Image rec709 = renderStage(request).result.color;
     request.settings = {"renderingSpace=ACEScg"};
     const Image acescg = renderStage(request).result.color;
-    for (const char* view : {"sRGB", "ACES 1.0 SDR-video", "Raw"}) {
+    // (The Raw view shows values as they are, from whichever space: it is
+    // the one view under which the two renders differ, by design.)
+    for (const char* view : {"sRGB", "ACES 1.0 SDR-video"}) {
         DisplayTransformOptions options;
         options.mode = ColorCorrectionMode::OpenColorIO;
         options.config = HDHAIR_OCIO_CONFIG;
