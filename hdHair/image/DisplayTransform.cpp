@@ -23,13 +23,6 @@ struct DisplayTransform::Ocio {
 
 namespace {
 
-// ACES AP1 to linear Rec.709 with Bradford adaptation of the white (D60 to
-// D65), as OCIO's built-in "UTILITY - ACES-AP1_to_LINEAR-REC709_BFD" (the
-// tests check the two agree).
-constexpr float kAp1ToRec709[3][3] = {{1.70505099f, -0.62179212f, -0.08325887f},
-                                      {-0.13025642f, 1.14080474f, -0.01054832f},
-                                      {-0.02400336f, -0.12896898f, 1.15297233f}};
-
 // The sRGB encoding (IEC 61966-2-1): linear segment below 0.0031308.
 float srgbEncode(float linear) {
     return linear <= 0.0031308f ? 12.92f * linear : 1.055f * std::pow(linear, 1.0f / 2.4f) - 0.055f;
@@ -176,8 +169,8 @@ void DisplayTransform::apply(float* rgba, size_t pixels) const {
             float* c = rgba + 4 * p;
             if (fromAcesCg_) {
                 const float r = c[0], g = c[1], b = c[2];
-                for (int row = 0; row < 3; ++row)
-                    c[row] = kAp1ToRec709[row][0] * r + kAp1ToRec709[row][1] * g + kAp1ToRec709[row][2] * b;
+                for (size_t row = 0; row < 3; ++row)
+                    c[row] = float(kAp1ToRec709[row][0] * r + kAp1ToRec709[row][1] * g + kAp1ToRec709[row][2] * b);
             }
             for (int channel = 0; channel < 3; ++channel) c[channel] = srgbEncode(c[channel]);
         }

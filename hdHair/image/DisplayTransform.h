@@ -16,6 +16,7 @@
 
 #include <nlohmann/json_fwd.hpp>
 
+#include "hdHair/image/ColorSpaces.h"
 #include "hdHair/image/DisplayShader.h"
 
 namespace hdhair {
@@ -23,11 +24,6 @@ namespace hdhair {
 enum class ColorCorrectionMode { Disabled, SRGB, OpenColorIO };
 bool parseColorCorrectionMode(const std::string& text, ColorCorrectionMode* out);
 const char* toString(ColorCorrectionMode mode);
-
-// The rendering spaces (the renderingSpace setting): linear Rec.709 and
-// ACEScg, named as hdHair's OCIO config names them.
-constexpr const char* kLinearRec709 = "lin_rec709";
-constexpr const char* kAcesCg = "ACEScg";
 
 struct DisplayTransformOptions {
     ColorCorrectionMode mode = ColorCorrectionMode::SRGB;

@@ -88,4 +88,28 @@ ImageComparison compareImages(const Image& actual, const Image& expected, const 
     return result;
 }
 
+Image differenceImage(const Image& actual, const Image& expected, const CoveredPixelTolerance& tolerance, float gain) {
+    Image difference(actual.width, actual.height, 4);
+    if (actual.width != expected.width || actual.height != expected.height || actual.channels != expected.channels)
+        return difference;
+    const size_t channels = size_t(actual.channels);
+    const size_t pixels = size_t(actual.width) * size_t(actual.height);
+    for (size_t p = 0; p < pixels; ++p) {
+        float largest = 0.0f;
+        const bool anyCovered = covered(actual, p) || covered(expected, p);
+        for (size_t c = 0; anyCovered && c < channels; ++c) {
+            const float d = std::fabs(actual.pixels[p * channels + c] - expected.pixels[p * channels + c]);
+            largest = std::isnan(d) ? INFINITY : std::max(largest, d);
+        }
+        float* out = difference.pixels.data() + 4 * p;
+        const float grey = std::min(1.0f, largest * gain);
+        const bool outlier = double(largest) > tolerance.outlierLimit;
+        out[0] = outlier ? 1.0f : grey;
+        out[1] = outlier ? 0.0f : grey;
+        out[2] = outlier ? 0.0f : grey;
+        out[3] = 1.0f;
+    }
+    return difference;
+}
+
 }  // namespace hdhair

@@ -56,4 +56,11 @@ struct ImageComparison {
 
 ImageComparison compareImages(const Image& actual, const Image& expected, const CoveredPixelTolerance& tolerance);
 
+// An image to look at beside a failed comparison: each pixel's largest
+// channel difference |actual - expected| times `gain`, as opaque grey,
+// red where it is over the tolerance's outlier limit, so that moved edges
+// and changed shades are told apart at a glance. Sizes must match.
+Image differenceImage(const Image& actual, const Image& expected, const CoveredPixelTolerance& tolerance,
+                      float gain = 10.0f);
+
 }  // namespace hdhair

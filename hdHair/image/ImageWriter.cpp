@@ -3,6 +3,7 @@
 #include "hdHair/base/AtomicFile.h"
 
 #include <algorithm>
+#include <array>
 #include <cctype>
 #include <filesystem>
 #include <stdexcept>
@@ -33,13 +34,6 @@ OIIO::ImageBuf toImageBuf(const Image& image) {
     OIIO::ImageBuf buffer(spec);
     buffer.set_pixels(OIIO::ROI::All(), OIIO::TypeDesc::FLOAT, image.pixels.data());
     return buffer;
-}
-
-// The chromaticities (red, green, blue, white xy) EXR files record for the
-// rendering spaces.
-std::vector<float> chromaticitiesOf(const std::string& colorSpace) {
-    if (colorSpace == kAcesCg) return {0.713f, 0.293f, 0.165f, 0.830f, 0.128f, 0.044f, 0.32168f, 0.33767f};
-    return {0.64f, 0.33f, 0.30f, 0.60f, 0.15f, 0.06f, 0.3127f, 0.3290f};  // Rec.709, D65
 }
 
 }  // namespace
@@ -87,8 +81,8 @@ void writeImage(const Image& image, const std::string& path, const ImageColor& c
         out.specmod().attribute("compression", "zip");
         // The colour space's name (as hdHair's OCIO config names it) and,
         // in EXR's standard attribute, its primaries and white.
-        out.specmod().attribute("colorSpace", color.colorSpace);
-        const std::vector<float> chromaticities = chromaticitiesOf(color.colorSpace);
+        out.specmod().attribute("colorSpace", toString(color.space));
+        const std::array<float, 8> chromaticities = chromaticitiesOf(color.space);
         out.specmod().attribute("chromaticities", OIIO::TypeDesc(OIIO::TypeDesc::FLOAT, 8), chromaticities.data());
     } else {
         const bool overBlack = kind == FileKind::Jpeg;
@@ -97,7 +91,7 @@ void writeImage(const Image& image, const std::string& path, const ImageColor& c
             shown = *color.displayed;
         } else {
             const DisplayTransform srgb = DisplayTransform::create({ColorCorrectionMode::SRGB, "", "", "", "", "",
-                                                                    color.colorSpace});
+                                                                    toString(color.space)});
             shown = displayImage(image, color.display ? *color.display : srgb, overBlack);
         }
         out = toImageBuf(shown);

@@ -15,13 +15,14 @@
 
 #include <string>
 
+#include "hdHair/image/ColorSpaces.h"
 #include "hdHair/image/DisplayTransform.h"
 #include "hdHair/image/Image.h"
 
 namespace hdhair {
 
 struct ImageColor {
-    std::string colorSpace = kLinearRec709;     // the linear image's space (lin_rec709 or ACEScg)
+    RenderingSpace space = RenderingSpace::LinearRec709;  // the linear image's space
     const DisplayTransform* display = nullptr;  // for display formats; nullptr: sRGB
     // The display image, when it was made elsewhere (the GPU path): used as
     // it is instead of applying `display`.

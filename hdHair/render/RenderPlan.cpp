@@ -258,6 +258,11 @@ RenderPlan makeRenderPlan(const Scene& scene, const RenderSettings& settings, co
             plan.lights.lights.push_back(hdhair::cameraLight(towardsCamera));
         }
     }
+    // Light colours (and colour temperatures) are linear Rec.709, as every
+    // authored colour: shading happens in the rendering space.
+    const glm::mat3 toRenderingSpace = rec709To(settings.renderingSpace());
+    for (ShadingLight& light : plan.lights.lights) light.scale = toRenderingSpace * light.scale;
+    plan.lights.ambient = toRenderingSpace * plan.lights.ambient;
 
     planShadows(plan, settings, strands, anyMeshes);
 

@@ -108,6 +108,10 @@ const std::vector<SettingDescriptor>& RenderSettings::descriptors() {
          "Camera when none is given: fitAll (every corner of the stage bounds in view) or usdrecord "
          "(usdrecord's exact framing, which can cut tall stages)",
          0, 0, {"fitAll", "usdrecord"}},
+        {"renderingSpace", SettingType::Token, "lin_rec709",
+         "Scene-linear space the frame is shaded and written in: lin_rec709 or ACEScg; authored colours "
+         "(linear Rec.709) are converted into it, EXRs are tagged with it, display transforms start from it",
+         0, 0, {"lin_rec709", "ACEScg"}},
     };
     return table;
 }
@@ -234,6 +238,12 @@ nlohmann::json RenderSettings::toJson() const {
         }
     }
     return json;
+}
+
+RenderingSpace RenderSettings::renderingSpace() const {
+    RenderingSpace space = RenderingSpace::LinearRec709;
+    parseRenderingSpace(getToken("renderingSpace"), &space);
+    return space;
 }
 
 }  // namespace hdhair

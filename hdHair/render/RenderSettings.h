@@ -10,6 +10,8 @@
 
 #include <nlohmann/json_fwd.hpp>
 
+#include "hdHair/image/ColorSpaces.h"
+
 namespace hdhair {
 
 enum class SettingType { Float, Int, Bool, Token };
@@ -55,6 +57,8 @@ public:
     int getInt(const std::string& name) const;
     bool getBool(const std::string& name) const;
     std::string getToken(const std::string& name) const;
+    // The renderingSpace setting (its table allows only the spaces there are).
+    RenderingSpace renderingSpace() const;
 
     // Every setting with its effective value, for --stats and --explain.
     nlohmann::json toJson() const;

@@ -102,8 +102,9 @@ Renderer::~Renderer() {
 
 const std::string& Renderer::glDescription() const { return glThread_->contextDescription(); }
 
-SceneBounds Renderer::prepare(const Scene& scene, Diagnostics& diagnostics) {
+SceneBounds Renderer::prepare(const Scene& scene, const RenderSettings& settings, Diagnostics& diagnostics) {
     Clock::time_point start = Clock::now();
+    const RenderingSpace space = settings.renderingSpace();
     for (auto it = curves_.begin(); it != curves_.end();)
         it = scene.curves().count(it->first) ? std::next(it) : curves_.erase(it);
     // Prepare changed prims in parallel: curve preparation is CPU work
@@ -118,10 +119,12 @@ SceneBounds Renderer::prepare(const Scene& scene, Diagnostics& diagnostics) {
         CachedCurves& cached = curves_[path];
         const SceneEntry<MaterialPrim>* material = scene.findMaterial(entry.prim->materialBinding);
         const uint64_t materialVersion = material ? material->version : 0;
-        if (cached.prepared && cached.version == entry.version && cached.colorMaterialVersion == materialVersion)
+        if (cached.prepared && cached.version == entry.version && cached.colorMaterialVersion == materialVersion &&
+            cached.space == space)
             continue;
         cached.version = entry.version;
         cached.colorMaterialVersion = materialVersion;
+        cached.space = space;
         changed.push_back({entry.prim.get(), material ? material->prim.get() : nullptr, &cached});
     }
     Diagnostics repeated;  // later instances' repairs (reportingFor)
@@ -130,6 +133,10 @@ SceneBounds Renderer::prepare(const Scene& scene, Diagnostics& diagnostics) {
         const StrandColorSource colors = strandColorSource(*changed[i].prim, changed[i].material, report);
         auto prepared = std::make_shared<PreparedCurves>(
             prepareCurves(*changed[i].prim, report, hairParameterPrimvars(), &colors));
+        // Authored colours are linear Rec.709; shading happens in the
+        // rendering space (Marschner's absorption from colour included).
+        if (space != RenderingSpace::LinearRec709)
+            for (StrandControlPoint& point : prepared->controlPoints) point.color = toRenderingSpace(space, point.color);
         CachedCurves& cached = *changed[i].cached;
         cached.minSpanWidth = std::numeric_limits<float>::max();
         cached.maxWidth = 0.0f;
@@ -181,16 +188,23 @@ void Renderer::prepareMeshes(const Scene& scene, const RenderSettings& settings,
     for (const auto& [path, entry] : scene.meshes()) {
         CachedMesh& cached = meshes_[path];
         const int level = entry.prim->refineLevel >= 0 ? entry.prim->refineLevel : settingLevel;
-        if (cached.prepared && cached.version == entry.version && cached.refineLevel == level) continue;
+        if (cached.prepared && cached.version == entry.version && cached.refineLevel == level &&
+            cached.space == settings.renderingSpace())
+            continue;
         cached.version = entry.version;
         cached.refineLevel = level;
+        cached.space = settings.renderingSpace();
         changed.push_back({entry.prim.get(), &cached});
     }
     Diagnostics repeated;  // later instances' repairs (reportingFor)
     tbb::parallel_for(size_t(0), changed.size(), [&](size_t i) {
         Diagnostics& report = reportingFor(*changed[i].prim, diagnostics, repeated);
-        changed[i].cached->prepared =
+        auto prepared =
             std::make_shared<PreparedMesh>(prepareMesh(*changed[i].prim, changed[i].cached->refineLevel, report));
+        // Mesh colours, like the hair's, are linear Rec.709 taken into the rendering space.
+        for (MeshVertex& vertex : prepared->vertices)
+            vertex.color = toRenderingSpace(changed[i].cached->space, vertex.color);
+        changed[i].cached->prepared = std::move(prepared);
     });
     pendingPreparedMeshes_ += changed.size();
 }
@@ -312,7 +326,7 @@ RenderResult Renderer::render(const Scene& scene, const CameraView& camera, cons
     RenderResult result;
     RenderStats& stats = result.stats;
     size_t warningsBefore = diagnostics.warningCount();
-    prepare(scene, diagnostics);
+    prepare(scene, settings, diagnostics);
     stats.passes.push_back({"prepareCurves", pendingPrepareMilliseconds_});
     stats.preparedPrims = pendingPreparedPrims_;
     pendingPrepareMilliseconds_ = 0.0;

@@ -88,7 +88,7 @@ public:
     // diagnostics) and returns the world bounds of what is visible, meshes
     // included (their authored points: meshes are refined when rendered,
     // at the refine level the settings give).
-    SceneBounds prepare(const Scene& scene, Diagnostics& diagnostics);
+    SceneBounds prepare(const Scene& scene, const RenderSettings& settings, Diagnostics& diagnostics);
 
     RenderResult render(const Scene& scene, const CameraView& camera, const RenderSettings& settings,
                         Diagnostics& diagnostics, const RenderOutputs& outputs = {});
@@ -101,6 +101,8 @@ private:
         // The bound material's version (0 when none): its colour and opacity
         // are baked into the prepared control points.
         uint64_t colorMaterialVersion = 0;
+        // The space the prepared colours were converted into.
+        RenderingSpace space = RenderingSpace::LinearRec709;
         std::shared_ptr<const PreparedCurves> prepared;
         float minSpanWidth = 0.0f;  // thinnest width at any span end
         float maxWidth = 0.0f;      // widest control point (shadow views' margins)
@@ -142,6 +144,7 @@ private:
     struct CachedMesh {
         uint64_t version = 0;
         int refineLevel = 0;  // the level asked for: the prim's, or the meshRefineLevel setting
+        RenderingSpace space = RenderingSpace::LinearRec709;  // of the prepared colours
         std::shared_ptr<const PreparedMesh> prepared;
     };
     // Refines and triangulates every changed mesh (in parallel), cached per

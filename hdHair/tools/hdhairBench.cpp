@@ -399,7 +399,7 @@ int main(int argc, char** argv) {
             stage->name = std::filesystem::path(path).stem().string();
             Diagnostics diagnostics;
             usda::readSceneFile(path, -INFINITY, stage->scene, diagnostics);
-            SceneBounds bounds = renderer()->prepare(stage->scene, diagnostics);
+            SceneBounds bounds = renderer()->prepare(stage->scene, RenderSettings(), diagnostics);
             auto camera = stage->scene.cameras().begin();
             stage->camera = camera != stage->scene.cameras().end()
                                 ? cameraViewFromPrim(*camera->second.prim, imageWidth)

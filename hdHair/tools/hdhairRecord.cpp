@@ -84,11 +84,13 @@ double millisecondsSince(Clock::time_point start) {
     return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
 }
 
-// The display transform display formats go through (EXR stays scene-linear).
-// Throws std::invalid_argument with one line for an unknown mode, config or
-// name (DisplayTransform::create lists the valid ones).
-DisplayTransform displayTransformFor(const Options& options) {
+// The display transform display formats go through (EXR stays scene-linear),
+// starting from the frame's rendering space unless --ocioColorSpace says the
+// image is in another. Throws std::invalid_argument with one line for an
+// unknown mode, config or name (DisplayTransform::create lists the valid ones).
+DisplayTransform displayTransformFor(const Options& options, RenderingSpace renderingSpace) {
     DisplayTransformOptions display;
+    display.renderingSpace = toString(renderingSpace);
     if (!parseColorCorrectionMode(options.colorCorrectionMode, &display.mode))
         throw std::invalid_argument("--colorCorrectionMode must be disabled, sRGB or openColorIO, not '" +
                                     options.colorCorrectionMode + "'");
@@ -111,8 +113,10 @@ DisplayTransform displayTransformFor(const Options& options) {
 // display transform (made on the GPU already in `gpuDisplayed`, or here on
 // the CPU, timed). Adds what it did to `frameStats`.
 void writeFrameImage(const Image& linear, const Image* gpuDisplayed, const DisplayTransform& display,
-                     const std::string& outputPath, std::vector<PassTiming>& passes, nlohmann::json& frameStats) {
+                     RenderingSpace space, const std::string& outputPath, std::vector<PassTiming>& passes,
+                     nlohmann::json& frameStats) {
     ImageColor color;
+    color.space = space;
     color.display = &display;
     const bool sceneLinear = isSceneLinearImagePath(outputPath);
     Image shown;
@@ -131,6 +135,7 @@ void writeFrameImage(const Image& linear, const Image* gpuDisplayed, const Displ
     passes.push_back({"writeImage", millisecondsSince(writeStart)});
     nlohmann::json colorStats = display.describe();
     colorStats["output"] = sceneLinear ? "scene-linear" : "display";
+    colorStats["renderingSpace"] = toString(space);
     if (!sceneLinear) colorStats["on"] = gpuDisplayed ? "gpu" : "cpu";
     frameStats["color"] = colorStats;
 }
@@ -195,7 +200,7 @@ std::vector<std::string> settingAssignments(const Options& options) {
 // The OpenUSD path: UsdStage, UsdImagingGL and the hdHair plugin, as
 // usdrecord --renderer HdHair --disableGpu renders.
 int runThroughUsdImaging(const Options& options, const usda::SceneReadOptions& purposes,
-                         const DisplayTransform& display) {
+                         const DisplayTransform& display, RenderingSpace space) {
 #if HDHAIR_WITH_USD
     if (options.displayTransformOn == "gpu")
         std::fprintf(stderr, "hdhair-record: warning: --displayTransformOn gpu needs --reader embedded (through "
@@ -233,7 +238,7 @@ int runThroughUsdImaging(const Options& options, const usda::SceneReadOptions& p
         // The plugin's colour AOV is scene-linear (hosts correct it once);
         // the display transform runs here, on the CPU.
         std::vector<PassTiming> writing;
-        writeFrameImage(result.color, nullptr, display, outputPath, writing, frameStats);
+        writeFrameImage(result.color, nullptr, display, space, outputPath, writing, frameStats);
         for (const PassTiming& pass : writing)
             frameStats["passes"].push_back({{"name", pass.name}, {"milliseconds", pass.milliseconds}});
         if (options.explain && !result.plan.empty())
@@ -265,6 +270,7 @@ int runThroughUsdImaging(const Options& options, const usda::SceneReadOptions& p
 #else
     (void)options;
     (void)purposes;
+    (void)space;
     (void)display;
     throw std::invalid_argument("--reader usd needs hdHair built with OpenUSD (see README, 'Hydra plugin'); "
                                 "this build has only --reader embedded");
@@ -289,8 +295,9 @@ int run(const Options& options) {
         throw std::invalid_argument("rendering " + std::to_string(frames) +
                                     " frames needs a '#' placeholder in the output name, e.g. out.####.png");
     usda::SceneReadOptions readOptions = purposesFrom(options.purposes);
-    const DisplayTransform display = displayTransformFor(options);
-    if (options.reader == "usd") return runThroughUsdImaging(options, readOptions, display);
+    const RenderingSpace space = settings.renderingSpace();
+    const DisplayTransform display = displayTransformFor(options, space);
+    if (options.reader == "usd") return runThroughUsdImaging(options, readOptions, display, space);
     if (options.reader != "embedded") throw std::invalid_argument("--reader must be usd or embedded");
 
     Diagnostics diagnostics;
@@ -336,7 +343,7 @@ int run(const Options& options) {
             camera = cameraViewFromPrim(*prim, options.imageWidth);
             cameraName = options.camera;
         } else {
-            SceneBounds bounds = renderer.prepare(scene, diagnostics);
+            SceneBounds bounds = renderer.prepare(scene, settings, diagnostics);
             FramingStyle style = settings.getToken("framing") == "usdrecord" ? FramingStyle::UsdRecord
                                                                              : FramingStyle::FitAll;
             camera = frameBounds(bounds.min, bounds.max, scene.info().upAxis, options.imageWidth, style);
@@ -355,7 +362,7 @@ int run(const Options& options) {
         std::string outputPath =
             std::isfinite(time) ? expandFramePlaceholder(options.outputPath, time) : options.outputPath;
         nlohmann::json frameColor;
-        writeFrameImage(result.color, gpuDisplay ? &result.display : nullptr, display, outputPath,
+        writeFrameImage(result.color, gpuDisplay ? &result.display : nullptr, display, space, outputPath,
                         result.stats.passes, frameColor);
 
         if (options.explain)

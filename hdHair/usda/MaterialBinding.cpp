@@ -98,6 +98,12 @@ std::optional<std::string> directMaterialBinding(const Prim& prim) {
     return std::nullopt;
 }
 
+const Prim* surfaceShaderOf(const Stage& stage, const Prim& material) {
+    const Attribute* surface = material.attribute("outputs:surface");
+    if (!surface || surface->connections.empty()) return nullptr;
+    return stage.findPrim(splitPropertyPath(surface->connections.front()).first);
+}
+
 MaterialPrim readMaterial(const Stage& stage, const Prim& material, double time, std::string* problem) {
     MaterialPrim result;
     result.path = material.path;

@@ -25,6 +25,10 @@ namespace hdhair::usda {
 // prim authors neither, so that the caller inherits its parent's.
 std::optional<std::string> directMaterialBinding(const Prim& prim);
 
+// The shader the material's universal outputs:surface connects to; nullptr
+// when it connects to nothing or to a prim that does not exist.
+const Prim* surfaceShaderOf(const Stage& stage, const Prim& material);
+
 // Reads the Material prim `material` at `time`. Never throws: an input of the
 // wrong type reads as its default, and `problem` (when given) says why.
 MaterialPrim readMaterial(const Stage& stage, const Prim& material, double time, std::string* problem = nullptr);

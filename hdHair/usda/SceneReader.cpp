@@ -79,6 +79,12 @@ private:
     [[noreturn]] void typeError(const Prim& prim, const std::string& name,
                                 const std::string& expected, const Value& found) const;
     void warn(const Prim& prim, const std::string& name, const std::string& message) const;
+    // Warns when the colour attribute `name` says in its colorSpace metadata
+    // that it is not linear Rec.709: hdHair takes every authored colour as
+    // linear Rec.709, as the Hydra plugin must (Hydra hands it no colour
+    // space), so the two front ends agree and the metadata is never silently
+    // dropped.
+    void checkColorSpace(const Prim& prim, const std::string& name) const;
 
     // The value of the first of `names` that has one, checked to be a numeric
     // scalar of `count` components (SkipPrim naming `expected` otherwise);
@@ -145,6 +151,21 @@ void Reader::typeError(const Prim& prim, const std::string& name, const std::str
 
 void Reader::warn(const Prim& prim, const std::string& name, const std::string& message) const {
     diagnostics_.warn(locationOf(prim, name), prim.path + "." + name + ": " + message);
+}
+
+void Reader::checkColorSpace(const Prim& prim, const std::string& name) const {
+    const Attribute* attribute = prim.attribute(name);
+    if (!attribute) return;
+    auto metadatum = attribute->metadata.find("colorSpace");
+    if (metadatum == attribute->metadata.end()) return;
+    const std::string space = metadatum->second.stringOr();
+    // Names OpenUSD and common OCIO configs give linear Rec.709.
+    for (const char* linearRec709 : {"lin_rec709", "lin_rec709_scene", "lin_srgb", "Linear Rec.709 (sRGB)"})
+        if (space == linearRec709) return;
+    warn(prim, name,
+         "colorSpace '" + space +
+             "' is not applied: hdHair takes authored colours as linear Rec.709 (lin_rec709), as its Hydra "
+             "plugin does; convert the values to linear Rec.709");
 }
 
 std::optional<Value> Reader::readNumericScalar(const Prim& prim,
@@ -346,6 +367,7 @@ void Reader::readCurves(const Prim& prim, const Inherited& state) {
     curves.points = readVec3Array(prim, "points");
     curves.materialBinding = useMaterial(state);
     curves.primvars = readPrimvars(prim, true);
+    checkColorSpace(prim, "primvars:displayColor");
     // The one token primvar hdHair reads (HdHairAPI, constant only).
     if (std::optional<Value> model = valueOf(prim, "primvars:hdHair:shadingModel")) {
         if (model->isStringType() && model->strings.size() == 1)
@@ -373,6 +395,7 @@ std::string Reader::useMaterial(const Inherited& state) {
             std::string problem;
             scene_.setMaterial(readMaterial(stage_, *material, time_, &problem));
             if (!problem.empty()) diagnostics_.warn(material->location.toString(), problem);
+            if (const Prim* shader = surfaceShaderOf(stage_, *material)) checkColorSpace(*shader, "inputs:diffuseColor");
         }
         known = materials_.emplace(state.materialBinding, usable).first;
     }
@@ -403,6 +426,7 @@ void Reader::readMesh(const Prim& prim, const Inherited& state) {
     mesh.creaseLengths = readIntArray(prim, "creaseLengths");
     mesh.creaseSharpnesses = readFloatArray(prim, "creaseSharpnesses");
     mesh.primvars = readPrimvars(prim, false);
+    checkColorSpace(prim, "primvars:displayColor");
     scene_.setMesh(std::move(mesh));
 }
 
@@ -447,6 +471,8 @@ void Reader::readLight(const Prim& prim, const Inherited& state, LightType type)
     light.intensity = readFloat(prim, {"inputs:intensity", "intensity"}, fallbackIntensity);
     light.exposure = readFloat(prim, {"inputs:exposure", "exposure"}, light.exposure);
     light.color = readColor(prim, {"inputs:color", "color"}, light.color);
+    checkColorSpace(prim, "inputs:color");
+    checkColorSpace(prim, "color");
     light.enableColorTemperature =
         readBool(prim, {"inputs:enableColorTemperature", "enableColorTemperature"},
                  light.enableColorTemperature);

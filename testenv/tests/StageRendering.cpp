@@ -35,7 +35,7 @@ CameraView stageCamera(const Scene& scene, const StageRenderRequest& request, Re
         if (!prim) throw std::runtime_error(request.stagePath + ": no camera " + request.camera);
         camera = cameraViewFromPrim(*prim, request.imageWidth);
     } else {
-        SceneBounds bounds = renderer.prepare(scene, diagnostics);
+        SceneBounds bounds = renderer.prepare(scene, stageSettings(request), diagnostics);
         camera = frameBounds(bounds.min, bounds.max, scene.info().upAxis, request.imageWidth, FramingStyle::FitAll);
     }
     // Clip space spans 2 over the image's width and height; pixel rows run down.

@@ -258,6 +258,34 @@ TEST_F(HdhairRecord, ColourManagementFollowsUsdrecordsModesAndOcio) {
     EXPECT_NE(lookWithoutOcio.output.find("need --colorCorrectionMode openColorIO"), std::string::npos);
 }
 
+// renderingSpace=ACEScg: the EXR holds ACEScg, named and with AP1 primaries
+// and the ACES white; the display image starts from ACEScg, so it shows what
+// the lin_rec709 render shows (the groom's shading is linear in its colours
+// under the white camera light).
+TEST_F(HdhairRecord, AnAcesCgRenderIsWrittenAndShownAsAcesCg) {
+    const std::string stage = example("wavy_strands.usda");
+    RecordRun exr = record("--imageWidth 48 -s renderingSpace=ACEScg --stats " + file("s.json") + " " + stage + " " +
+                           file("ap1.exr"));
+    ASSERT_EQ(exr.exitCode, 0) << exr.output;
+    OIIO::ImageBuf exrFile(file("ap1.exr"));
+    ASSERT_TRUE(exrFile.init_spec(file("ap1.exr"), 0, 0));
+    EXPECT_EQ(exrFile.spec().get_string_attribute("colorSpace"), "ACEScg");
+    float chromaticities[8] = {};
+    ASSERT_TRUE(exrFile.spec().getattribute("chromaticities", OIIO::TypeDesc(OIIO::TypeDesc::FLOAT, 8), chromaticities));
+    EXPECT_NEAR(chromaticities[0], 0.713f, 1e-6f);    // AP1 red x
+    EXPECT_NEAR(chromaticities[6], 0.32168f, 1e-6f);  // ACES white x
+    EXPECT_EQ(nlohmann::json::parse(std::ifstream(file("s.json")))["frames"][0]["color"]["renderingSpace"], "ACEScg");
+
+    for (const char* view : {"sRGB", "'ACES 1.0 SDR-video'"}) {
+        const std::string options = std::string("--imageWidth 48 --colorCorrectionMode openColorIO --ocioView ") + view;
+        ASSERT_EQ(record(options + " -s renderingSpace=ACEScg " + stage + " " + file("ap1.png")).exitCode, 0);
+        ASSERT_EQ(record(options + " " + stage + " " + file("rec709.png")).exitCode, 0);
+        const ImageComparison comparison =
+            compareImages(readImage(file("ap1.png")), readImage(file("rec709.png")), exactWithin(1.5 / 255.0));
+        EXPECT_TRUE(comparison.passed) << view << ": " << comparison.description;
+    }
+}
+
 TEST_F(HdhairRecord, FramesFillTheOutputPlaceholder) {
     std::string stage = std::string(HDHAIR_SOURCE_DIR) + "/testenv/stages/xforms.usda";
     RecordRun run = record("--frames 1:10x9 --imageWidth 48 " + stage + " " + file("frame.####.png"));

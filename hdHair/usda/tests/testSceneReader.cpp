@@ -1047,3 +1047,34 @@ def Material "marschner"
     EXPECT_FALSE(other->prim->isPreviewSurface());
     EXPECT_TRUE(r->diagnostics.warnings().empty());
 }
+
+// Hydra hands the plugin no colour space, so the embedded reader takes every
+// authored colour as linear Rec.709 too, and says so where a stage claims
+// another space rather than dropping the claim silently.
+TEST(SceneReader, ColourSpaceMetadataOtherThanLinearRec709IsNamedAndNotApplied) {
+    auto result = read(R"(
+def BasisCurves "Hair" {
+    int[] curveVertexCounts = [4]
+    point3f[] points = [(0, 0, 0), (0, 1, 0), (0, 2, 0), (0, 3, 0)]
+    color3f[] primvars:displayColor = [(0.5, 0.2, 0.1)] (colorSpace = "ACEScg")
+}
+def BasisCurves "Linear" {
+    int[] curveVertexCounts = [4]
+    point3f[] points = [(0, 0, 0), (0, 1, 0), (0, 2, 0), (0, 3, 0)]
+    color3f[] primvars:displayColor = [(0.5, 0.2, 0.1)] (colorSpace = "lin_rec709")
+}
+def DistantLight "Sun" {
+    color3f inputs:color = (1, 0.9, 0.8) (colorSpace = "sRGB")
+}
+)");
+    EXPECT_TRUE(hasWarning(result->diagnostics, {"/Hair.primvars:displayColor", "colorSpace 'ACEScg' is not applied",
+                                                 "linear Rec.709"}))
+        << allWarnings(result->diagnostics);
+    EXPECT_TRUE(hasWarning(result->diagnostics, {"/Sun.inputs:color", "colorSpace 'sRGB' is not applied"}))
+        << allWarnings(result->diagnostics);
+    EXPECT_EQ(result->diagnostics.warnings().size(), 2u) << allWarnings(result->diagnostics);
+    // The values stay as authored.
+    const Primvar& color = result->scene.curves().at("/Hair").prim->primvars.at("displayColor");
+    ASSERT_EQ(color.values.size(), 3u);
+    EXPECT_FLOAT_EQ(color.values[0], 0.5f);
+}

@@ -1,0 +1,87 @@
+#pragma once
+// testenv's stage snapshots: each case is a folder testenv/cases/<name>/ with
+//   case.json     what to render and how close it must stay:
+//                 {"description": "...",
+//                  "stage": "stage.usda" or a path from the case folder to a
+//                           shared stage ("../../stages/bases.usda"),
+//                  "arguments": ["--complexity", "medium", "-s", "shadowMode=off", ...]
+//                              (hdhair-record's, without the display options),
+//                  "frames": "1:3"   (optional: hdhair-record --frames; one
+//                                     baseline per frame, baseline.0001.exr ...),
+//                  "display": {"view": "sRGB", "look": "", "display": ""}
+//                              (an OCIO display of the shipped config),
+//                  "thresholds": {"fail": 0.008, "failpercent": 0.25,
+//                                 "hardfail": 0.25, "hardfailAllowed": 0}}
+//   baseline.exr  the linear render (its colour space in its metadata)
+//   baseline.png  its display image, for people to look at and review.
+// A case renders with hdhair-record to EXR; the actual and the baseline EXR
+// both go through the same OCIO display transform (DisplayTransform, from
+// the colour space each EXR names) and are compared over covered pixels
+// (ImageComparison) with the thresholds as idiff would read them: a pixel
+// over `fail` counts, the case fails when more than `failpercent` % of
+// covered pixels count or when more than `hardfailAllowed` pixels (idiff: 0)
+// differ by over `hardfail`.
+
+#include <string>
+#include <vector>
+
+#include "hdHair/image/DisplayTransform.h"
+#include "hdHair/image/Image.h"
+#include "hdHair/image/ImageComparison.h"
+
+namespace hdhair::testenv {
+
+struct TestCase {
+    std::string name;    // the folder's name
+    std::string folder;  // absolute
+    std::string description;
+    std::string stage;   // absolute
+    std::vector<std::string> arguments;
+    std::string frames;  // "" : one frame
+    DisplayTransformOptions display;  // openColorIO; its colour space comes from each EXR
+    CoveredPixelTolerance tolerance;
+    // True when every argument is one usdrecord also takes (so the case may
+    // run through usdrecord --renderer HdHair too).
+    bool usdrecordCompatible() const;
+};
+
+// The case folders under testenv/cases, sorted by name.
+std::vector<std::string> testCaseFolders();
+// Reads `folder`/case.json; throws std::runtime_error naming the file and the
+// key for anything missing or of the wrong type.
+TestCase loadTestCase(const std::string& folder);
+
+// hdhair-record's output name for `stem` in `folder`: stem.exr, or
+// stem.####.exr when the case renders frames.
+std::string framePattern(const TestCase& testCase, const std::string& folder, const std::string& stem);
+// The EXR files of `stem` in `folder`: stem.exr, or one per frame
+// (stem.0001.exr, ...).
+std::vector<std::string> frameFiles(const TestCase& testCase, const std::string& folder, const std::string& stem);
+
+// Renders the case with hdhair-record into `outputFolder` (actual.exr, or
+// actual.####.exr); returns hdhair-record's exit status, its output in `log`.
+int renderCase(const TestCase& testCase, const std::string& outputFolder, std::string* log);
+
+// The colour space an hdHair EXR names in its metadata (lin_rec709, ACEScg).
+std::string colorSpaceOf(const std::string& exrPath);
+
+// The display image of a linear EXR as the case shows it.
+Image caseDisplayImage(const TestCase& testCase, const std::string& exrPath);
+
+struct CaseVerdict {
+    bool passed = false;
+    std::string report;  // one paragraph: what was compared, the statistics, the files written
+};
+
+// Compares one rendered frame with its baseline, both shown through the
+// case's display transform. On failure writes, into `outputFolder`,
+// <stem>.actual.png (the actual display image), <stem>.expected.png and
+// <stem>.difference.png (differenceImage), and names them in the report.
+CaseVerdict compareWithBaseline(const TestCase& testCase, const std::string& actualExr,
+                                const std::string& baselineExr, const std::string& outputFolder);
+
+// Makes `actualExr` the baseline (copied to `baselineExr`) and writes its
+// display image beside it as the .png of the same name.
+void updateBaseline(const TestCase& testCase, const std::string& actualExr, const std::string& baselineExr);
+
+}  // namespace hdhair::testenv

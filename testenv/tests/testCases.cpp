@@ -1,0 +1,140 @@
+// Every case folder under testenv/cases rendered with hdhair-record and
+// compared with its baseline through the case's OCIO display transform
+// (TestCases.h). HDHAIR_UPDATE_BASELINES=1 rewrites the baselines instead.
+
+#include <algorithm>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+
+#include <gtest/gtest.h>
+
+#include "StageRendering.h"
+#include "TestCases.h"
+#include "hdHair/image/ImageWriter.h"
+
+using namespace hdhair;
+using namespace hdhair::testenv;
+namespace fs = std::filesystem;
+
+namespace {
+
+bool updatingBaselines() {
+    const char* update = std::getenv("HDHAIR_UPDATE_BASELINES");
+    return update && *update && std::string(update) != "0";
+}
+
+// A fresh folder for one case's outputs in the build tree.
+std::string outputFolderFor(const std::string& name) {
+    const fs::path folder = fs::path(HDHAIR_BINARY_DIR) / "testenv-cases" / name;
+    fs::remove_all(folder);
+    fs::create_directories(folder);
+    return folder.string();
+}
+
+class Cases : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(Cases, MatchItsBaselineThroughItsDisplayTransform) {
+    const TestCase testCase = loadTestCase(GetParam());
+    const std::string output = outputFolderFor(testCase.name);
+    std::string log;
+    ASSERT_EQ(renderCase(testCase, output, &log), 0) << log;
+    const std::vector<std::string> actual = frameFiles(testCase, output, "actual");
+    const std::vector<std::string> baselines = frameFiles(testCase, testCase.folder, "baseline");
+    ASSERT_EQ(actual.size(), baselines.size());
+    for (size_t frame = 0; frame < actual.size(); ++frame) {
+        ASSERT_TRUE(fs::exists(actual[frame])) << actual[frame] << " was not written:\n" << log;
+        if (updatingBaselines()) {
+            updateBaseline(testCase, actual[frame], baselines[frame]);
+            std::cout << "updated " << baselines[frame] << " and its .png\n";
+            continue;
+        }
+        const CaseVerdict verdict = compareWithBaseline(testCase, actual[frame], baselines[frame], output);
+        std::cout << verdict.report << "\n";
+        EXPECT_TRUE(verdict.passed) << testCase.description << "\n" << verdict.report;
+        // The reviewed picture is the baseline's own display image, not a
+        // stale one left from an earlier baseline.
+        const std::string png = fs::path(baselines[frame]).replace_extension(".png").string();
+        ASSERT_TRUE(fs::exists(png)) << png;
+        // 8 bits hold [0, 1]: a look may push the display image past 1.
+        Image shown = caseDisplayImage(testCase, baselines[frame]);
+        for (float& value : shown.pixels) value = std::clamp(value, 0.0f, 1.0f);
+        const ImageComparison current = compareImages(readImage(png), shown, exactWithin(1.0 / 255.0));
+        EXPECT_TRUE(current.passed) << png << " is not the display image of its EXR: " << current.description;
+    }
+}
+
+std::string caseName(const ::testing::TestParamInfo<std::string>& info) {
+    std::string name = fs::path(info.param).filename().string();
+    for (char& c : name)
+        if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+    return name;
+}
+
+INSTANTIATE_TEST_SUITE_P(Testenv, Cases, ::testing::ValuesIn(testCaseFolders()), caseName);
+
+// A render that no longer matches must fail with a report a person can act
+// on: the statistics, and the actual and difference images written.
+TEST(CaseReport, APerturbedRenderFailsWithStatisticsAndImages) {
+    const TestCase testCase = loadTestCase(sourcePath("testenv/cases/shading_kajiyakay"));
+    const std::string output = outputFolderFor("perturbed");
+    std::string log;
+    ASSERT_EQ(renderCase(testCase, output, &log), 0) << log;
+    const std::string actualExr = frameFiles(testCase, output, "actual").front();
+    Image image = readImage(actualExr);
+    // A band of rows a fifth of the image high, 20 % darker.
+    for (int y = image.height / 2; y < image.height / 2 + image.height / 5; ++y)
+        for (int x = 0; x < image.width; ++x)
+            for (int c = 0; c < 3; ++c) image.pixels[4 * (size_t(y) * size_t(image.width) + size_t(x)) + size_t(c)] *= 0.8f;
+    RenderingSpace space = RenderingSpace::LinearRec709;
+    ASSERT_TRUE(parseRenderingSpace(colorSpaceOf(actualExr), &space));
+    writeImage(image, actualExr, {space, nullptr, nullptr});
+
+    const CaseVerdict verdict =
+        compareWithBaseline(testCase, actualExr, frameFiles(testCase, testCase.folder, "baseline").front(), output);
+    std::cout << verdict.report << "\n";
+    EXPECT_FALSE(verdict.passed);
+    for (const char* part : {"shading_kajiyakay", "OUT OF TOLERANCE", "covered pixels", "worst (", "RMSE",
+                             "shading_kajiyakay.actual.png", "shading_kajiyakay.difference.png"})
+        EXPECT_NE(verdict.report.find(part), std::string::npos) << part << " in:\n" << verdict.report;
+    for (const char* file : {"shading_kajiyakay.actual.png", "shading_kajiyakay.expected.png",
+                             "shading_kajiyakay.difference.png"})
+        EXPECT_TRUE(fs::exists(fs::path(output) / file)) << file;
+    // The difference image shows the band and nothing else.
+    const Image difference = readImage((fs::path(output) / "shading_kajiyakay.difference.png").string());
+    const Image expected = readImage((fs::path(output) / "shading_kajiyakay.expected.png").string());
+    double inside = 0.0, outside = 0.0;
+    for (int y = 0; y < difference.height; ++y)
+        for (int x = 0; x < difference.width; ++x) {
+            const size_t p = 4 * (size_t(y) * size_t(difference.width) + size_t(x));
+            if (expected.pixels[p + 3] < 0.5f) continue;
+            const bool inBand = y >= image.height / 2 && y < image.height / 2 + image.height / 5;
+            (inBand ? inside : outside) = std::max(inBand ? inside : outside, double(difference.pixels[p]));
+        }
+    EXPECT_GT(inside, 0.1);
+    EXPECT_LT(outside, 0.05);
+}
+
+TEST(CaseReport, AMalformedCaseNamesItsFileAndKey) {
+    const fs::path folder = fs::path(outputFolderFor("malformed"));
+    std::ofstream(folder / "case.json") << R"({"description": "x", "stage": "../../nowhere.usda"})";
+    try {
+        loadTestCase(folder.string());
+        FAIL() << "accepted";
+    } catch (const std::runtime_error& error) {
+        EXPECT_NE(std::string(error.what()).find("case.json"), std::string::npos) << error.what();
+        EXPECT_NE(std::string(error.what()).find("does not exist"), std::string::npos) << error.what();
+    }
+    std::ofstream(folder / "case.json", std::ios::trunc)
+        << R"({"description": "x", "stage": ")" << sourcePath("examples/wavy_strands.usda") << R"(", "arguments": [],)"
+        << R"( "display": {}, "thresholds": {"fail": 0.01, "failpercent": 1}})";
+    try {
+        loadTestCase(folder.string());
+        FAIL() << "accepted";
+    } catch (const std::runtime_error& error) {
+        EXPECT_NE(std::string(error.what()).find("missing \"hardfail\""), std::string::npos) << error.what();
+    }
+}
+
+}  // namespace
