@@ -61,7 +61,7 @@ struct ShadowPlan {
     std::vector<float> boundaries;  // d_k / d_K (DeepOpacityLayers.h)
     double layerDepth = 1.0;       // shadowLayerDepth: d_K over the casters' depth range
     bool bilinear = true;          // shadowFilter
-    int resolution = 1024;         // shadowMapResolution
+    int resolution = 512;          // shadowMapResolution
     double minPixelWidth = 1.0;    // the coverage rule in the light's pixels, whatever the camera's path
     int capacity = 0;              // map slots the storage holds (set by the renderer)
     std::vector<PlannedShadow> lights;

@@ -9,6 +9,13 @@
 
 namespace hdhair::testenv {
 
+// `text` as one shell word: single-quoted, its own single quotes escaped.
+inline std::string shellQuoted(const std::string& text) {
+    std::string out = "'";
+    for (char c : text) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+    return out + "'";
+}
+
 // Runs `command` through the shell and appends what it writes to stdout and
 // stderr to `output`. Returns its exit status, or -1 when it did not exit
 // normally (a signal, or popen failing).

@@ -41,12 +41,6 @@ double numberAt(const nlohmann::json& object, const char* key, const std::string
     return value.get<double>();
 }
 
-std::string quoted(const std::string& text) {
-    std::string out = "'";
-    for (char c : text) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
-    return out + "'";
-}
-
 }  // namespace
 
 std::string colorSpaceOf(const std::string& exrPath) {
@@ -133,9 +127,9 @@ std::vector<std::string> frameFiles(const TestCase& testCase, const std::string&
 
 int renderCase(const TestCase& testCase, const std::string& outputFolder, std::string* log) {
     std::string command = std::string("'") + HDHAIR_RECORD + "'";
-    for (const std::string& argument : testCase.arguments) command += " " + quoted(argument);
-    if (!testCase.frames.empty()) command += " --frames " + quoted(testCase.frames);
-    command += " " + quoted(testCase.stage) + " " + quoted(framePattern(testCase, outputFolder, "actual"));
+    for (const std::string& argument : testCase.arguments) command += " " + shellQuoted(argument);
+    if (!testCase.frames.empty()) command += " --frames " + shellQuoted(testCase.frames);
+    command += " " + shellQuoted(testCase.stage) + " " + shellQuoted(framePattern(testCase, outputFolder, "actual"));
     return runCommand(command, log);
 }
 
