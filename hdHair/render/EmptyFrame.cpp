@@ -17,8 +17,8 @@ std::string whyNothingDrawn(const Scene& scene, const RenderResult& result, size
         return warnings == 0 ? std::string()
                              : "nothing drawn: no curves or meshes are left to draw after the warnings above";
     if (result.stats.segments == 0 && result.stats.meshTriangles == 0)
-        return fmt::format("nothing drawn: none of the {} curves and {} mesh prims has anything left to draw "
-                           "(invisible, or emptied by the repairs in the warnings above)",
+        return fmt::format("nothing drawn: none of the stage's curves and mesh prims ({} and {}) has anything left "
+                           "to draw (invisible, or emptied by the repairs in the warnings above)",
                            curves, meshes);
     return fmt::format("nothing drawn: the {} segments and {} triangles lie outside the camera's view or are fully "
                        "transparent (check the camera, its clipping range and opacities)",

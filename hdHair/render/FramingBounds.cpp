@@ -44,8 +44,10 @@ SceneBounds framingBounds(const std::vector<FramingPoints>& prims, Diagnostics& 
         size_t outliers = 0;
         glm::dvec3 first(0.0);
         for (const glm::dvec3& p : prim.points) {
-            if (!isFinite(p)) continue;
-            if (spread > 0.0 && (glm::any(glm::lessThan(p, low)) || glm::any(glm::greaterThan(p, high)))) {
+            // A point that is not finite here overflowed on the way (a span
+            // box around a point near float's limit): an outlier too.
+            if (!isFinite(p) ||
+                (spread > 0.0 && (glm::any(glm::lessThan(p, low)) || glm::any(glm::greaterThan(p, high))))) {
                 if (outliers++ == 0) first = p;
                 continue;
             }

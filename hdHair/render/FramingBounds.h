@@ -31,7 +31,8 @@ struct SceneBounds {
     bool empty() const { return min.x > max.x; }
 };
 
-// One prim's world-space points (non-finite ones are ignored).
+// One prim's world-space points (non-finite ones count as outliers, left
+// out of the quartiles and the bounds).
 struct FramingPoints {
     std::string path;
     std::vector<glm::dvec3> points;

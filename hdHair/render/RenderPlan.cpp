@@ -243,7 +243,8 @@ size_t shadowMapBudget(int resolution, int layers, int memoryMB) {
     const double bytesPerMap = double(resolution) * double(resolution) * (4.0 + 4.0 + 8.0 * double(targets));
     const double fitting = std::floor(double(memoryMB) * 1024.0 * 1024.0 / bytesPerMap);
     const size_t limit = std::min(kGuaranteedArrayLayers / targets, size_t(std::min(fitting, 1e9)));
-    size_t maps = limit > 0 ? 1 : 0;
+    if (limit == 0) return 0;
+    size_t maps = 1;
     while (maps * 2 <= limit) maps *= 2;
     return maps;
 }
