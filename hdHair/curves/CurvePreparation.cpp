@@ -19,6 +19,7 @@
 #include "hdHair/curves/PreparedCurves.h"
 #include "hdHair/curves/PrimvarResolution.h"
 #include "hdHair/curves/StrandColorSource.h"
+#include "hdHair/scene/SceneValidation.h"
 
 namespace hdhair {
 
@@ -186,22 +187,6 @@ bool allElementsEqual(const ResolvedPrimvar& primvar) {
     return true;
 }
 
-// A Catmull-Rom span lies inside the convex hull of its Bezier controls
-// B0 = C1, B1 = C1 + (C2-C0)/6, B2 = C2 - (C3-C1)/6, B3 = C2 (its own
-// controls do not bound it: CR weights go negative). The same holds for the
-// interpolated width, so the largest Bezier width bounds the tube's radius.
-void growBoundsBySpan(const StrandControlPoint* c, glm::vec3& lo, glm::vec3& hi) {
-    const glm::vec3 positions[4] = {c[1].position, c[1].position + (c[2].position - c[0].position) / 6.0f,
-                                    c[2].position - (c[3].position - c[1].position) / 6.0f, c[2].position};
-    const float widths[4] = {c[1].width, c[1].width + (c[2].width - c[0].width) / 6.0f,
-                             c[2].width - (c[3].width - c[1].width) / 6.0f, c[2].width};
-    const float radius = std::max(0.0f, *std::max_element(widths, widths + 4)) * 0.5f;
-    for (const glm::vec3& p : positions) {
-        lo = glm::min(lo, p - radius);
-        hi = glm::max(hi, p + radius);
-    }
-}
-
 }  // namespace
 
 namespace {
@@ -225,6 +210,22 @@ void clampToDocumentedRange(const CurvesPrim& prim, const ShadingPrimvarRequest&
 
 }  // namespace
 
+// A Catmull-Rom span lies inside the convex hull of its Bezier controls
+// B0 = C1, B1 = C1 + (C2-C0)/6, B2 = C2 - (C3-C1)/6, B3 = C2 (its own
+// controls do not bound it: CR weights go negative). The same holds for the
+// interpolated width, so the largest Bezier width bounds the tube's radius.
+void growBoundsBySpan(const StrandControlPoint* c, glm::vec3& lo, glm::vec3& hi) {
+    const glm::vec3 positions[4] = {c[1].position, c[1].position + (c[2].position - c[0].position) / 6.0f,
+                                    c[2].position - (c[3].position - c[1].position) / 6.0f, c[2].position};
+    const float widths[4] = {c[1].width, c[1].width + (c[2].width - c[0].width) / 6.0f,
+                             c[2].width - (c[3].width - c[1].width) / 6.0f, c[2].width};
+    const float radius = std::max(0.0f, *std::max_element(widths, widths + 4)) * 0.5f;
+    for (const glm::vec3& p : positions) {
+        lo = glm::min(lo, p - radius);
+        hi = glm::max(hi, p + radius);
+    }
+}
+
 PreparedCurves prepareCurves(const CurvesPrim& prim, Diagnostics& diagnostics,
                              const std::vector<ShadingPrimvarRequest>& shadingPrimvars,
                              const StrandColorSource* colors) {
@@ -233,6 +234,10 @@ PreparedCurves prepareCurves(const CurvesPrim& prim, Diagnostics& diagnostics,
     constexpr float kHuge = std::numeric_limits<float>::max();
     result.boundsMin = glm::vec3(kHuge);
     result.boundsMax = glm::vec3(-kHuge);
+    if (std::string problem = transformProblem(prim.path, prim.worldTransform); !problem.empty()) {
+        diagnostics.warn(prim.path, problem);
+        return result;
+    }
 
     const CurveTopology topology(prim);
     const size_t curveCount = topology.curveCount();

@@ -94,4 +94,9 @@ PreparedCurves prepareCurves(const CurvesPrim& prim, Diagnostics& diagnostics,
                              const std::vector<ShadingPrimvarRequest>& shadingPrimvars = {},
                              const StrandColorSource* colors = nullptr);
 
+// Grows [lo, hi] by the box of the span whose four control points start at
+// `controls`, widths included (the bounds PreparedCurves holds are the union
+// of these).
+void growBoundsBySpan(const StrandControlPoint* controls, glm::vec3& lo, glm::vec3& hi);
+
 }  // namespace hdhair

@@ -106,6 +106,12 @@ void checkGlError(const char* what) {
     }
     while (glGetError() != GL_NO_ERROR) {
     }
+    // Running out of memory is the one error a user can act on (a smaller
+    // image, fewer or smaller shadow maps, a smaller exactMemoryMB), so it
+    // says so in words; the others are hdHair's bugs and name the GL enum.
+    if (error == GL_OUT_OF_MEMORY)
+        throw std::runtime_error(std::string("the GL driver is out of memory (GL_OUT_OF_MEMORY) while ") + what +
+                                 "; use a smaller image, shadowMapResolution or exactMemoryMB");
     throw std::runtime_error(std::string(name) + " while " + what);
 }
 

@@ -1,5 +1,6 @@
 #include "hdHair/gl/RenderTarget.h"
 
+#include <algorithm>
 #include <stdexcept>
 #include <string>
 
@@ -7,15 +8,23 @@ namespace hdhair::gl {
 
 RenderTarget::RenderTarget(int width, int height, const RenderTargetImages& images)
     : width_(width), height_(height), images_(images) {
-    GLint maxSize = 0;
-    glGetIntegerv(GL_MAX_RENDERBUFFER_SIZE, &maxSize);
-    if (width <= 0 || height <= 0 || width > maxSize || height > maxSize)
+    // Checked before anything is allocated: the attachments are textures
+    // drawn through a viewport, so all three limits apply, and a driver
+    // asked for more may fail late or not at all (llvmpipe allocates).
+    GLint renderbufferSize = 0, textureSize = 0, viewport[2] = {0, 0};
+    glGetIntegerv(GL_MAX_RENDERBUFFER_SIZE, &renderbufferSize);
+    glGetIntegerv(GL_MAX_TEXTURE_SIZE, &textureSize);
+    glGetIntegerv(GL_MAX_VIEWPORT_DIMS, viewport);
+    const GLint maxWidth = std::min({renderbufferSize, textureSize, viewport[0]});
+    const GLint maxHeight = std::min({renderbufferSize, textureSize, viewport[1]});
+    if (width <= 0 || height <= 0 || width > maxWidth || height > maxHeight)
         throw std::runtime_error("image size " + std::to_string(width) + "x" + std::to_string(height) +
-                                 " is outside what the GL driver supports (1 to " + std::to_string(maxSize) +
-                                 " pixels a side)");
+                                 " is outside what the GL driver supports (1 to " + std::to_string(maxWidth) + "x" +
+                                 std::to_string(maxHeight) +
+                                 " pixels: GL_MAX_TEXTURE_SIZE, GL_MAX_RENDERBUFFER_SIZE, GL_MAX_VIEWPORT_DIMS)");
     create(draw_, images_.samples);
     if (images_.samples > 0) create(resolved_, 0);
-    checkGlError("creating the render target");
+    checkGlError(("creating the " + std::to_string(width) + "x" + std::to_string(height) + " render target").c_str());
 }
 
 std::array<GLenum, kOutputCount> RenderTarget::drawBuffers() const {

@@ -1,6 +1,7 @@
 #include "hdHair/gl/ShadowMapStorage.h"
 
 #include <array>
+#include <string>
 
 namespace hdhair::gl {
 
@@ -39,7 +40,9 @@ void ShadowMapStorage::allocate() {
     depths_ = arrayTexture(GL_R32F, resolution_, slots_);
     opacity_ = arrayTexture(GL_RGBA16F, resolution_, slots_ * targets_);
     meshDepths_ = arrayTexture(GL_R32F, resolution_, slots_);
-    checkGlError("allocating shadow maps");
+    checkGlError(("allocating " + std::to_string(slots_) + " shadow maps of " + std::to_string(resolution_) + "x" +
+                  std::to_string(resolution_) + " texels")
+                     .c_str());
 }
 
 void ShadowMapStorage::bindDepthTarget(int slot) { bindNearestDepthTarget(depths_, slot); }

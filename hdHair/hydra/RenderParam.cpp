@@ -5,6 +5,7 @@
 #include "pxr/base/tf/diagnostic.h"
 
 #include "hdHair/gl/GlContext.h"
+#include "hdHair/scene/SceneValidation.h"
 
 PXR_NAMESPACE_OPEN_SCOPE
 
@@ -81,7 +82,12 @@ void HdHairRenderParam::_RemoveEnginePrims(std::string const& path) {
 void HdHairRenderParam::SetLight(hdhair::LightPrim light) {
     std::lock_guard<std::mutex> lock(_mutex);
     ++_syncCounts[light.path];
-    _scene.setLight(std::move(light));
+    // The same checks as the embedded reader's (SceneValidation.h); a light
+    // that cannot be used leaves the scene.
+    if (hdhair::repairLight(light, light.path, _diagnostics))
+        _scene.setLight(std::move(light));
+    else
+        _scene.remove(light.path);
 }
 
 void HdHairRenderParam::SetMaterial(hdhair::MaterialPrim material) {

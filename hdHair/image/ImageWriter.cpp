@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <array>
 #include <cctype>
+#include <cmath>
 #include <filesystem>
 #include <stdexcept>
 
@@ -61,7 +62,8 @@ Image displayImage(const Image& linear, const DisplayTransform& display, bool ov
     return shown;
 }
 
-void writeImage(const Image& image, const std::string& path, const ImageColor& color) {
+ImageWriteReport writeImage(const Image& image, const std::string& path, const ImageColor& color) {
+    ImageWriteReport report;
     FileKind kind = fileKindOf(path);
     if (kind == FileKind::Unsupported)
         throw std::runtime_error("cannot write '" + path +
@@ -76,8 +78,25 @@ void writeImage(const Image& image, const std::string& path, const ImageColor& c
     OIIO::ImageBuf out;
     OIIO::TypeDesc format;
     if (kind == FileKind::Exr) {
-        out = toImageBuf(image);
-        format = OIIO::TypeDesc::HALF;
+        if (color.exrFloat32) {
+            out = toImageBuf(image);
+            format = OIIO::TypeDesc::FLOAT;
+        } else {
+            Image clamped = image;
+            const size_t channels = size_t(image.channels);
+            for (size_t i = 0; i < clamped.pixels.size(); i += channels) {
+                bool beyond = false;
+                for (size_t c = i; c < i + channels; ++c) {
+                    float& value = clamped.pixels[c];
+                    if (!(std::fabs(value) > kHalfMax)) continue;  // also NaN: the renderer replaces those
+                    beyond = true;
+                    value = std::copysign(kHalfMax, value);
+                }
+                report.pixelsClampedToHalf += beyond ? 1 : 0;
+            }
+            out = toImageBuf(clamped);
+            format = OIIO::TypeDesc::HALF;
+        }
         out.specmod().attribute("compression", "zip");
         // The colour space's name (as hdHair's OCIO config names it) and,
         // in EXR's standard attribute, its primaries and white.
@@ -109,6 +128,7 @@ void writeImage(const Image& image, const std::string& path, const ImageColor& c
     writeFileAtomically(path, [&](const std::string& temporary) {
         return out.write(temporary) ? std::string() : out.geterror();
     });
+    return report;
 }
 
 Image readImage(const std::string& path) {

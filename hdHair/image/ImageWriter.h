@@ -3,7 +3,10 @@
 // extension:
 // - .exr: half float RGBA, scene-linear, pre-multiplied alpha (EXR's own
 //   convention), ZIP compressed, with its colour space's name and
-//   chromaticities in the metadata;
+//   chromaticities in the metadata; values beyond half float's range
+//   (magnitude over 65504) are clamped to it and counted, since a half
+//   cannot hold them and would store infinity. ImageColor::exrFloat32
+//   writes 32-bit floats instead, every value exactly;
 // - .png, .tif/.tiff: 8-bit RGBA through the display transform (alpha
 //   un-premultiplied first, as those formats expect);
 // - .jpg/.jpeg: 8-bit RGB through the display transform, composited over
@@ -13,6 +16,7 @@
 // renamed over the target, so a reader never sees a half-written image and a
 // failed render leaves any previous file in place.
 
+#include <cstddef>
 #include <string>
 
 #include "hdHair/image/ColorSpaces.h"
@@ -27,11 +31,21 @@ struct ImageColor {
     // The display image, when it was made elsewhere (the GPU path): used as
     // it is instead of applying `display`.
     const Image* displayed = nullptr;
+    // EXR: 32-bit float channels (hdhair-record --exrFloat32) instead of half.
+    bool exrFloat32 = false;
+};
+
+// The largest finite half float.
+constexpr float kHalfMax = 65504.0f;
+
+struct ImageWriteReport {
+    // Pixels with a channel beyond +-kHalfMax, clamped to it in a half EXR.
+    size_t pixelsClampedToHalf = 0;
 };
 
 // Throws std::runtime_error naming the path for an unsupported extension, a
 // missing folder or a failed write.
-void writeImage(const Image& linear, const std::string& path, const ImageColor& color = {});
+ImageWriteReport writeImage(const Image& linear, const std::string& path, const ImageColor& color = {});
 
 // True for scene-linear formats (.exr), which no display transform touches.
 bool isSceneLinearImagePath(const std::string& path);

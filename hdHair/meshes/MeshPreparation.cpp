@@ -17,6 +17,7 @@
 #include "hdHair/meshes/MeshRefinement.h"
 #include "hdHair/meshes/PreparedMesh.h"
 #include "hdHair/scene/MeshPrim.h"
+#include "hdHair/scene/SceneValidation.h"
 
 namespace hdhair {
 
@@ -131,6 +132,10 @@ PreparedMesh prepareMesh(const MeshPrim& prim, int defaultRefineLevel, Diagnosti
     PreparedMesh prepared;
     prepared.path = prim.path;
     prepared.authoredFaces = prim.faceVertexCounts.size();
+    if (std::string problem = transformProblem(prim.path, prim.worldTransform); !problem.empty()) {
+        diagnostics.warn(prim.path, problem);
+        return prepared;
+    }
     const MeshTopology topology = checkMeshTopology(prim, diagnostics);
     prepared.scheme = topology.scheme;
 

@@ -1,5 +1,8 @@
 #include "hdHair/render/RenderPlan.h"
 
+#include <algorithm>
+#include <cmath>
+
 #include <fmt/format.h>
 #include <glm/geometric.hpp>
 #include <nlohmann/json.hpp>
@@ -101,13 +104,27 @@ void planShadows(RenderPlan& plan, const RenderSettings& settings, const StrandS
     shadows.resolution = settings.getInt("shadowMapResolution");
     shadows.minPixelWidth = settings.getFloat("minPixelWidth");
     shadows.meshesCast = anyMeshes && shadows.mode != ShadowMode::Off;
+    shadows.maxMaps = shadowMapBudget(shadows.resolution, shadows.layers, settings.getInt("shadowMemoryMB"));
+    size_t mapped = 0;
     for (size_t i = 0; i < plan.lights.lights.size(); ++i) {
         const ShadingLight& light = plan.lights.lights[i];
         if (!light.castsShadow) continue;
         PlannedShadow shadow;
         shadow.light = i;
         shadow.key = light.path.empty() ? "camera light" : light.path;
-        if (shadows.mode != ShadowMode::Off) shadow.view = fitShadowLightView(light, strands.casters, shadows.resolution);
+        if (shadows.mode != ShadowMode::Off) {
+            if (mapped < shadows.maxMaps) {
+                shadow.view = fitShadowLightView(light, strands.casters, shadows.resolution);
+                mapped += shadow.view.valid ? 1 : 0;
+            } else {
+                shadow.view.valid = false;
+                shadow.overBudget = true;
+                shadow.view.fallback = fmt::format("shadowMemoryMB={} holds {} maps of {}x{} texels",
+                                                   settings.getInt("shadowMemoryMB"), shadows.maxMaps,
+                                                   shadows.resolution, shadows.resolution);
+                shadows.overBudget += 1;
+            }
+        }
         shadows.lights.push_back(std::move(shadow));
     }
 }
@@ -220,6 +237,18 @@ void RenderPlan::fallBackToBinSorted(uint32_t bins, bool idsRequested) {
     graph.compile();
 }
 
+size_t shadowMapBudget(int resolution, int layers, int memoryMB) {
+    constexpr size_t kGuaranteedArrayLayers = 2048;  // GL 4.5's minimum GL_MAX_ARRAY_TEXTURE_LAYERS
+    const size_t targets = size_t((layers + 3) / 4);
+    const double bytesPerMap = double(resolution) * double(resolution) * (4.0 + 4.0 + 8.0 * double(targets));
+    const double fitting = std::floor(double(memoryMB) * 1024.0 * 1024.0 / bytesPerMap);
+    const size_t limit = std::min(kGuaranteedArrayLayers / targets, size_t(std::min(fitting, 1e9)));
+    if (limit == 0) return 0;
+    size_t maps = 1;
+    while (maps * 2 <= limit) maps *= 2;
+    return maps;
+}
+
 nlohmann::json RenderPlan::toJson() const { return graph.toJson(); }
 
 RenderPlan makeRenderPlan(const Scene& scene, const RenderSettings& settings, const CameraView& camera,
@@ -231,8 +260,10 @@ RenderPlan makeRenderPlan(const Scene& scene, const RenderSettings& settings, co
     for (const auto& [path, entry] : scene.lights()) {
         if (entry.prim->hostCameraLight) {
             if (!hostCameraLight && entry.prim->visible) hostCameraLight = entry.prim.get();
-        } else {
+        } else if (stageLights.size() < kMaxLights) {
             stageLights.push_back(entry.prim.get());
+        } else {
+            plan.lightsOverCap += 1;
         }
     }
     plan.lights = toShadingLights(stageLights);

@@ -53,6 +53,7 @@ struct PlannedShadow {
     int slot = -1;          // where its map lives (gl::ShadowMapStorage), set by the renderer
     bool rebuild = true;    // false: kept from an earlier frame (ShadowMapCache)
     std::string reason;     // "rebuilt: ..." or "kept: ..." once the renderer decided
+    bool overBudget = false;  // no map because shadowMemoryMB holds no more (one warning for all)
 };
 
 struct ShadowPlan {
@@ -65,6 +66,10 @@ struct ShadowPlan {
     double minPixelWidth = 1.0;    // the coverage rule in the light's pixels, whatever the camera's path
     int capacity = 0;              // map slots the storage holds (set by the renderer)
     std::vector<PlannedShadow> lights;
+    // Casting lights left without a map because shadowMemoryMB holds only
+    // `maxMaps` (shadowMapBudget); they shade unshadowed.
+    size_t maxMaps = 0;
+    size_t overBudget = 0;
     // The resource light `shadow` gives the strand passes ("deepOpacity L",
     // "shadowFragments L").
     std::string resourceOf(const PlannedShadow& shadow) const;
@@ -75,6 +80,17 @@ struct ShadowPlan {
     // Index into `lights` of light `light`'s shadow, or -1.
     int shadowOf(size_t light) const;
 };
+
+// The most stage lights a frame shades; more are left out, in path order
+// from the last, with a warning. Each light costs every strand drawn once
+// more per lightsPerPass lights (hdHair/render/README.md, "Light cap").
+constexpr size_t kMaxLights = 1024;
+
+// How many shadow maps fit: the largest power of two (the map storage grows
+// in powers of two, ShadowMapCache) whose maps fit in `memoryMB` at this
+// resolution and layer count (R32F hair and mesh depths, RGBA16F per four
+// layers) and within GL 4.5's guaranteed 2048 array layers.
+size_t shadowMapBudget(int resolution, int layers, int memoryMB);
 
 // What the frame's meshes need, measured on the prepared meshes.
 struct MeshSummary {
@@ -118,6 +134,8 @@ struct RenderPlan {
     // need a pass too).
     std::vector<std::pair<size_t, size_t>> lightBatches;
     ShadowPlan shadows;
+    // Stage lights beyond kMaxLights, left out of the frame.
+    size_t lightsOverCap = 0;
 
     bool isEnabled(const std::string& name) const { return graph.isEnabled(name); }
     // Exact transparency over its memory budget: the frame is redrawn

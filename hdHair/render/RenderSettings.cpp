@@ -86,6 +86,10 @@ const std::vector<SettingDescriptor>& RenderSettings::descriptors() {
          "Texels across each light's square shadow map (512 as in Yuksel & Keyser; with 3 layers, finer maps "
          "cost time without lowering the error: README, shadow benchmark)",
          16, 16384, {}},
+        {"shadowMemoryMB", SettingType::Int, "1024",
+         "Memory for shadow maps; lights beyond what it holds at shadowMapResolution and shadowLayers shade "
+         "unshadowed, with a warning",
+         16, 65536, {}},
         {"shadowLayerSpacing", SettingType::Token, "linear",
          "Deep opacity layer spacing: linear (gaps growing linearly from the lit surface, Yuksel & Keyser's "
          "choice) or uniform",

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 #include <vector>
 
 #include <fmt/format.h>
@@ -19,6 +20,7 @@
 #include "hdHair/render/NearestStrandRule.h"
 #include "hdHair/scene/Scene.h"
 #include "hdHair/scene/MeshPrim.h"
+#include "hdHair/scene/SceneValidation.h"
 #include "hdHair/shading/MarschnerTables.h"
 
 namespace hdhair {
@@ -88,6 +90,35 @@ Diagnostics& reportingFor(const Prim& prim, Diagnostics& diagnostics, Diagnostic
     return prim.instanceId == 0 ? diagnostics : repeated;
 }
 
+// The last guard of "no NaN or Inf in any AOV": what the checks of the
+// inputs (SceneValidation.h, curve and material repairs) did not catch, say a
+// finite light so strong that shading overflows float, is replaced here and
+// counted in a warning, so an output never carries a value a compositor
+// cannot use. NaN becomes 0, infinities the largest float of their sign.
+void replaceNonFinitePixels(RenderResult& result, Diagnostics& diagnostics) {
+    auto replace = [](Image& image) {
+        size_t replaced = 0;
+        const size_t channels = size_t(std::max(image.channels, 1));
+        for (size_t i = 0; i < image.pixels.size(); i += channels) {
+            bool bad = false;
+            for (size_t c = i; c < i + channels && c < image.pixels.size(); ++c) {
+                float& value = image.pixels[c];
+                if (std::isfinite(value)) continue;
+                bad = true;
+                value = std::isnan(value) ? 0.0f : std::copysign(std::numeric_limits<float>::max(), value);
+            }
+            replaced += bad ? 1 : 0;
+        }
+        return replaced;
+    };
+    const size_t color = replace(result.color), depth = replace(result.depth), display = replace(result.display);
+    if (color + depth + display > 0)
+        diagnostics.warn("render", fmt::format("{} colour, {} depth and {} display pixels were not finite (NaN or "
+                                               "beyond float range); NaN written as 0, infinities as the largest "
+                                               "float",
+                                               color, depth, display));
+}
+
 }  // namespace
 
 Renderer::Renderer(gl::GlBackend backend) : glThread_(std::make_unique<gl::GlRenderThread>(backend)) {
@@ -102,7 +133,7 @@ Renderer::~Renderer() {
 
 const std::string& Renderer::glDescription() const { return glThread_->contextDescription(); }
 
-SceneBounds Renderer::prepare(const Scene& scene, const RenderSettings& settings, Diagnostics& diagnostics) {
+void Renderer::prepareChangedCurves(const Scene& scene, const RenderSettings& settings, Diagnostics& diagnostics) {
     Clock::time_point start = Clock::now();
     const RenderingSpace space = settings.renderingSpace();
     for (auto it = curves_.begin(); it != curves_.end();)
@@ -154,26 +185,34 @@ SceneBounds Renderer::prepare(const Scene& scene, const RenderSettings& settings
     });
     pendingPrepareMilliseconds_ += millisecondsSince(start);
     pendingPreparedPrims_ += changed.size();
+}
 
-    SceneBounds bounds;
-    auto include = [&](const glm::dvec3& low, const glm::dvec3& high) {
-        bool first = bounds.empty();
-        bounds.min = first ? low : glm::min(bounds.min, low);
-        bounds.max = first ? high : glm::max(bounds.max, high);
-    };
+SceneBounds Renderer::prepare(const Scene& scene, const RenderSettings& settings, Diagnostics& diagnostics) {
+    prepareChangedCurves(scene, settings, diagnostics);
+    std::vector<FramingPoints> prims;
     for (const auto& [path, entry] : scene.curves()) {
         const CachedCurves& cached = curves_.at(path);
         if (!entry.prim->visible || cached.prepared->empty()) continue;
-        include(glm::dvec3(cached.prepared->boundsMin), glm::dvec3(cached.prepared->boundsMax));
-    }
-    for (const auto& [path, entry] : scene.meshes()) {
-        if (!entry.prim->visible) continue;
-        for (const glm::vec3& point : entry.prim->points) {
-            glm::dvec3 world = glm::dvec3(entry.prim->worldTransform * glm::dvec4(glm::dvec3(point), 1.0));
-            if (std::isfinite(world.x) && std::isfinite(world.y) && std::isfinite(world.z)) include(world, world);
+        FramingPoints& prim = prims.emplace_back(FramingPoints{path, {}});
+        // Each span's box, widths included: with no outliers the bounds are
+        // the prepared curves' own.
+        const std::vector<StrandControlPoint>& controls = cached.prepared->controlPoints;
+        prim.points.reserve(controls.size() / 2);
+        for (size_t c = 0; c + 3 < controls.size(); c += 4) {
+            glm::vec3 low(std::numeric_limits<float>::max()), high(-std::numeric_limits<float>::max());
+            growBoundsBySpan(&controls[c], low, high);
+            prim.points.emplace_back(low);
+            prim.points.emplace_back(high);
         }
     }
-    return bounds;
+    for (const auto& [path, entry] : scene.meshes()) {
+        if (!entry.prim->visible || !isFiniteTransform(entry.prim->worldTransform)) continue;
+        FramingPoints& prim = prims.emplace_back(FramingPoints{path, {}});
+        prim.points.reserve(entry.prim->points.size());
+        for (const glm::vec3& point : entry.prim->points)
+            prim.points.emplace_back(entry.prim->worldTransform * glm::dvec4(glm::dvec3(point), 1.0));
+    }
+    return framingBounds(prims, diagnostics);
 }
 
 void Renderer::prepareMeshes(const Scene& scene, const RenderSettings& settings, Diagnostics& diagnostics) {
@@ -242,12 +281,20 @@ TessellationView Renderer::decideShadowMaps(RenderPlan& plan, const StrandSummar
         const PlannedShadow& shadow = shadows.lights[i];
         // The camera light, when used, is the last light.
         const bool followsCamera = plan.cameraLight && shadow.light + 1 == plan.lights.lights.size();
-        if (shadows.mode != ShadowMode::Off && !plan.flatShading && summary.segments > 0 && !shadow.view.valid)
+        if (shadows.mode != ShadowMode::Off && !plan.flatShading && summary.segments > 0 && !shadow.view.valid &&
+            !shadow.overBudget)
             diagnostics.warn(shadow.key, "no shadows from this light: " + shadow.view.fallback);
         if (!plan.shadowUsed(i)) continue;
         requests.push_back({shadow.key, shadow.view, followsCamera});
         requested.push_back(i);
     }
+    if (shadows.overBudget > 0 && !plan.flatShading && summary.segments > 0)
+        diagnostics.warn("render", fmt::format("{} lights cast shadows, more than the {} maps shadowMemoryMB={} holds "
+                                               "at shadowMapResolution={}; the last {} in path order shade "
+                                               "unshadowed",
+                                               shadows.lights.size(), shadows.maxMaps,
+                                               settings.getInt("shadowMemoryMB"), shadows.resolution,
+                                               shadows.overBudget));
     const ShadowFrame frame = shadowMaps_.update(requests, shadowSettingsKey(settings), castersVersion_, camera,
                                                  summary.casters, shadows.mode == ShadowMode::Reference);
     shadows.capacity = frame.capacity;
@@ -323,10 +370,13 @@ std::optional<MaterialUpload> Renderer::materialUpload(const std::vector<HairMat
 RenderResult Renderer::render(const Scene& scene, const CameraView& camera, const RenderSettings& settings,
                               Diagnostics& diagnostics, const RenderOutputs& outputs) {
     Clock::time_point frameStart = Clock::now();
+    if (!isFiniteTransform(camera.view) || !isFiniteTransform(camera.projection))
+        throw std::invalid_argument("the camera's view or projection is not finite (a NaN or infinite transform, "
+                                    "lens or clipping range)");
     RenderResult result;
     RenderStats& stats = result.stats;
     size_t warningsBefore = diagnostics.warningCount();
-    prepare(scene, settings, diagnostics);
+    prepareChangedCurves(scene, settings, diagnostics);
     stats.passes.push_back({"prepareCurves", pendingPrepareMilliseconds_});
     stats.preparedPrims = pendingPreparedPrims_;
     pendingPrepareMilliseconds_ = 0.0;
@@ -422,6 +472,11 @@ RenderResult Renderer::render(const Scene& scene, const CameraView& camera, cons
         // A shadow that could not be built is tried again next frame.
         for (const std::string& key : context.unshadowed) shadowMaps_.forget(key);
     });
+    if (plan.lightsOverCap > 0)
+        diagnostics.warn("render", fmt::format("the stage has {} lights, more than the {} a frame shades; the last {} "
+                                               "in path order are left out",
+                                               scene.lights().size(), kMaxLights, plan.lightsOverCap));
+    replaceNonFinitePixels(result, diagnostics);
     if (inputs.samples < plan.msaaSamples)
         diagnostics.warn("render", fmt::format("msaaSamples={} is more than this GL driver offers; using {}",
                                                plan.msaaSamples, inputs.samples));

@@ -28,6 +28,7 @@
 #include "hdHair/meshes/PreparedMesh.h"
 #include "hdHair/render/CameraView.h"
 #include "hdHair/render/FramePasses.h"
+#include "hdHair/render/FramingBounds.h"
 #include "hdHair/render/RenderPlan.h"
 #include "hdHair/render/RenderSettings.h"
 #include "hdHair/render/RenderStats.h"
@@ -43,11 +44,6 @@ namespace gl {
 class GlRenderThread;
 }  // namespace gl
 struct FrameResources;
-
-struct SceneBounds {
-    glm::dvec3 min{1.0}, max{-1.0};  // min > max when the scene has nothing visible
-    bool empty() const { return min.x > max.x; }
-};
 
 // What a frame must produce besides colour and depth.
 struct RenderOutputs {
@@ -85,9 +81,10 @@ public:
     Renderer& operator=(const Renderer&) = delete;
 
     // Prepares every changed curves prim (repairs are reported to
-    // diagnostics) and returns the world bounds of what is visible, meshes
-    // included (their authored points: meshes are refined when rendered,
-    // at the refine level the settings give).
+    // diagnostics) and returns the bounds the framing camera fits
+    // (FramingBounds.h: outlying points left out, with a warning) of what is
+    // visible, meshes included (their authored points: meshes are refined
+    // when rendered, at the refine level the settings give).
     SceneBounds prepare(const Scene& scene, const RenderSettings& settings, Diagnostics& diagnostics);
 
     RenderResult render(const Scene& scene, const CameraView& camera, const RenderSettings& settings,
@@ -96,6 +93,10 @@ public:
     const std::string& glDescription() const;
 
 private:
+    // Prepares the curves prims that changed since they were last prepared
+    // (or were prepared for another rendering space).
+    void prepareChangedCurves(const Scene& scene, const RenderSettings& settings, Diagnostics& diagnostics);
+
     struct CachedCurves {
         uint64_t version = 0;
         // The bound material's version (0 when none): its colour and opacity

@@ -27,8 +27,10 @@
 #include "hdHair/image/DisplayTransform.h"
 #include "hdHair/image/ImageWriter.h"
 #include "hdHair/render/CameraView.h"
+#include "hdHair/render/EmptyFrame.h"
 #include "hdHair/render/Renderer.h"
 #include "hdHair/scene/Scene.h"
+#include "hdHair/scene/SceneValidation.h"
 #include "hdHair/tools/FrameSpec.h"
 #include "hdHair/usda/SceneReader.h"
 #include "hdHair/usda/Stage.h"
@@ -54,6 +56,7 @@ struct Options {
     std::string reader = kDefaultReader;
     int imageWidth = 960;
     bool defaultTime = false, verbose = false, explain = false;
+    bool exrFloat32 = false;  // EXR as 32-bit floats, every value exact (else half, clamped to +-65504)
     std::vector<std::string> settings;
     // Colour management, as usdrecord's --colorCorrectionMode, with OCIO's choices.
     std::string colorCorrectionMode = "sRGB", ocioConfig, ocioDisplay, ocioView, ocioColorSpace, ocioLook;
@@ -113,11 +116,12 @@ DisplayTransform displayTransformFor(const Options& options, RenderingSpace rend
 // display transform (made on the GPU already in `gpuDisplayed`, or here on
 // the CPU, timed). Adds what it did to `frameStats`.
 void writeFrameImage(const Image& linear, const Image* gpuDisplayed, const DisplayTransform& display,
-                     RenderingSpace space, const std::string& outputPath, std::vector<PassTiming>& passes,
-                     nlohmann::json& frameStats) {
+                     RenderingSpace space, const std::string& outputPath, bool exrFloat32, Diagnostics& diagnostics,
+                     std::vector<PassTiming>& passes, nlohmann::json& frameStats) {
     ImageColor color;
     color.space = space;
     color.display = &display;
+    color.exrFloat32 = exrFloat32;
     const bool sceneLinear = isSceneLinearImagePath(outputPath);
     Image shown;
     if (!sceneLinear) {
@@ -131,8 +135,12 @@ void writeFrameImage(const Image& linear, const Image* gpuDisplayed, const Displ
         }
     }
     Clock::time_point writeStart = Clock::now();
-    writeImage(linear, outputPath, color);
+    const ImageWriteReport report = writeImage(linear, outputPath, color);
     passes.push_back({"writeImage", millisecondsSince(writeStart)});
+    if (report.pixelsClampedToHalf > 0)
+        diagnostics.warn(outputPath, fmt::format("{} pixels exceed half float's largest value (65504) and were clamped "
+                                                 "to it; --exrFloat32 writes them exactly",
+                                                 report.pixelsClampedToHalf));
     nlohmann::json colorStats = display.describe();
     colorStats["output"] = sceneLinear ? "scene-linear" : "display";
     colorStats["renderingSpace"] = toString(space);
@@ -238,7 +246,12 @@ int runThroughUsdImaging(const Options& options, const usda::SceneReadOptions& p
         // The plugin's colour AOV is scene-linear (hosts correct it once);
         // the display transform runs here, on the CPU.
         std::vector<PassTiming> writing;
-        writeFrameImage(result.color, nullptr, display, space, outputPath, writing, frameStats);
+        Diagnostics writeDiagnostics;
+        writeDiagnostics.setListener([](const Diagnostic& warning) {
+            std::fprintf(stderr, "hdhair-record: warning: %s: %s\n", warning.where.c_str(), warning.message.c_str());
+        });
+        writeFrameImage(result.color, nullptr, display, space, outputPath, options.exrFloat32, writeDiagnostics,
+                        writing, frameStats);
         for (const PassTiming& pass : writing)
             frameStats["passes"].push_back({{"name", pass.name}, {"milliseconds", pass.milliseconds}});
         if (options.explain && !result.plan.empty())
@@ -340,7 +353,7 @@ int run(const Options& options) {
                 throw InputError(options.usdFile + ": no camera at '" + options.camera + "'" +
                                  (known.empty() ? " (the stage has no cameras)" : " (cameras: " + known + ")"));
             }
-            camera = cameraViewFromPrim(*prim, options.imageWidth);
+            camera = cameraViewFromPrim(checkedCamera(*prim, options.usdFile, diagnostics), options.imageWidth);
             cameraName = options.camera;
         } else {
             SceneBounds bounds = renderer.prepare(scene, settings, diagnostics);
@@ -355,6 +368,8 @@ int run(const Options& options) {
         outputs.gpuDisplay = gpuDisplay ? &displayShader : nullptr;
         outputs.displayOverBlack = !keepsAlpha(options.outputPath);
         RenderResult result = renderer.render(scene, camera, settings, diagnostics, outputs);
+        if (std::string why = whyNothingDrawn(scene, result, diagnostics.warningCount()); !why.empty())
+            diagnostics.warn(options.usdFile, why);
         result.stats.camera = cameraName;
         result.stats.time = time;
         result.stats.passes.insert(result.stats.passes.begin(), PassTiming{"readScene", sceneMilliseconds});
@@ -363,7 +378,7 @@ int run(const Options& options) {
             std::isfinite(time) ? expandFramePlaceholder(options.outputPath, time) : options.outputPath;
         nlohmann::json frameColor;
         writeFrameImage(result.color, gpuDisplay ? &result.display : nullptr, display, space, outputPath,
-                        result.stats.passes, frameColor);
+                        options.exrFloat32, diagnostics, result.stats.passes, frameColor);
 
         if (options.explain)
             std::printf("hdhair-record: plan (%s):\n%s", describeTime(time).c_str(),
@@ -448,6 +463,9 @@ int main(int argc, char** argv) {
                    "Where the display transform runs: cpu (OpenColorIO's CPU processor) or gpu (its GLSL, on "
                    "hdHair's GL context)")
         ->capture_default_str();
+    app.add_flag("--exrFloat32", options.exrFloat32,
+                 "Write .exr as 32-bit floats, every value exactly (default: half floats, values beyond 65504 "
+                 "clamped with a warning)");
     app.add_option("--stats", options.statsFile, "Write what was rendered (prims, curves, segments, pass times, "
                                                  "settings) to this JSON file");
     app.add_flag("--verbose,-v", options.verbose, "Print what was done and how long each pass took");

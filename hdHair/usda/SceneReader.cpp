@@ -10,6 +10,7 @@
 
 #include <fmt/format.h>
 
+#include "hdHair/scene/SceneValidation.h"
 #include "hdHair/usda/MaterialBinding.h"
 #include "hdHair/usda/XformOps.h"
 
@@ -494,7 +495,7 @@ void Reader::readLight(const Prim& prim, const Inherited& state, LightType type)
                                    light.coneSoftness);
     // UsdLuxShadowAPI, likewise.
     light.shadowEnable = readBool(prim, {"inputs:shadow:enable", "shadow:enable"}, light.shadowEnable);
-    scene_.setLight(std::move(light));
+    if (repairLight(light, prim.location.toString(), diagnostics_)) scene_.setLight(std::move(light));
 }
 
 void Reader::walk(const Prim& prim, const Inherited& parent) {
