@@ -1,6 +1,7 @@
 #include "TestCases.h"
 
 #include <algorithm>
+#include <cctype>
 #include <filesystem>
 #include <fstream>
 #include <stdexcept>
@@ -72,6 +73,13 @@ std::vector<std::string> testCaseFolders() {
         if (entry.is_directory() && fs::exists(entry.path() / "case.json")) folders.push_back(entry.path().string());
     std::sort(folders.begin(), folders.end());
     return folders;
+}
+
+std::string caseTestName(const std::string& folder) {
+    std::string name = fs::path(folder).filename().string();
+    for (char& c : name)
+        if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+    return name;
 }
 
 TestCase loadTestCase(const std::string& folder) {

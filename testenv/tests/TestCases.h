@@ -47,6 +47,8 @@ struct TestCase {
 
 // The case folders under testenv/cases, sorted by name.
 std::vector<std::string> testCaseFolders();
+// A case folder's name as a GoogleTest parameter name (letters, digits, _).
+std::string caseTestName(const std::string& folder);
 // Reads `folder`/case.json; throws std::runtime_error naming the file and the
 // key for anything missing or of the wrong type.
 TestCase loadTestCase(const std::string& folder);

@@ -72,12 +72,7 @@ TEST_P(CasesThroughUsdrecord, MatchTheBaselineThroughTheSameDisplayTransform) {
     }
 }
 
-std::string caseName(const ::testing::TestParamInfo<std::string>& info) {
-    std::string name = fs::path(info.param).filename().string();
-    for (char& c : name)
-        if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
-    return name;
-}
+std::string caseName(const ::testing::TestParamInfo<std::string>& info) { return caseTestName(info.param); }
 
 INSTANTIATE_TEST_SUITE_P(Testenv, CasesThroughUsdrecord, ::testing::ValuesIn(compatibleCases()), caseName);
 
