@@ -255,7 +255,10 @@ TEST(Shadows, AStageWithoutShadowCastingLightsBuildsNoShadowPasses) {
     const CameraView camera = orthographicView(2.4, 32);
     RenderResult result = render(scene, camera, {});
     EXPECT_EQ(result.stats.shadowMapsRebuilt + result.stats.shadowMapsKept, 0u);
-    for (const auto& pass : result.stats.toJson()["plan"]) {
+    // The plan is kept in a variable: a range-for over a temporary's member
+    // would walk freed memory (found by AddressSanitizer).
+    const nlohmann::json stats = result.stats.toJson();
+    for (const auto& pass : stats["plan"]) {
         const std::string name = pass["pass"];
         EXPECT_TRUE(name.rfind("shadow", 0) != 0 && name.rfind("deepOpacity", 0) != 0) << name;
     }
