@@ -10,6 +10,8 @@
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_reduce.h>
 
+#include "hdHair/render/CountingSort.h"
+
 namespace hdhair {
 namespace {
 
@@ -34,17 +36,6 @@ uint16_t geometryHash(const StrandControlPoint& a, const StrandControlPoint& b) 
         h ^= h >> 16;
     }
     return uint16_t(h & (kHashBuckets - 1u));
-}
-
-// Stable counting sort of `in` by key[in[i]] into `out`, ascending.
-template <typename Key>
-void countingSort(const std::vector<uint32_t>& in, const std::vector<Key>& key, uint32_t keyCount,
-                  std::vector<uint32_t>& out) {
-    std::vector<uint32_t> start(size_t(keyCount) + 1, 0);
-    for (uint32_t segment : in) ++start[key[segment] + 1];
-    for (size_t k = 1; k < start.size(); ++k) start[k] += start[k - 1];
-    out.resize(in.size());
-    for (uint32_t segment : in) out[start[key[segment]]++] = segment;
 }
 
 }  // namespace
@@ -76,14 +67,18 @@ void binSortSegments(const std::vector<SortSpan>& spans, const glm::dvec3& camer
     std::vector<const StrandControlPoint*> start(segments);
     std::vector<uint32_t> global(segments);
     std::vector<uint16_t> hash(segments);
-    for (size_t i = 0, offset = 0; i < spans.size(); offset += spans[i].segments, ++i) {
+    std::vector<size_t> offsets(spans.size() + 1, 0);
+    for (size_t i = 0; i < spans.size(); ++i) offsets[i + 1] = offsets[i] + spans[i].segments;
+    tbb::parallel_for(size_t(0), spans.size(), [&](size_t i) {
         const SortSpan& span = spans[i];
-        for (size_t s = 0; s < span.segments; ++s) {
-            start[offset + s] = span.controlPoints + 4 * s;
-            global[offset + s] = uint32_t(span.first + s);
-            hash[offset + s] = span.hashes[s];
-        }
-    }
+        tbb::parallel_for(tbb::blocked_range<size_t>(0, span.segments), [&](const tbb::blocked_range<size_t>& r) {
+            for (size_t s = r.begin(); s != r.end(); ++s) {
+                start[offsets[i] + s] = span.controlPoints + 4 * s;
+                global[offsets[i] + s] = uint32_t(span.first + s);
+                hash[offsets[i] + s] = span.hashes[s];
+            }
+        });
+    });
     binCount = std::max<uint32_t>(binCount, 1);
     std::vector<float> depth(segments);
     tbb::parallel_for(tbb::blocked_range<size_t>(0, segments), [&](const tbb::blocked_range<size_t>& range) {
@@ -120,9 +115,11 @@ void binSortSegments(const std::vector<SortSpan>& spans, const glm::dvec3& camer
 
     // Least significant key first: the hash, then (stably) the bin.
     std::vector<uint32_t> identity(segments), byHash;
-    for (size_t s = 0; s < segments; ++s) identity[s] = uint32_t(s);
-    countingSort(identity, hash, kHashBuckets, byHash);
-    countingSort(byHash, key, binCount, order);
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, segments), [&](const tbb::blocked_range<size_t>& r) {
+        for (size_t s = r.begin(); s != r.end(); ++s) identity[s] = uint32_t(s);
+    });
+    stableCountingSort(identity, hash, kHashBuckets, byHash);
+    stableCountingSort(byHash, key, binCount, order);
     // Distinct segments can share a 16-bit hash (a few dozen pairs in a
     // frame of 30,000 segments); order those by their geometry too, so that
     // input order shows nowhere. Such runs are short: sorting them costs
@@ -132,15 +129,22 @@ void binSortSegments(const std::vector<SortSpan>& spans, const glm::dvec3& camer
         const glm::vec3 &ya = start[y][1].position, &yb = start[y][2].position;
         return std::tie(xa.x, xa.y, xa.z, xb.x, xb.y, xb.z) < std::tie(ya.x, ya.y, ya.z, yb.x, yb.y, yb.z);
     };
-    for (size_t begin = 0; begin < order.size();) {
-        size_t end = begin + 1;
-        while (end < order.size() && key[order[end]] == key[order[begin]] && hash[order[end]] == hash[order[begin]])
-            ++end;
-        if (end - begin > 1) std::stable_sort(order.begin() + long(begin), order.begin() + long(end), geometryLess);
-        begin = end;
-    }
+    // In parallel: each chunk sorts the runs that start in it.
+    auto sameRun = [&](size_t i, size_t j) { return key[order[i]] == key[order[j]] && hash[order[i]] == hash[order[j]]; };
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, order.size(), 4096), [&](const tbb::blocked_range<size_t>& chunk) {
+        size_t begin = chunk.begin();
+        while (begin > 0 && begin < chunk.end() && sameRun(begin - 1, begin)) ++begin;
+        while (begin < chunk.end()) {
+            size_t end = begin + 1;
+            while (end < order.size() && sameRun(begin, end)) ++end;
+            if (end - begin > 1) std::stable_sort(order.begin() + long(begin), order.begin() + long(end), geometryLess);
+            begin = end;
+        }
+    });
 
-    for (uint32_t& segment : order) segment = global[segment];
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, order.size()), [&](const tbb::blocked_range<size_t>& r) {
+        for (size_t i = r.begin(); i != r.end(); ++i) order[i] = global[order[i]];
+    });
 
     if (statistics) {
         statistics->nearDepth = segments ? range.first : 0.0;

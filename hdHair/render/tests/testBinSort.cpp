@@ -12,6 +12,7 @@
 #include <gtest/gtest.h>
 
 #include "hdHair/render/BinSort.h"
+#include "hdHair/render/CountingSort.h"
 
 using namespace hdhair;
 
@@ -196,4 +197,27 @@ TEST(BinSort, NoSegmentsAndOneDepthAreHandled) {
     EXPECT_EQ(statistics.occupiedBins, 1u);
     // Zero bins are taken as one.
     EXPECT_EQ(sortSegments(flat, 0), sortSegments(flat, 1));
+}
+
+TEST(CountingSort, EveryBlockCountGivesTheSerialStableOrder) {
+    // Few keys (long runs, where stability shows) and many (hash buckets),
+    // block counts that do and do not divide the input, more blocks than
+    // elements, and the automatic choice.
+    std::mt19937 random(3);
+    for (uint32_t keyCount : {3u, 65536u}) {
+        for (size_t n : {size_t(0), size_t(1), size_t(17), size_t(100000)}) {
+            std::vector<uint32_t> key(n), in(n);
+            std::uniform_int_distribution<uint32_t> pick(0, keyCount - 1);
+            for (uint32_t& k : key) k = pick(random);
+            std::iota(in.begin(), in.end(), 0u);
+            std::shuffle(in.begin(), in.end(), random);
+            std::vector<uint32_t> expected = in;
+            std::stable_sort(expected.begin(), expected.end(), [&](uint32_t a, uint32_t b) { return key[a] < key[b]; });
+            for (size_t blocks : {size_t(0), size_t(1), size_t(2), size_t(7), size_t(64), size_t(1000)}) {
+                std::vector<uint32_t> out;
+                stableCountingSort(in, key, keyCount, out, blocks);
+                EXPECT_EQ(out, expected) << "keys " << keyCount << ", n " << n << ", blocks " << blocks;
+            }
+        }
+    }
 }
