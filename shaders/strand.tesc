@@ -1,8 +1,11 @@
 #version 450 core
 #extension GL_GOOGLE_include_directive : require
-// Chooses how finely each Catmull-Rom span is cut: by its projected length in
-// the tessellation view, so strands far away or seen end-on cost few segments
-// (adaptive to projected size), never more than maxSegmentsPerSpan. The
+// Chooses how finely each Catmull-Rom span is cut, never more than
+// maxSegmentsPerSpan: by default (screenError) as few segments as keep the
+// polyline within frame.tessellationTolerance pixels of the curve, so a
+// straight span is one quad however long it is and only bends cost segments;
+// or (projectedLength) one segment every pixelsPerSegment projected pixels.
+// Both follow projected size: strands far away or seen end-on cost few. The
 // tessellation view is the camera's (or the camera the shadow maps were built
 // with, hdHair/render/TessellationView.h) in every pass, light views
 // included, so each view draws the same curve. Culling is per view: spans
@@ -20,6 +23,52 @@ layout(location = 2) flat out int tcsSegment[];
 
 vec2 toTessellationPixels(vec4 clip) { return (clip.xy / clip.w * 0.5 + 0.5) * frame.tessellationViewport; }
 
+// The largest factor by which the tessellation view stretches a world-space
+// length anywhere in the convex hull whose clip positions are `clip` (all in
+// front: w > 0), in pixels a world unit. At a point, pixels move by
+// J = diag(viewport / 2) * (A_xy - ndc (x) A_w) / w for a world step, A the
+// view-projection's 3x3 rows. Over the hull w is smallest at a vertex (it is
+// linear) and ndc stays in the box of the vertices' ndc (a linear-fractional
+// map of a convex polytope), and |J| is convex in ndc: its largest value is at
+// a corner of that box, over the least w.
+float hullStretch(vec4 clip[4]) {
+    mat4 m = frame.tessellationViewProjection;
+    vec3 rowX = vec3(m[0][0], m[1][0], m[2][0]), rowY = vec3(m[0][1], m[1][1], m[2][1]);
+    vec3 rowW = vec3(m[0][3], m[1][3], m[2][3]);
+    vec2 halfViewport = 0.5 * frame.tessellationViewport;
+    float minW = clip[0].w;
+    vec2 ndcMin = clip[0].xy / clip[0].w, ndcMax = ndcMin;
+    for (int i = 1; i < 4; ++i) {
+        minW = min(minW, clip[i].w);
+        ndcMin = min(ndcMin, clip[i].xy / clip[i].w);
+        ndcMax = max(ndcMax, clip[i].xy / clip[i].w);
+    }
+    float stretch = 0.0;
+    for (int corner = 0; corner < 4; ++corner) {
+        vec2 ndc = vec2((corner & 1) != 0 ? ndcMax.x : ndcMin.x, (corner & 2) != 0 ? ndcMax.y : ndcMin.y);
+        vec3 jx = halfViewport.x * (rowX - ndc.x * rowW), jy = halfViewport.y * (rowY - ndc.y * rowW);
+        // Spectral norm of the 2x3 matrix (jx; jy): the larger eigenvalue of
+        // its 2x2 Gram matrix.
+        float a = dot(jx, jx), b = dot(jx, jy), c = dot(jy, jy);
+        float largest = 0.5 * (a + c) + sqrt(0.25 * (a - c) * (a - c) + b * b);
+        stretch = max(stretch, sqrt(largest));
+    }
+    return stretch / minW;
+}
+
+// Segments that keep the span's polyline within frame.tessellationTolerance
+// pixels of the curve. A chord of a curve over a parameter step h strays at
+// most h^2 / 8 * max|C''| from it; a cubic Bezier's C''(t) = 6((1 - t) d0 + t d1)
+// with d0 = B0 - 2 B1 + B2 and d1 = B1 - 2 B2 + B3, so n equal steps stray at
+// most 0.75 max(|d0|, |d1|) / n^2 world units, at most `stretch` pixels each.
+float screenErrorLevel(vec3 hull[4], float widthHull[4], vec4 clip[4]) {
+    // The ribbon's edges lie half a width to either side of the centre line:
+    // their chords stray by at most the centre's error plus half the width's.
+    float bend = max(length(hull[0] - 2.0 * hull[1] + hull[2]) + 0.5 * abs(widthHull[0] - 2.0 * widthHull[1] + widthHull[2]),
+                     length(hull[1] - 2.0 * hull[2] + hull[3]) + 0.5 * abs(widthHull[1] - 2.0 * widthHull[2] + widthHull[3]));
+    return ceil(sqrt(0.75 * bend * hullStretch(clip) / frame.tessellationTolerance));
+}
+
 void main() {
     tcsPositionWidth[gl_InvocationID] = vsPositionWidth[gl_InvocationID];
     tcsColorOpacity[gl_InvocationID] = vsColorOpacity[gl_InvocationID];
@@ -31,6 +80,8 @@ void main() {
     // The span's Bezier control polygon contains the curve (convex hull
     // property), so it bounds both culling and projected length.
     vec3 hull[4] = vec3[4](c1, c1 + (c2 - c0) / 6.0, c2 - (c3 - c1) / 6.0, c2);
+    float w0 = vsPositionWidth[0].w, w1 = vsPositionWidth[1].w, w2 = vsPositionWidth[2].w, w3 = vsPositionWidth[3].w;
+    float widthHull[4] = float[4](w1, w1 + (w2 - w0) / 6.0, w2 - (w3 - w1) / 6.0, w2);
     float halfWidth = 0.5 * max(max(vsPositionWidth[1].w, vsPositionWidth[2].w),
                                 max(vsPositionWidth[0].w, vsPositionWidth[3].w));
 
@@ -59,7 +110,9 @@ void main() {
     float level = frame.maxSegmentsPerSpan;
     bool inFront = tessellationClip[0].w > 0.0 && tessellationClip[1].w > 0.0 && tessellationClip[2].w > 0.0 &&
                    tessellationClip[3].w > 0.0;
-    if (inFront) {
+    if (inFront && frame.tessellationTolerance > 0.0) {
+        level = clamp(screenErrorLevel(hull, widthHull, tessellationClip), 1.0, frame.maxSegmentsPerSpan);
+    } else if (inFront) {
         float pixels = 0.0;
         for (int i = 0; i < 3; ++i)
             pixels += distance(toTessellationPixels(tessellationClip[i]), toTessellationPixels(tessellationClip[i + 1]));

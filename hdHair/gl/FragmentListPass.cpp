@@ -57,7 +57,7 @@ uint64_t FragmentListPass::render(const StrandGeometry& geometry, const std::vec
     // Every draw buffer: the list shader has no outputs, so whatever reached
     // an unmasked attachment would be undefined.
     glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
-    StrandPass::drawPatches(ranges, maxSegmentsPerSpan);
+    geometry.drawPatches(ranges, maxSegmentsPerSpan);
     glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
 

@@ -11,6 +11,7 @@ void deleteVertexArray(GLuint name) { glDeleteVertexArrays(1, &name); }
 void deleteTexture(GLuint name) { glDeleteTextures(1, &name); }
 void deleteFramebuffer(GLuint name) { glDeleteFramebuffers(1, &name); }
 void deleteProgram(GLuint name) { glDeleteProgram(name); }
+void deleteQuery(GLuint name) { glDeleteQueries(1, &name); }
 
 Buffer createBuffer(const void* data, size_t bytes, GLbitfield flags) {
     GLuint name = 0;
@@ -57,7 +58,8 @@ std::string infoLog(GLuint object, PFNGLGETSHADERIVPROC getObjectiv,
 }  // namespace
 
 Program createProgram(const std::vector<std::string>& shaderNames,
-                      const std::map<std::string, std::string>& overrides) {
+                      const std::map<std::string, std::string>& overrides,
+                      const std::vector<std::string>& captured) {
     Program program(glCreateProgram());
     std::vector<GLuint> shaders;
     auto release = [&] {
@@ -78,6 +80,11 @@ Program createProgram(const std::vector<std::string>& shaderNames,
             throw std::runtime_error("shaders/" + name + " does not compile:\n" + log);
         }
         glAttachShader(program.get(), shader);
+    }
+    if (!captured.empty()) {
+        std::vector<const char*> names;
+        for (const std::string& name : captured) names.push_back(name.c_str());
+        glTransformFeedbackVaryings(program.get(), GLsizei(names.size()), names.data(), GL_INTERLEAVED_ATTRIBS);
     }
     glLinkProgram(program.get());
     release();

@@ -47,12 +47,14 @@ void deleteVertexArray(GLuint name);
 void deleteTexture(GLuint name);
 void deleteFramebuffer(GLuint name);
 void deleteProgram(GLuint name);
+void deleteQuery(GLuint name);
 
 using Buffer = GlName<deleteBuffer>;
 using VertexArray = GlName<deleteVertexArray>;
 using Texture = GlName<deleteTexture>;
 using Framebuffer = GlName<deleteFramebuffer>;
 using Program = GlName<deleteProgram>;
+using Query = GlName<deleteQuery>;
 
 Buffer createBuffer(const void* data, size_t bytes, GLbitfield flags = 0);
 VertexArray createVertexArray();
@@ -60,9 +62,12 @@ VertexArray createVertexArray();
 // Compiles and links the named shaders from shaders/ (stage from the file
 // extension). Throws std::runtime_error with the driver's log and the file.
 // `overrides`: sources written at run time that replace embedded files of
-// the same name (ShaderSources.h).
+// the same name (ShaderSources.h). `captured`: outputs of the last vertex
+// stage recorded by transform feedback, interleaved in that order (tests
+// read back what the tessellator made this way).
 Program createProgram(const std::vector<std::string>& shaderNames,
-                      const std::map<std::string, std::string>& overrides = {});
+                      const std::map<std::string, std::string>& overrides = {},
+                      const std::vector<std::string>& captured = {});
 
 // Throws std::runtime_error naming `what` if GL has recorded an error.
 void checkGlError(const char* what);

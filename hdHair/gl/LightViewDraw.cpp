@@ -28,7 +28,7 @@ void LightViewDraw::draw(const Program& program, const StrandGeometry& geometry,
     glDisable(GL_DEPTH_TEST);
     glDepthMask(GL_FALSE);
     glDisable(GL_CULL_FACE);  // ribbons are seen from both sides
-    StrandPass::drawPatches(ranges, lightView.maxSegmentsPerSpan);
+    geometry.drawPatches(ranges, lightView.maxSegmentsPerSpan);
     glDepthMask(GL_TRUE);
     glBindVertexArray(0);
     glUseProgram(0);

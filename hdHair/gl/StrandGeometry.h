@@ -10,11 +10,14 @@
 // Capacity grows by copying on the GPU, so growing never re-sends the rest.
 
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include <glm/vec2.hpp>
 
 #include "hdHair/gl/GlObjects.h"
+#include "hdHair/gl/PatchBatching.h"
+#include "hdHair/gl/SegmentRange.h"
 
 namespace hdhair {
 struct PreparedCurves;
@@ -36,9 +39,19 @@ public:
     // Binds the storage buffers at the bindings the shaders use (1 to 3, and 7).
     void bind() const;
 
+    // How draws of these patches are cut for the driver (PatchBatching.h).
+    void setBatching(PatchBatching batching) { batching_ = std::move(batching); }
+    const PatchBatching& batching() const { return batching_; }
+    // Issues the draws of `ranges`, one patch a segment (the program, vertex
+    // array and state are the caller's, the buffers bound).
+    void drawPatches(const std::vector<SegmentRange>& ranges, float maxSegmentsPerSpan) const {
+        batching_.draw(ranges, maxSegmentsPerSpan);
+    }
+
 private:
     Buffer controlPoints_, segmentCurves_, segmentPrims_, segmentMaterials_;
     size_t capacity_ = 0;
+    PatchBatching batching_;
 };
 
 }  // namespace hdhair::gl

@@ -12,6 +12,9 @@ StrandPass::StrandPass()
       frameBlock_(createBuffer(nullptr, sizeof(FrameUniforms), GL_DYNAMIC_STORAGE_BIT)),
       lightBlock_(createBuffer(nullptr, sizeof(LightUniforms), GL_DYNAMIC_STORAGE_BIT)),
       shadowBlock_(createBuffer(nullptr, sizeof(ShadowUniforms), GL_DYNAMIC_STORAGE_BIT)) {
+    GLuint query = 0;
+    glCreateQueries(GL_PRIMITIVES_GENERATED, 1, &query);
+    trianglesQuery_ = Query(query);
     checkGlError("setting up the strand pass");
 }
 
@@ -36,24 +39,12 @@ void StrandPass::setDrawOrder(const std::vector<uint32_t>& order) {
     orderedSegments_ = order.size();
 }
 
-void StrandPass::drawPatches(const std::vector<SegmentRange>& ranges, float maxSegmentsPerSpan) {
-    // Mesa 22.3's llvmpipe draws triangles between unrelated vertices (long
-    // spikes across the image, and 50x slower frames) once one draw's
-    // tessellator emits too many vertices: examples/dense_clump.usda broke at
-    // 22+ segments per span in single draws of 27,900 patches. Draws of at
-    // most 2,048 emitted vertices (2 * (level + 1) per patch) render correctly
-    // at every level with no measurable cost from the extra draw calls.
-    // testRenderBaselines' DenseStrandsAtHighTessellationStayIntact guards it.
-    const GLsizei verticesPerPatch = 2 * (GLsizei(maxSegmentsPerSpan) + 1);
-    const GLsizei patchesPerDraw = std::max<GLsizei>(1, 2048 / verticesPerPatch);
-    glPatchParameteri(GL_PATCH_VERTICES, 4);
-    // strand.vert pulls control points by gl_VertexID, which counts from
-    // `first`: batches need no offsets of their own.
-    for (const SegmentRange& range : ranges) {
-        const GLsizei first = GLsizei(range.first), end = GLsizei(range.first + range.count);
-        for (GLsizei patch = first; patch < end; patch += patchesPerDraw)
-            glDrawArrays(GL_PATCHES, patch * 4, std::min(patchesPerDraw, end - patch) * 4);
-    }
+uint64_t StrandPass::takeTriangles() {
+    if (!trianglesCounted_) return 0;
+    trianglesCounted_ = false;
+    GLuint64 triangles = 0;
+    glGetQueryObjectui64v(trianglesQuery_.get(), GL_QUERY_RESULT, &triangles);
+    return triangles;
 }
 
 void StrandPass::draw(const StrandGeometry& geometry, const std::vector<SegmentRange>& ranges,
@@ -100,7 +91,12 @@ void StrandPass::draw(const StrandGeometry& geometry, const std::vector<SegmentR
         glColorMaski(kColorOutput, GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
         glColorMaski(kNearestDepthOutput, GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
     }
-    drawPatches(patches, maxSegmentsPerSpan_);
+    // Colour passes are counted; the ids pass draws the same triangles again.
+    const bool counted = blending != StrandBlending::IdsOnly;
+    if (counted) glBeginQuery(GL_PRIMITIVES_GENERATED, trianglesQuery_.get());
+    geometry.drawPatches(patches, maxSegmentsPerSpan_);
+    if (counted) glEndQuery(GL_PRIMITIVES_GENERATED);
+    trianglesCounted_ = trianglesCounted_ || counted;
     glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     glBlendEquation(GL_FUNC_ADD);
     glDisable(GL_BLEND);

@@ -38,9 +38,11 @@ public:
     // drawn prims' segments) as they lie. setUniforms() must have been called.
     void draw(const StrandGeometry& geometry, const std::vector<SegmentRange>& ranges, StrandBlending blending);
 
-    // Issues the draws only (the program and state are the caller's): used by
-    // passes that share the strand stages with another fragment shader.
-    static void drawPatches(const std::vector<SegmentRange>& ranges, float maxSegmentsPerSpan);
+    // Triangles the last colour pass over the strands drew since the last
+    // call (GL_PRIMITIVES_GENERATED: what the tessellator made, culled
+    // spans excluded), then forgets it; 0 when no colour pass ran. Waits
+    // for that pass to finish: call it after the frame's readback.
+    uint64_t takeTriangles();
 
 private:
     Program program_;
@@ -49,6 +51,8 @@ private:
     size_t orderCapacity_ = 0, orderedSegments_ = 0;
     float maxSegmentsPerSpan_ = 8.0f;
     bool orderedDraw_ = false;
+    Query trianglesQuery_;
+    bool trianglesCounted_ = false;
 };
 
 }  // namespace hdhair::gl

@@ -27,7 +27,10 @@ struct FrameUniforms {  // binding 0, shaders/include/frameUniforms.glsl
     // Blended frames: the least alpha (coverage x opacity) of a fragment that
     // may give its pixel depth and ids (hdHair/render/NearestStrandRule.h).
     float nearestStrandMinAlpha = 0.0f;
-    float padding_ = 0.0f;  // std140 aligns a vec2 to 8 bytes
+    // screenError tessellation: the most a centre line may stray from its
+    // curve, in tessellation-view pixels; 0 selects projectedLength
+    // (pixelsPerSegment) instead.
+    float tessellationTolerance = 0.0f;
     // The view every pass takes its tessellation levels from
     // (hdHair/render/TessellationView.h): the camera, or the camera the
     // shadow maps were built with.

@@ -31,8 +31,17 @@ const char* toString(Complexity complexity) {
 
 const std::vector<SettingDescriptor>& RenderSettings::descriptors() {
     static const std::vector<SettingDescriptor> table = {
+        {"tessellation", SettingType::Token, "screenError",
+         "How finely each curve span is cut: screenError (as few segments as keep the polyline within "
+         "tessellationTolerance pixels of the curve, from the span's curvature and projected size) or "
+         "projectedLength (one segment every pixelsPerSegment pixels of projected length, straight or not)",
+         0, 0, {"screenError", "projectedLength"}},
+        {"tessellationTolerance", SettingType::Float, "0.12",
+         "screenError tessellation: the most, in pixels, a strand's tessellated centre line may stray from the "
+         "true curve (complexity: low 0.12, medium 0.06, high 0.03, veryhigh 0.015; README, tessellation benchmark)",
+         0.001, 100.0, {}},
         {"pixelsPerSegment", SettingType::Float, "8",
-         "Target on-screen length in pixels of one tessellated strand segment (complexity: low 8, "
+         "projectedLength tessellation: target on-screen length in pixels of one segment (complexity: low 8, "
          "medium 4, high 2, veryhigh 1)",
          0.25, 1000.0, {}},
         {"maxSegmentsPerSpan", SettingType::Int, "8",
@@ -105,6 +114,10 @@ const std::vector<SettingDescriptor>& RenderSettings::descriptors() {
         {"cameraLight", SettingType::Token, "auto",
          "Light from the camera: auto (only when the stage has no lights), on, off", 0, 0,
          {"auto", "on", "off"}},
+        {"drawBatching", SettingType::Token, "auto",
+         "How strand draws are cut: auto (batches of at most 2,048 tessellated vertices on llvmpipe, which "
+         "draws larger tessellated draws wrongly; whole ranges elsewhere), on (batched on any driver) or off",
+         0, 0, {"auto", "on", "off"}},
         {"passTimings", SettingType::Bool, "false",
          "Time every pass of a frame for --stats and --verbose: GL timer queries where they measure whole passes, "
          "else (llvmpipe) the CPU clock with glFinish after each pass, which costs the overlap between passes; "
@@ -208,6 +221,7 @@ std::string RenderSettings::effectiveText(const std::string& name) const {
     // Storm's refinement: each level doubles the segments a span may get.
     int level = static_cast<int>(complexity_);
     if (name == "pixelsPerSegment") return std::to_string(8 >> level);
+    if (name == "tessellationTolerance") return fmt::format("{}", 0.12 / double(1 << level));
     if (name == "maxSegmentsPerSpan") return std::to_string(8 << level);
     // usdview's and usdrecord's complexities are Storm's refine levels 0-3.
     if (name == "meshRefineLevel") return std::to_string(level);

@@ -16,6 +16,7 @@ nlohmann::json RenderStats::toJson() const {
     json["curves"] = curves;
     json["segments"] = segments;
     json["meshTriangles"] = meshTriangles;
+    json["strandTriangles"] = strandTriangles;
     nlohmann::json passList = nlohmann::json::array();
     for (const PassTiming& pass : passes) passList.push_back({{"name", pass.name}, {"milliseconds", pass.milliseconds}});
     json["passes"] = passList;
@@ -30,6 +31,7 @@ nlohmann::json RenderStats::toJson() const {
     json["preparedMeshes"] = preparedMeshes;
     json["uploadedSegments"] = uploadedSegments;
     json["passTiming"] = passTiming;
+    json["drawBatching"] = drawBatching;
     json["shadowMapsRebuilt"] = shadowMapsRebuilt;
     json["shadowMapsKept"] = shadowMapsKept;
     json["shadowMaps"] = shadowMaps;

@@ -22,6 +22,9 @@ struct RenderStats {
     size_t curvesPrims = 0, meshPrims = 0, lights = 0;
     uint64_t curves = 0, segments = 0;
     uint64_t meshTriangles = 0;   // of the meshes drawn, after refinement
+    // Triangles one colour pass over the strands drew (as tessellated, culled
+    // spans excluded; 0 for exact transparency, which draws its own way).
+    uint64_t strandTriangles = 0;
     size_t preparedMeshes = 0;    // meshes refined and triangulated this frame (changed ones only)
     std::vector<PassTiming> passes;
     double totalMilliseconds = 0.0;
@@ -36,6 +39,7 @@ struct RenderStats {
     size_t preparedPrims = 0;     // curves prims prepared for this frame (only new and changed ones)
     uint64_t uploadedSegments = 0;  // strand segments sent to the GPU this frame (only changed prims)
     std::string passTiming;       // how passes were timed (the passTimings setting and the driver)
+    std::string drawBatching;     // how strand draws were cut (hdHair/gl/PatchBatching.h)
     // Shadow maps this frame: rebuilt, kept from an earlier frame, and per
     // shadow-casting light what happened and why ({"light", "map", "reason"};
     // map is "rebuilt", "kept" or "none").

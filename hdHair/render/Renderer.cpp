@@ -40,6 +40,8 @@ gl::FrameUniforms frameUniforms(const CameraView& camera, const RenderSettings& 
     frame.cameraForward = glm::vec4(glm::vec3(camera.forward()), 0.0f);
     frame.viewportSize = glm::vec2(float(camera.imageWidth), float(camera.imageHeight));
     frame.pixelsPerSegment = float(settings.getFloat("pixelsPerSegment"));
+    frame.tessellationTolerance =
+        settings.getToken("tessellation") == "screenError" ? float(settings.getFloat("tessellationTolerance")) : 0.0f;
     frame.maxSegmentsPerSpan = float(settings.getInt("maxSegmentsPerSpan"));
     frame.pixelsPerUnit = float(camera.pixelsPerUnit());
     bool opaque = plan.transparency == TransparencyPath::Opaque;
@@ -58,7 +60,8 @@ gl::FrameUniforms frameUniforms(const CameraView& camera, const RenderSettings& 
 std::string shadowSettingsKey(const RenderSettings& settings) {
     std::string key;
     for (const char* name : {"shadowMode", "shadowLayers", "shadowMapResolution", "shadowLayerSpacing",
-                             "shadowLayerDepth", "minPixelWidth", "pixelsPerSegment", "maxSegmentsPerSpan"})
+                             "shadowLayerDepth", "minPixelWidth", "tessellation", "tessellationTolerance",
+                             "pixelsPerSegment", "maxSegmentsPerSpan"})
         key += settings.getToken(name) + ";";
     return key;
 }
@@ -465,10 +468,15 @@ RenderResult Renderer::render(const Scene& scene, const CameraView& camera, cons
     inputs.fragmentListCapacity = size_t(settings.getInt("exactMemoryMB")) * 1024 * 1024 / gl::kFragmentNodeBytes;
     const gl::PassTiming timing = settings.getBool("passTimings") ? passTiming_ : gl::PassTiming::Off;
 
+    const gl::PatchBatching batching =
+        gl::PatchBatching::choose(settings.getToken("drawBatching"), glThread_->contextDescription());
+    stats.drawBatching = batching.describe();
     glThread_->run([&] {
+        resources_->strands.setBatching(batching);
         inputs.samples = std::min(plan.msaaSamples, resources_->maxSamples);
         FrameContext context{inputs, plan, *resources_, diagnostics, result, {}, nullptr, false, {}};
         runFrameGraph(context, timing);
+        stats.strandTriangles = resources_->strandPass.takeTriangles();
         // A shadow that could not be built is tried again next frame.
         for (const std::string& key : context.unshadowed) shadowMaps_.forget(key);
     });

@@ -1,7 +1,7 @@
 // hdhair-bench: what accuracy costs in time, measured with Google Benchmark.
 //
 //   hdhair-bench [--stage FILE]... [--imageWidth N]
-//                [--table complexity|transparency|shading|shadows|all] [Google Benchmark flags]
+//                [--table complexity|transparency|shading|shadows|tessellation|all] [Google Benchmark flags]
 //
 // For each stage (examples/dense_clump.usda when none is given), rendered
 // through its first camera (or a framing camera):
@@ -42,6 +42,7 @@
 
 #include "hdHair/base/Diagnostics.h"
 #include "hdHair/curves/PreparedCurves.h"
+#include "hdHair/image/BoxDownsample.h"
 #include "hdHair/image/ImageComparison.h"
 #include "hdHair/shading/MarschnerTables.h"
 #include "hdHair/render/BinSort.h"
@@ -351,6 +352,57 @@ void printShadowTable(BenchStage& stage, const std::vector<Configuration>& confi
     }
 }
 
+// Tessellation, old rule (projectedLength) against new (screenError) at each
+// complexity level: triangles one colour pass draws, process CPU seconds of a
+// frame relative to projectedLength at low, and the error against the true
+// coverage, a 4x4-supersampled render with dense tessellation box-filtered
+// to the image size. Sub-pixel strands alias, so every single-sample image
+// sits above an error floor, the RMSE of a converged tessellation (screenError
+// at 0.001 px); "excess" is what tessellation adds on top.
+void printTessellationTable(BenchStage& stage) {
+    Diagnostics diagnostics;
+    setLightCount(stage, kStageLights);
+    constexpr int kSupersampling = 4;
+    CameraView supersampled = stage.camera;
+    supersampled.imageWidth *= kSupersampling;
+    supersampled.imageHeight *= kSupersampling;
+    RenderResult dense = renderer()->render(
+        stage.scene, supersampled,
+        RenderSettings::fromAssignments(Complexity::VeryHigh, {"tessellation=projectedLength",
+                                                              fmt::format("pixelsPerSegment={}", kSupersampling),
+                                                              "maxSegmentsPerSpan=64"}),
+        diagnostics);
+    const Image truth = boxDownsample(dense.color, kSupersampling);
+    auto errorOf = [&](const RenderResult& result) { return compareImages(result.color, truth, exactWithin(kOneStep)); };
+    const ImageComparison floor = errorOf(renderer()->render(
+        stage.scene, stage.camera,
+        RenderSettings::fromAssignments(Complexity::VeryHigh, {"tessellationTolerance=0.001", "maxSegmentsPerSpan=64"}),
+        diagnostics));
+    std::printf("\nTessellation, %s (%dx%d): triangles of one colour pass; process CPU time of a frame relative to "
+                "projectedLength at low; error against a %dx%d-supersampled dense render (RMSE floor of a converged "
+                "tessellation: %.5f)\n\n",
+                stage.path.c_str(), stage.camera.imageWidth, stage.camera.imageHeight, kSupersampling, kSupersampling,
+                floor.rootMeanSquare);
+    std::printf("| complexity | rule | triangles | frame | RMSE | excess RMSE | max difference |\n"
+                "|---|---|---|---|---|---|---|\n");
+    double base = 0.0;
+    for (const Configuration& level : complexityConfigurations())
+        for (const char* rule : {"projectedLength", "screenError"}) {
+            RenderSettings settings = RenderSettings::fromAssignments(level.complexity, {std::string("tessellation=") + rule});
+            RenderResult result = renderer()->render(stage.scene, stage.camera, settings, diagnostics);
+            const double seconds = frameCpuSeconds(stage, settings, diagnostics);
+            if (base == 0.0) base = seconds;
+            const ImageComparison error = errorOf(result);
+            const std::string parameter = std::string(rule) == "screenError"
+                                              ? fmt::format("{} px", settings.getFloat("tessellationTolerance"))
+                                              : fmt::format("{} px a segment", settings.getFloat("pixelsPerSegment"));
+            std::printf("| %s | %s (%s) | %llu | %.2fx | %.5f | %.5f | %.4f |\n", level.label.c_str(), rule,
+                        parameter.c_str(), static_cast<unsigned long long>(result.stats.strandTriangles),
+                        seconds / base, error.rootMeanSquare, error.rootMeanSquare - floor.rootMeanSquare,
+                        error.maxDifference);
+        }
+}
+
 // The embedded reader: parsing a large layer, and composition per prim (its
 // growth is tested by counting work in testUsdaReader; the seconds are here).
 void registerReaderBenchmarks() {
@@ -425,6 +477,7 @@ int main(int argc, char** argv) {
     bool transparencyTable = table == "all" || table == "transparency";
     bool shadingTable = table == "all" || table == "shading";
     bool shadowTable = table == "all" || table == "shadows";
+    bool tessellationTable = table == "all" || table == "tessellation";
     std::vector<Configuration> shadows = shadowConfigurations();
     std::vector<ShadingConfiguration> shadings = shadingConfigurations();
     registerReaderBenchmarks();
@@ -466,6 +519,7 @@ int main(int argc, char** argv) {
     for (const auto& stage : stages) {
         setLightCount(*stage, kStageLights);
         if (complexityTable) printTable(*stage, complexities, 3, 0, reporter, "Complexity");
+        if (tessellationTable) printTessellationTable(*stage);
         if (transparencyTable) {
             printTable(*stage, transparencies, transparencies.size() - 1, 0, reporter, "Transparency");
             auto sort = reporter.seconds.find("BinSort/" + stage->name);

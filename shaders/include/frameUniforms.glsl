@@ -5,7 +5,7 @@ layout(std140, binding = 0) uniform FrameUniforms {
     vec4 cameraPosition;      // world space; w = 1 perspective, 0 orthographic
     vec4 cameraForward;       // world-space viewing direction
     vec2 viewportSize;        // pixels
-    float pixelsPerSegment;   // target on-screen length of one tessellated segment
+    float pixelsPerSegment;   // projectedLength: target on-screen length of one tessellated segment
     float maxSegmentsPerSpan; // upper bound per Catmull-Rom span
     // Pixels one world unit spans at clip w = 1 (horizontal): a width w at
     // clip depth c.w covers w * pixelsPerUnit / c.w pixels.
@@ -19,6 +19,10 @@ layout(std140, binding = 0) uniform FrameUniforms {
     // fragment whose alpha (coverage x opacity) is at least this
     // (hdHair/render/NearestStrandRule.h).
     float nearestStrandMinAlpha;
+    // screenError tessellation: the most a strand's centre line may stray
+    // from its curve, in tessellation-view pixels; 0: projectedLength, one
+    // segment every pixelsPerSegment pixels.
+    float tessellationTolerance;
     // The view the tessellation levels come from (hdHair/render/TessellationView.h):
     // the same for the camera and every light view, so shadows hold the curve
     // the camera draws.

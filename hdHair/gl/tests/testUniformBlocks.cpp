@@ -56,6 +56,7 @@ const std::vector<Block>& blocks() {
              {"drawMode", offsetof(FrameUniforms, drawMode)},
              {"orderedDraw", offsetof(FrameUniforms, orderedDraw)},
              {"nearestStrandMinAlpha", offsetof(FrameUniforms, nearestStrandMinAlpha)},
+             {"tessellationTolerance", offsetof(FrameUniforms, tessellationTolerance)},
              {"tessellationViewport", offsetof(FrameUniforms, tessellationViewport)},
              {"tessellationViewProjection", offsetof(FrameUniforms, tessellationViewProjection), 0, 1, kVec4},
          }},

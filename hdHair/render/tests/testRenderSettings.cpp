@@ -35,6 +35,11 @@ TEST(RenderSettings, ComplexityScalesTessellationUnlessSetExplicitly) {
     settings.setComplexity(Complexity::VeryHigh);
     EXPECT_EQ(settings.getInt("maxSegmentsPerSpan"), 64);
     EXPECT_DOUBLE_EQ(settings.getFloat("pixelsPerSegment"), 1.0);
+    EXPECT_DOUBLE_EQ(settings.getFloat("tessellationTolerance"), 0.015);
+    settings.setComplexity(Complexity::Medium);
+    EXPECT_DOUBLE_EQ(settings.getFloat("tessellationTolerance"), 0.06);
+    settings.setFromAssignment("tessellationTolerance=0.3");
+    EXPECT_DOUBLE_EQ(settings.getFloat("tessellationTolerance"), 0.3);
     settings.setFromAssignment("maxSegmentsPerSpan=5");
     EXPECT_EQ(settings.getInt("maxSegmentsPerSpan"), 5);
 }
@@ -56,7 +61,7 @@ TEST(RenderSettings, BadAssignmentsGiveOneLineReasons) {
     EXPECT_EQ(errorOf(settings, "kajiyaKay:specular=shiny"), "setting 'kajiyaKay:specular' expects a number, got 'shiny'");
     EXPECT_EQ(errorOf(settings, "cameraLight=maybe"), "setting 'cameraLight' expects one of auto, on, off, got 'maybe'");
     EXPECT_EQ(errorOf(settings, "noEquals"), "setting 'noEquals' is not of the form NAME=VALUE");
-    EXPECT_EQ(errorOf(settings, "bogus=1").rfind("unknown setting 'bogus' (known settings: pixelsPerSegment,", 0), 0u)
+    EXPECT_EQ(errorOf(settings, "bogus=1").rfind("unknown setting 'bogus' (known settings: tessellation,", 0), 0u)
         << errorOf(settings, "bogus=1");
     EXPECT_EQ(errorOf(settings, "pixelsPerSegment=nan"), "setting 'pixelsPerSegment' expects a number, got 'nan'");
     EXPECT_EQ(errorOf(settings, "msaaSamples=3"), "setting 'msaaSamples' expects one of 0, 2, 4, 8, got '3'");

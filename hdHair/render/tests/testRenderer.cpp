@@ -1,6 +1,8 @@
 // The Renderer on scenes built in code: id outputs for picking, and what a
 // frame costs when nothing asks for them.
 
+#include <cmath>
+
 #include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
 
@@ -168,6 +170,51 @@ TEST(Renderer, ElementIdsSurviveDrawBatching) {
     EXPECT_GT(covered, 50);
     EXPECT_GT(result.elementIds[size_t(pixelRow(camera, 0.99f)) * 64 + 32], 290);
     EXPECT_LT(result.elementIds[size_t(pixelRow(camera, -0.99f)) * 64 + 32], 10);
+}
+
+TEST(Renderer, BatchedDrawsGiveTheSameImageAsOneDrawARange) {
+    // Batching exists for llvmpipe (hdHair/gl/PatchBatching.h); it must not
+    // change what is drawn: colour, depth and ids equal, bit for bit, with a
+    // scene small enough for llvmpipe's unbatched draws (300 patches in 10
+    // batches of 31 at 32 segments a span), sorted and opaque.
+    std::vector<float> heights;
+    for (int i = 0; i < 300; ++i) heights.push_back(-1.0f + 2.0f * float(i) / 299.0f);
+    Scene scene;
+    CurvesPrim many = horizontalStrands("/many", 3, heights);
+    many.type = CurveType::Cubic;
+    many.basis = CurveBasis::CatmullRom;
+    many.curveVertexCounts.assign(100, 6);  // 100 wavy curves of 3 spans
+    for (size_t i = 0; i < many.points.size(); ++i) many.points[i].z = 0.3f * std::sin(float(i));
+    many.primvars["widths"].values = {0.03f};
+    scene.setCurves(many);
+    Renderer renderer(gl::GlBackend::Egl);
+    Diagnostics diagnostics;
+    CameraView camera = squareCamera(64);
+    for (const char* transparency : {"binSorted", "opaque"}) {
+        SCOPED_TRACE(transparency);
+        RenderSettings settings;
+        settings.set("maxSegmentsPerSpan", "32");
+        settings.set("tessellation", "projectedLength");
+        settings.set("pixelsPerSegment", "0.25");
+        settings.set("transparency", transparency);
+        settings.set("drawBatching", "on");
+        RenderResult batched = renderer.render(scene, camera, settings, diagnostics, RenderOutputs{true});
+        settings.set("drawBatching", "off");
+        RenderResult whole = renderer.render(scene, camera, settings, diagnostics, RenderOutputs{true});
+        EXPECT_NE(batched.stats.drawBatching.find("at most 2048"), std::string::npos) << batched.stats.drawBatching;
+        EXPECT_NE(whole.stats.drawBatching.find("one draw a prim range"), std::string::npos);
+        EXPECT_GT(whole.stats.strandTriangles, 300u * 30u);
+        EXPECT_EQ(batched.stats.strandTriangles, whole.stats.strandTriangles);
+        EXPECT_EQ(batched.color.pixels, whole.color.pixels);
+        EXPECT_EQ(batched.depth.pixels, whole.depth.pixels);
+        EXPECT_EQ(batched.elementIds, whole.elementIds);
+    }
+    // auto batches on llvmpipe only, and says so.
+    RenderResult automatic = renderer.render(scene, camera, RenderSettings{}, diagnostics);
+    const bool llvmpipe = renderer.glDescription().find("llvmpipe") != std::string::npos;
+    EXPECT_EQ(automatic.stats.drawBatching.find("llvmpipe") != std::string::npos, llvmpipe)
+        << automatic.stats.drawBatching;
+    EXPECT_TRUE(diagnostics.warnings().empty());
 }
 
 TEST(Renderer, NoIdImagesUnlessAskedFor) {

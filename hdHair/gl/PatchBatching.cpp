@@ -1,0 +1,40 @@
+#include "hdHair/gl/PatchBatching.h"
+
+#include <algorithm>
+
+#include <glad/gl.h>
+
+namespace hdhair::gl {
+
+namespace {
+constexpr int kLlvmpipeEmittedVertices = 2048;
+}
+
+PatchBatching PatchBatching::choose(const std::string& setting, const std::string& glRenderer) {
+    if (setting == "off") return {0, "drawBatching=off"};
+    if (setting == "on") return {kLlvmpipeEmittedVertices, "drawBatching=on"};
+    if (glRenderer.find("llvmpipe") != std::string::npos)
+        return {kLlvmpipeEmittedVertices, "llvmpipe joins unrelated vertices in larger tessellated draws"};
+    return {0, "the driver draws whole ranges"};
+}
+
+std::string PatchBatching::describe() const {
+    if (maxEmittedVertices == 0) return "one draw a prim range (" + reason + ")";
+    return "draws of at most " + std::to_string(maxEmittedVertices) + " emitted vertices (" + reason + ")";
+}
+
+void PatchBatching::draw(const std::vector<SegmentRange>& ranges, float maxSegmentsPerSpan) const {
+    const GLsizei verticesPerPatch = 2 * (GLsizei(maxSegmentsPerSpan) + 1);
+    glPatchParameteri(GL_PATCH_VERTICES, 4);
+    // strand.vert pulls control points by gl_VertexID, which counts from
+    // `first`: batches need no offsets of their own.
+    for (const SegmentRange& range : ranges) {
+        const GLsizei first = GLsizei(range.first), end = GLsizei(range.first + range.count);
+        const GLsizei patchesPerDraw =
+            maxEmittedVertices > 0 ? std::max<GLsizei>(1, maxEmittedVertices / verticesPerPatch) : end - first;
+        for (GLsizei patch = first; patch < end; patch += patchesPerDraw)
+            glDrawArrays(GL_PATCHES, patch * 4, std::min(patchesPerDraw, end - patch) * 4);
+    }
+}
+
+}  // namespace hdhair::gl

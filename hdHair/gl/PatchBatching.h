@@ -1,0 +1,33 @@
+#pragma once
+// How the strands' patches are cut into draw calls. One draw a prim range is
+// what GL wants, but Mesa 22.3's llvmpipe draws triangles between unrelated
+// vertices (long spikes across the image, and 50x slower frames) once one
+// draw's tessellator emits too many vertices: examples/dense_clump.usda
+// broke at 22+ segments per span in single draws of 27,900 patches. There,
+// draws of at most 2,048 emitted vertices (2 (level + 1) a patch at the
+// highest level) render correctly at every level; other drivers get whole
+// ranges. The drawBatching setting overrides the choice (tests compare both).
+
+#include <string>
+#include <vector>
+
+#include "hdHair/gl/SegmentRange.h"
+
+namespace hdhair::gl {
+
+struct PatchBatching {
+    // Most vertices one draw's tessellator may emit; 0: one draw a range.
+    int maxEmittedVertices = 0;
+    std::string reason;  // why, for --verbose
+
+    // `setting`: auto (by driver), on (batched on any driver) or off.
+    static PatchBatching choose(const std::string& setting, const std::string& glRenderer);
+    std::string describe() const;  // "draws of at most 2048 emitted vertices (llvmpipe: ...)"
+
+    // Issues the draws of `ranges` (4 control points a patch; the program,
+    // vertex array and state are the caller's). `maxSegmentsPerSpan` bounds
+    // the vertices a patch emits.
+    void draw(const std::vector<SegmentRange>& ranges, float maxSegmentsPerSpan) const;
+};
+
+}  // namespace hdhair::gl
