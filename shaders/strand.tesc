@@ -56,6 +56,10 @@ float hullStretch(vec4 clip[4]) {
     return stretch / minW;
 }
 
+// The most linear interpolation of colour and opacity along a segment may
+// stray from their cubic: an eighth of an 8-bit step.
+const float kAttributeTolerance = 1.0 / 2048.0;
+
 // Segments that keep the span's polyline within frame.tessellationTolerance
 // pixels of the curve. A chord of a curve over a parameter step h strays at
 // most h^2 / 8 * max|C''| from it; a cubic Bezier's C''(t) = 6((1 - t) d0 + t d1)
@@ -110,13 +114,27 @@ void main() {
     float level = frame.maxSegmentsPerSpan;
     bool inFront = tessellationClip[0].w > 0.0 && tessellationClip[1].w > 0.0 && tessellationClip[2].w > 0.0 &&
                    tessellationClip[3].w > 0.0;
-    if (inFront && frame.tessellationTolerance > 0.0) {
-        level = clamp(screenErrorLevel(hull, widthHull, tessellationClip), 1.0, frame.maxSegmentsPerSpan);
-    } else if (inFront) {
+    if (inFront) {
         float pixels = 0.0;
         for (int i = 0; i < 3; ++i)
             pixels += distance(toTessellationPixels(tessellationClip[i]), toTessellationPixels(tessellationClip[i + 1]));
-        level = clamp(ceil(pixels / frame.pixelsPerSegment), 1.0, frame.maxSegmentsPerSpan);
+        if (frame.tessellationTolerance > 0.0) {
+            // Colour and opacity are interpolated linearly between the
+            // polyline's vertices: cut finely enough that they stay within
+            // kAttributeTolerance of their cubic, but never finer than a
+            // segment a pixel, where nothing finer could show.
+            vec4 a0 = vsColorOpacity[0], a1 = vsColorOpacity[1], a2 = vsColorOpacity[2], a3 = vsColorOpacity[3];
+            vec4 attributeHull[4] = vec4[4](a1, a1 + (a2 - a0) / 6.0, a2 - (a3 - a1) / 6.0, a2);
+            vec4 d0 = abs(attributeHull[0] - 2.0 * attributeHull[1] + attributeHull[2]);
+            vec4 d1 = abs(attributeHull[1] - 2.0 * attributeHull[2] + attributeHull[3]);
+            vec4 d = max(d0, d1);
+            float attributeBend = max(max(d.r, d.g), max(d.b, d.a));
+            float attributeLevel = min(ceil(sqrt(0.75 * attributeBend / kAttributeTolerance)), ceil(pixels));
+            level = max(screenErrorLevel(hull, widthHull, tessellationClip), attributeLevel);
+        } else {
+            level = ceil(pixels / frame.pixelsPerSegment);
+        }
+        level = clamp(level, 1.0, frame.maxSegmentsPerSpan);
     }
     if (culled) level = 0.0;
 

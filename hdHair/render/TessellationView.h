@@ -5,8 +5,8 @@
 // misses it and self-shadowing does not line up. Culling stays per view
 // (strands outside the camera still cast).
 //
-// The levels are the camera's (shaders/strand.tesc: ceil(projected length /
-// pixelsPerSegment), at most maxSegmentsPerSpan), but taken from the camera
+// The levels are the camera's (shaders/strand.tesc: screenError's or
+// projectedLength's rule, at most maxSegmentsPerSpan), taken from the camera
 // as it was when the shadow maps were built, and kept while the current
 // camera projects the casters alike: at the corners and centre of their
 // bounds, a world unit spans within kTessellationScaleTolerance times the

@@ -63,7 +63,7 @@ CurvesPrim strand(const std::string& path, CurveType type, CurveBasis basis, Cur
 Image renderFlat(const Scene& scene, const char* expectedPath = "opaque") {
     RenderSettings settings;
     settings.set("shadingModel", "flat");
-    settings.set("pixelsPerSegment", "0.25");
+    settings.set("tessellationTolerance", "0.01");
     settings.set("maxSegmentsPerSpan", "64");
     Diagnostics diagnostics;
     RenderResult result =

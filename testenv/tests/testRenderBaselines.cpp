@@ -319,7 +319,7 @@ TEST(Rendering, EglAndOsMesaMatchTheSameBaseline) {
 TEST(Rendering, HigherComplexityTessellatesMoreFinelyButLooksAlike) {
     StageRenderRequest coarse{"examples/wavy_strands.usda", "/World/main_cam", 256, 0.0, {"maxSegmentsPerSpan=1"}};
     StageRenderRequest fine{"examples/wavy_strands.usda", "/World/main_cam", 256, 0.0,
-                            {"maxSegmentsPerSpan=32", "pixelsPerSegment=1"}};
+                            {"maxSegmentsPerSpan=32", "tessellationTolerance=0.05"}};
     Image a = renderStage(coarse).result.color, b = renderStage(fine).result.color;
     // One segment per span visibly straightens the waves: many covered
     // pixels change. The strands stay where they were, about as wide: about
@@ -332,11 +332,11 @@ TEST(Rendering, HigherComplexityTessellatesMoreFinelyButLooksAlike) {
 
 TEST(Rendering, DenseStrandsAtHighTessellationStayIntact) {
     // llvmpipe corrupts draws whose tessellation emits too many vertices
-    // (hdHair/gl/StrandPass.cpp): spikes add coverage. Finer tessellation of
+    // (hdHair/gl/PatchBatching.h): spikes add coverage. Finer tessellation of
     // the same strands must cover the same pixels, give or take edges.
     auto coverageAt = [](const char* level) {
         return coverage(renderStage({"examples/dense_clump.usda", "/World/main_cam", 256, 0.0,
-                                     {"pixelsPerSegment=0.25", std::string("maxSegmentsPerSpan=") + level}})
+                                     {"tessellation=projectedLength", "pixelsPerSegment=0.25", std::string("maxSegmentsPerSpan=") + level}})
                             .result.color);
     };
     double moderate = coverageAt("12"), fine = coverageAt("32");
