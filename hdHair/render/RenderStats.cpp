@@ -21,6 +21,7 @@ nlohmann::json RenderStats::toJson() const {
     json["passes"] = passList;
     json["totalMilliseconds"] = totalMilliseconds;
     json["gl"] = glRenderer;
+    json["glDevice"] = glDevice;
     json["settings"] = settings;
     json["plan"] = plan;
     json["warnings"] = warnings;

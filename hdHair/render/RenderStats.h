@@ -26,6 +26,7 @@ struct RenderStats {
     std::vector<PassTiming> passes;
     double totalMilliseconds = 0.0;
     std::string glRenderer;
+    std::string glDevice;         // where the context was made: "EGL surfaceless (Mesa)", "EGL device 0 (...)"
     nlohmann::json settings;
     nlohmann::json plan;
     size_t warnings = 0;

@@ -133,6 +133,8 @@ Renderer::~Renderer() {
 
 const std::string& Renderer::glDescription() const { return glThread_->contextDescription(); }
 
+const std::string& Renderer::glDevice() const { return glThread_->contextOrigin(); }
+
 void Renderer::prepareChangedCurves(const Scene& scene, const RenderSettings& settings, Diagnostics& diagnostics) {
     Clock::time_point start = Clock::now();
     const RenderingSpace space = settings.renderingSpace();
@@ -376,6 +378,9 @@ RenderResult Renderer::render(const Scene& scene, const CameraView& camera, cons
     RenderResult result;
     RenderStats& stats = result.stats;
     size_t warningsBefore = diagnostics.warningCount();
+    if (!glWarningReported_ && !glThread_->softwareRendererWarning().empty())
+        diagnostics.warn("gl", glThread_->softwareRendererWarning());
+    glWarningReported_ = true;
     prepareChangedCurves(scene, settings, diagnostics);
     stats.passes.push_back({"prepareCurves", pendingPrepareMilliseconds_});
     stats.preparedPrims = pendingPreparedPrims_;
@@ -494,6 +499,7 @@ RenderResult Renderer::render(const Scene& scene, const CameraView& camera, cons
     stats.meshTriangles = meshSummary.triangles;
     stats.transparency = toString(plan.transparency);
     stats.glRenderer = glDescription();
+    stats.glDevice = glDevice();
     stats.settings = settings.toJson();
     stats.plan = plan.toJson();
     stats.warnings = diagnostics.warningCount() - warningsBefore;

@@ -91,6 +91,9 @@ public:
                         Diagnostics& diagnostics, const RenderOutputs& outputs = {});
 
     const std::string& glDescription() const;
+    // Where the GL context was made (GlContext::origin()): which EGL device
+    // or platform, or OSMesa.
+    const std::string& glDevice() const;
 
 private:
     // Prepares the curves prims that changed since they were last prepared
@@ -164,6 +167,9 @@ private:
     double pendingPrepareMilliseconds_ = 0.0;
     size_t pendingPreparedPrims_ = 0;
     size_t pendingPreparedMeshes_ = 0;
+    // The context's software-renderer warning goes to the first frame's
+    // diagnostics only: it is about the machine, not about any one frame.
+    bool glWarningReported_ = false;
 };
 
 }  // namespace hdhair

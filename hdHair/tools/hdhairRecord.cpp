@@ -256,6 +256,9 @@ int runThroughUsdImaging(const Options& options, const usda::SceneReadOptions& p
             frameStats["passes"].push_back({{"name", pass.name}, {"milliseconds", pass.milliseconds}});
         if (options.explain && !result.plan.empty())
             std::printf("hdhair-record: plan (%s):\n%s", describeTime(time).c_str(), result.plan.c_str());
+        if (options.verbose && frameStats.contains("gl"))
+            std::printf("hdhair-record: GL (the plugin's) %s on %s\n", frameStats.value("gl", "?").c_str(),
+                        frameStats.value("glDevice", "?").c_str());
         if (options.verbose || options.explain) {
             std::string passes;
             for (const nlohmann::json& pass : frameStats.value("passes", nlohmann::json::array()))
@@ -329,8 +332,9 @@ int run(const Options& options) {
     DisplayShader displayShader;
     if (options.displayTransformOn == "gpu") displayShader = display.shader();
     if (options.verbose)
-        std::printf("hdhair-record: GL %s (%s); read %s in %.1f ms\n", gl::toString(backend),
-                    renderer.glDescription().c_str(), options.usdFile.c_str(), readMilliseconds);
+        std::printf("hdhair-record: GL %s (%s) on %s; read %s in %.1f ms\n", gl::toString(backend),
+                    renderer.glDescription().c_str(), renderer.glDevice().c_str(), options.usdFile.c_str(),
+                    readMilliseconds);
 
     nlohmann::json allStats = nlohmann::json::array();
     // One scene for every frame: prims that do not change between frames keep
