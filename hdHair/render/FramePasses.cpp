@@ -9,6 +9,7 @@
 #include <glm/matrix.hpp>
 
 #include "hdHair/base/Diagnostics.h"
+#include "hdHair/gl/GpuMemory.h"
 #include "hdHair/meshes/PreparedMesh.h"
 #include "hdHair/render/FrameResources.h"
 #include "hdHair/render/RenderSettings.h"
@@ -41,7 +42,9 @@ void sortAndSend(FrameContext& context) {
     const CameraView& camera = *context.inputs.camera;
     binSortSegments(context.inputs.sortSpans, camera.position(), camera.forward(),
                     context.plan.sortBins, context.drawOrder);
-    // Once a frame: every light batch draws with the same order.
+    // Once a frame: every light batch draws with the same order. The pass
+    // makes its order buffer without naming it; it is the draw order's.
+    const gl::GpuMemoryUse use("drawOrder");
     context.resources.strandPass.setDrawOrder(context.drawOrder);
 }
 

@@ -15,6 +15,7 @@ nlohmann::json RenderStats::toJson() const {
     json["prims"] = {{"basisCurves", curvesPrims}, {"meshes", meshPrims}, {"lights", lights}};
     json["curves"] = curves;
     json["segments"] = segments;
+    json["authoredPoints"] = authoredPoints;
     json["meshTriangles"] = meshTriangles;
     nlohmann::json passList = nlohmann::json::array();
     for (const PassTiming& pass : passes) passList.push_back({{"name", pass.name}, {"milliseconds", pass.milliseconds}});
@@ -34,6 +35,15 @@ nlohmann::json RenderStats::toJson() const {
     json["shadowMapsRebuilt"] = shadowMapsRebuilt;
     json["shadowMapsKept"] = shadowMapsKept;
     json["shadowMaps"] = shadowMaps;
+    // Each use, and their total: what the frame's memory is made of.
+    nlohmann::json gpuMemory = nlohmann::json::object();
+    uint64_t total = 0;
+    for (const auto& [use, bytes] : gpuBytes) {
+        gpuMemory[use] = bytes;
+        total += bytes;
+    }
+    gpuMemory["total"] = total;
+    json["gpuMemory"] = gpuMemory;
     if (fragments > 0) json["fragments"] = fragments;
     if (!fallback.empty()) json["fallback"] = fallback;
     return json;

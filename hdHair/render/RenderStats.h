@@ -3,6 +3,7 @@
 // the plan, each pass's time, and the settings in effect.
 
 #include <cstdint>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -21,6 +22,7 @@ struct RenderStats {
     double time = 0.0;            // time code; NaN: UsdTimeCode::Default(), -inf: EarliestTime()
     size_t curvesPrims = 0, meshPrims = 0, lights = 0;
     uint64_t curves = 0, segments = 0;
+    uint64_t authoredPoints = 0;  // control vertices the drawn curves prims author (their points)
     uint64_t meshTriangles = 0;   // of the meshes drawn, after refinement
     size_t preparedMeshes = 0;    // meshes refined and triangulated this frame (changed ones only)
     std::vector<PassTiming> passes;
@@ -42,6 +44,9 @@ struct RenderStats {
     // map is "rebuilt", "kept" or "none").
     size_t shadowMapsRebuilt = 0, shadowMapsKept = 0;
     nlohmann::json shadowMaps = nlohmann::json::array();
+    // Bytes of GL storage the renderer holds after the frame, by use
+    // (hdHair/gl/GpuMemory.h): strandGeometry, drawOrder, frameTarget, ...
+    std::map<std::string, uint64_t> gpuBytes;
 
     nlohmann::json toJson() const;
 };

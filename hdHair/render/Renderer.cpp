@@ -14,6 +14,7 @@
 
 #include "hdHair/base/Diagnostics.h"
 #include "hdHair/gl/GlRenderThread.h"
+#include "hdHair/gl/GpuMemory.h"
 #include "hdHair/render/BinSort.h"
 #include "hdHair/render/FrameResources.h"
 #include "hdHair/render/FrameScheduler.h"
@@ -437,6 +438,7 @@ RenderResult Renderer::render(const Scene& scene, const CameraView& camera, cons
         casters.max = first ? high : glm::max(casters.max, high);
         casters.maxWidth = std::max(casters.maxWidth, double(cached.maxWidth));
         curveCount += cached.prepared->curveCount;
+        stats.authoredPoints += entry.prim->points.size();
     }
     inputs.uploads = uploads_.update(inputs.drawn);
     // Any strand written, moved or dropped changes what casts shadows.
@@ -474,6 +476,7 @@ RenderResult Renderer::render(const Scene& scene, const CameraView& camera, cons
         inputs.samples = std::min(plan.msaaSamples, resources_->maxSamples);
         FrameContext context{inputs, plan, *resources_, diagnostics, result, {}, nullptr, false, {}};
         runFrameGraph(context, timing);
+        stats.gpuBytes = gl::gpuBytesByUse();
         // A shadow that could not be built is tried again next frame.
         for (const std::string& key : context.unshadowed) shadowMaps_.forget(key);
     });
