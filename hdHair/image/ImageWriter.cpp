@@ -8,6 +8,7 @@
 #include <cmath>
 #include <filesystem>
 #include <stdexcept>
+#include <utility>
 
 #include <OpenImageIO/imagebuf.h>
 #include <OpenImageIO/imagebufalgo.h>
@@ -51,8 +52,11 @@ bool isSceneLinearImagePath(const std::string& path) { return fileKindOf(path) =
 
 bool keepsAlpha(const std::string& path) { return fileKindOf(path) != FileKind::Jpeg; }
 
-Image displayImage(const Image& linear, const DisplayTransform& display, bool overBlack) {
-    Image shown(linear.width, linear.height, 4);
+namespace {
+
+// Un-premultiplies (or keeps over black) from `linear` into `shown`, which
+// may be the same memory: each pixel's alpha is read before it is written.
+void makeDisplayImage(const Image& linear, Image& shown, const DisplayTransform& display, bool overBlack) {
     const size_t pixels = size_t(linear.width) * size_t(linear.height);
     for (size_t p = 0; p < pixels; ++p) {
         const float* in = linear.pixels.data() + p * size_t(linear.channels);
@@ -65,6 +69,20 @@ Image displayImage(const Image& linear, const DisplayTransform& display, bool ov
         out[3] = overBlack ? 1.0f : alpha;
     }
     display.apply(shown.pixels.data(), pixels);
+}
+
+}  // namespace
+
+Image displayImage(const Image& linear, const DisplayTransform& display, bool overBlack) {
+    Image shown(linear.width, linear.height, 4);
+    makeDisplayImage(linear, shown, display, overBlack);
+    return shown;
+}
+
+Image displayImage(Image&& linear, const DisplayTransform& display, bool overBlack) {
+    if (linear.channels != 4) return displayImage(static_cast<const Image&>(linear), display, overBlack);
+    Image shown = std::move(linear);
+    makeDisplayImage(shown, shown, display, overBlack);
     return shown;
 }
 
