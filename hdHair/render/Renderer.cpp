@@ -465,6 +465,7 @@ RenderResult Renderer::render(const Scene& scene, const CameraView& camera, cons
     inputs.camera = &camera;
     inputs.settings = &settings;
     inputs.idsRequested = outputs.ids;
+    inputs.depthRequested = outputs.depth;
     inputs.gpuDisplay = outputs.gpuDisplay;
     inputs.displayOverBlack = outputs.displayOverBlack;
     inputs.frame = frameUniforms(camera, settings, plan,

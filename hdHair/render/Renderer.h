@@ -55,11 +55,16 @@ struct RenderOutputs {
     // without alpha. nullptr: none (hdhair-record applies it on the CPU).
     const DisplayShader* gpuDisplay = nullptr;
     bool displayOverBlack = false;
+    // The depth image read back to the CPU (RenderResult::depth). Hosts pick
+    // and composite with it; a tool that writes colour only turns it off and
+    // saves 4 bytes a pixel of readback.
+    bool depth = true;
 };
 
 struct RenderResult {
     Image color;  // RGBA, scene-linear, pre-multiplied
-    // One channel, window depth in [0, 1], 1 where empty. Blended frames: the
+    // One channel, window depth in [0, 1], 1 where empty (empty itself when
+    // RenderOutputs::depth is off). Blended frames: the
     // depth of the nearest fragment of alpha >= kNearestStrandMinAlpha
     // (NearestStrandRule.h), whether or not ids are asked for.
     Image depth;

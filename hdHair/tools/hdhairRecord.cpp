@@ -375,6 +375,7 @@ int run(const Options& options) {
         RenderOutputs outputs;
         outputs.gpuDisplay = gpuDisplay ? &displayShader : nullptr;
         outputs.displayOverBlack = !keepsAlpha(options.outputPath);
+        outputs.depth = false;  // only colour is written
         RenderResult result = renderer.render(scene, camera, settings, diagnostics, outputs);
         if (std::string why = whyNothingDrawn(scene, result, diagnostics.warningCount()); !why.empty())
             diagnostics.warn(options.usdFile, why);
