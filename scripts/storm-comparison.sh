@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # hdHair beside Storm on the same TressFX grooms: for each asset at every
 # complexity, in one run, the whole process of
-#   usdrecord --renderer GL           (Storm, under xvfb-run),
+#   usdrecord --renderer GL           (Storm, under xvfb-run or on --display),
 #   usdrecord --renderer HdHair --disableGpu   (the plugin),
 #   hdhair-record                     (its default reader),
 # at the same camera and width, each timed by /usr/bin/time (wall seconds and
@@ -12,7 +12,7 @@
 #
 #   scripts/storm-comparison.sh [--build-dir DIR] [--openusd PREFIX] [--assets DIR] [--out DIR]
 #                               [--data DIR] [--width N] [--complexities "low medium high veryhigh"]
-#                               [--stages "ratboy bear"]
+#                               [--stages "ratboy bear"] [--display DISPLAY]
 # --build-dir: an hdHair build with the plugin (scripts/build.sh --openusd ...; default build/):
 #   bin/hdhair-record, bin/hdhair-convert and plugin/usd/hdHair/resources are used from it.
 # --openusd: the OpenUSD prefix whose bin/usdrecord runs (default $PXR_ROOT, else scripts/find-openusd.sh).
@@ -20,6 +20,8 @@
 #   once with hdhair-convert, reused while newer than their .tfx.
 # --out: results, logs and images (default BUILD/storm-comparison).
 # --data: the TressFX samples (default ../shared/data/tressfx beside the repository).
+# --display: an X display for Storm (one on a GPU's driver) instead of a fresh Xvfb per run, whose
+#   GLX is Mesa's llvmpipe: on a headless GPU machine Storm under Xvfb renders in software.
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 build="$root/build"
@@ -28,6 +30,7 @@ assets="" out="" data="$root/../shared/data/tressfx"
 width=1280
 complexities="low medium high veryhigh"
 stages="ratboy bear"
+display=""
 while [[ $# -gt 0 ]]; do
   case "$1" in
     --build-dir) build="$2"; shift 2 ;;
@@ -38,13 +41,15 @@ while [[ $# -gt 0 ]]; do
     --width) width="$2"; shift 2 ;;
     --complexities) complexities="$2"; shift 2 ;;
     --stages) stages="$2"; shift 2 ;;
-    -h|--help) sed -n '2,25p' "$0"; exit 0 ;;
+    --display) display="$2"; shift 2 ;;
+    -h|--help) sed -n '2,27p' "$0"; exit 0 ;;
     *) echo "storm-comparison: error: unknown option '$1' (see --help)" >&2; exit 2 ;;
   esac
 done
 fail() { echo "storm-comparison: error: $*" >&2; exit 1; }
 
-build="$(cd "$build" 2>/dev/null && pwd)" || fail "no build folder '$build' (build with scripts/build.sh --openusd PREFIX)"
+[[ -d "$build" ]] || fail "no build folder '$build' (build with scripts/build.sh --openusd PREFIX)"
+build="$(cd "$build" && pwd)"
 assets="${assets:-$build/storm-comparison/assets}"
 out="${out:-$build/storm-comparison}"
 [[ -n "$prefix" ]] || prefix="$(bash "$root/scripts/find-openusd.sh")"
@@ -56,7 +61,7 @@ usdrecord="$prefix/bin/usdrecord"
 [[ -f "$plugin/plugInfo.json" ]] || fail "$build has no plugin at $plugin (build with --openusd so that the HdHair plugin is built)"
 [[ -x "$usdrecord" ]] || fail "no usdrecord at $usdrecord"
 [[ -x /usr/bin/time ]] || fail "/usr/bin/time is missing (Debian package 'time'; scripts/install-dependencies.sh installs it)"
-command -v xvfb-run >/dev/null || fail "xvfb-run is missing (Debian packages 'xvfb' and 'xauth'; scripts/install-dependencies.sh installs them)"
+[[ -n "$display" ]] || command -v xvfb-run >/dev/null || fail "xvfb-run is missing (Debian packages 'xvfb' and 'xauth'; scripts/install-dependencies.sh installs them)"
 for level in $complexities; do
   case "$level" in low|medium|high|veryhigh) ;; *) fail "--complexities: '$level' is not low, medium, high or veryhigh" ;; esac
 done
@@ -128,13 +133,18 @@ print(round(sum(p["milliseconds"] for p in passes
     frame="$(sed -n 's/^hdHair: rendered a frame: .*, \([0-9.]*\) ms$/\1/p' "$log" | tail -n 1)"
     echo "$stage,$spans,$level,usdrecord-hdhair,$seconds,$peakKb,$frame,$status" >>"$csv"
 
-    # Storm needs an X display for its GL context: xvfb-run starts one and
-    # /usr/bin/time inside it times usdrecord alone, not Xvfb's start.
-    run "$name.usdrecord-storm" "$out/logs/$name.usdrecord-storm.log" -- \
-      xvfb-run -a -s "-screen 0 1920x1080x24" /usr/bin/time -f '%e %M' -o "$out/logs/$name.storm.time" \
-      "$usdrecord" --renderer GL --camera /World/main_cam --imageWidth "$width" --complexity "$level" \
-      "$assets/$stage.usda" "$out/images/$name.usdrecord-storm.png"
-    [[ "$status" == ok ]] && read -r seconds peakKb < <(tail -n 1 "$out/logs/$name.storm.time")
+    # Storm needs an X display for its GL context: --display's, or one that
+    # xvfb-run starts, with /usr/bin/time inside it timing usdrecord alone,
+    # not Xvfb's start.
+    storm=("$usdrecord" --renderer GL --camera /World/main_cam --imageWidth "$width" --complexity "$level"
+           "$assets/$stage.usda" "$out/images/$name.usdrecord-storm.png")
+    if [[ -n "$display" ]]; then
+      run "$name.usdrecord-storm" "$out/logs/$name.usdrecord-storm.log" -- env DISPLAY="$display" "${storm[@]}"
+    else
+      run "$name.usdrecord-storm" "$out/logs/$name.usdrecord-storm.log" -- \
+        xvfb-run -a -s "-screen 0 1920x1080x24" /usr/bin/time -f '%e %M' -o "$out/logs/$name.storm.time" "${storm[@]}"
+      [[ "$status" == ok ]] && read -r seconds peakKb < <(tail -n 1 "$out/logs/$name.storm.time")
+    fi
     echo "$stage,$spans,$level,usdrecord-storm,$seconds,$peakKb,,$status" >>"$csv"
   done
 done
