@@ -8,7 +8,9 @@
 # peak RSS), with the frame's own time where the renderer reports it. Writes
 # results.csv and results.md (a Markdown table with hdHair/Storm ratios per
 # row: single runs on a shared machine are noisy, ratios from one run are what
-# we report) into the output folder, and prints the table.
+# we report; and a memory table: hdhair-record's peak RSS beside the GPU
+# memory its --stats report, per authored control vertex) into the output
+# folder, and prints the tables.
 #
 #   scripts/storm-comparison.sh [--build-dir DIR] [--openusd PREFIX] [--assets DIR] [--out DIR]
 #                               [--data DIR] [--width N] [--complexities "low medium high veryhigh"]
@@ -90,7 +92,7 @@ done
 export PYTHONPATH="$prefix/lib/python${PYTHONPATH:+:$PYTHONPATH}"
 export HOME="${HOME:-/tmp}"
 csv="$out/results.csv"
-echo "stage,spans,complexity,renderer,seconds,peak_kb,frame_ms,status" >"$csv"
+echo "stage,spans,complexity,renderer,seconds,peak_kb,frame_ms,status,gpu_bytes,strand_bytes,authored_points" >"$csv"
 failures=()
 
 # run NAME LOG -- COMMAND...: times COMMAND's whole process; sets seconds, peakKb, status.
@@ -123,7 +125,15 @@ import json, sys
 passes = json.load(open(sys.argv[1]))["frames"][0]["passes"]
 print(round(sum(p["milliseconds"] for p in passes
                 if p["name"] not in ("readScene", "writeImage", "displayTransform (cpu)")), 1))' "$stats" 2>/dev/null || true)"
-    echo "$stage,$spans,$level,hdhair-record,$seconds,$peakKb,$frame,$status" >>"$csv"
+    # The GPU memory the frame holds (hdHair/gl/GpuMemory.h) and the points
+    # the stage authors, for bytes per control vertex.
+    memory="$(/usr/bin/python3 -c '
+import json, sys
+frame = json.load(open(sys.argv[1]))["frames"][0]
+gpu = frame.get("gpuMemory", {})
+print(",".join(str(v) for v in (gpu.get("total", ""), gpu.get("strandGeometry", ""),
+                                 frame.get("authoredPoints", ""))))' "$stats" 2>/dev/null || echo ",,")"
+    echo "$stage,$spans,$level,hdhair-record,$seconds,$peakKb,$frame,$status,$memory" >>"$csv"
 
     log="$out/logs/$name.usdrecord-hdhair.log"
     run "$name.usdrecord-hdhair" "$log" -- \
@@ -131,7 +141,7 @@ print(round(sum(p["milliseconds"] for p in passes
       --camera /World/main_cam --imageWidth "$width" --complexity "$level" "$assets/$stage.usda" \
       "$out/images/$name.usdrecord-hdhair.png"
     frame="$(sed -n 's/^hdHair: rendered a frame: .*, \([0-9.]*\) ms$/\1/p' "$log" | tail -n 1)"
-    echo "$stage,$spans,$level,usdrecord-hdhair,$seconds,$peakKb,$frame,$status" >>"$csv"
+    echo "$stage,$spans,$level,usdrecord-hdhair,$seconds,$peakKb,$frame,$status,,," >>"$csv"
 
     # Storm needs an X display for its GL context: --display's, or one that
     # xvfb-run starts, with /usr/bin/time inside it timing usdrecord alone,
@@ -145,7 +155,7 @@ print(round(sum(p["milliseconds"] for p in passes
         xvfb-run -a -s "-screen 0 1920x1080x24" /usr/bin/time -f '%e %M' -o "$out/logs/$name.storm.time" "${storm[@]}"
       [[ "$status" == ok ]] && read -r seconds peakKb < <(tail -n 1 "$out/logs/$name.storm.time")
     fi
-    echo "$stage,$spans,$level,usdrecord-storm,$seconds,$peakKb,,$status" >>"$csv"
+    echo "$stage,$spans,$level,usdrecord-storm,$seconds,$peakKb,,$status,,," >>"$csv"
   done
 done
 loadEnd="$(cut -d' ' -f1-3 /proc/loadavg)"
@@ -194,6 +204,22 @@ for r in rows:
         f"| {r['stage']} ({spans}) | {r['complexity']} | {cell(storm)} | {cell(plugin, True)} | {cell(record, True)} "
         f"| {ratio(plugin, storm, 'seconds')}, {ratio(record, storm, 'seconds')} "
         f"| {ratio(plugin, storm, 'peak_kb')}, {ratio(record, storm, 'peak_kb')} |")
+lines += [
+    "",
+    "| stage (authored points) | complexity | hdhair-record peak RSS | GPU memory (strand geometry) "
+    "| GPU bytes per authored point (strand geometry) | peak RSS per authored point |",
+    "|---|---|---|---|---|---|",
+]
+for stage, complexity in seen:
+    r = runs.get((stage, complexity, "hdhair-record"))
+    if r is None or r["status"] != "ok" or not r["gpu_bytes"] or not r["authored_points"]:
+        lines.append(f"| {stage} | {complexity} | - | - | - | - |")
+        continue
+    points, gpu, strands = int(r["authored_points"]), int(r["gpu_bytes"]), int(r["strand_bytes"] or 0)
+    rss = int(r["peak_kb"]) * 1024
+    lines.append(
+        f"| {stage} ({points:,}) | {complexity} | {rss / 2**20:.0f} MB | {gpu / 2**20:.1f} MB ({strands / 2**20:.1f} MB) "
+        f"| {gpu / points:.0f} ({strands / points:.0f}) | {rss / points:.0f} |")
 open(markdown, "w").write("\n".join(lines) + "\n")
 print("\n".join(lines))
 EOF
