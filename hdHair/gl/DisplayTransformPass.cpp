@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <stdexcept>
 
+#include "hdHair/gl/GpuMemory.h"
+
 namespace hdhair::gl {
 
 DisplayTransformPass::DisplayTransformPass() : emptyVertexArray_(createVertexArray()) {}
@@ -23,14 +25,18 @@ void DisplayTransformPass::build(const DisplayShader& shader) {
         const GLenum format = lut.channels == 1 ? GL_RED : GL_RGB;
         if (volume) {
             glTextureStorage3D(name, 1, internal, GLsizei(lut.width), GLsizei(lut.height), GLsizei(lut.depth));
+            recordTextureStorage(name, internal, GLsizei(lut.width), GLsizei(lut.height), GLsizei(lut.depth), 0,
+                                 "displayTransform");
             glTextureSubImage3D(name, 0, 0, 0, 0, GLsizei(lut.width), GLsizei(lut.height), GLsizei(lut.depth), format,
                                 GL_FLOAT, lut.values.data());
         } else if (rows) {
             glTextureStorage2D(name, 1, internal, GLsizei(lut.width), GLsizei(lut.height));
+            recordTextureStorage(name, internal, GLsizei(lut.width), GLsizei(lut.height), 1, 0, "displayTransform");
             glTextureSubImage2D(name, 0, 0, 0, GLsizei(lut.width), GLsizei(lut.height), format, GL_FLOAT,
                                 lut.values.data());
         } else {
             glTextureStorage1D(name, 1, internal, GLsizei(lut.width));
+            recordTextureStorage(name, internal, GLsizei(lut.width), 1, 1, 0, "displayTransform");
             glTextureSubImage1D(name, 0, 0, GLsizei(lut.width), format, GL_FLOAT, lut.values.data());
         }
         const GLint filter = lut.linear ? GL_LINEAR : GL_NEAREST;
@@ -69,6 +75,7 @@ std::vector<float> DisplayTransformPass::run(const DisplayShader& shader, GLuint
         glCreateTextures(GL_TEXTURE_2D, 1, &name);
         target_ = Texture(name);
         glTextureStorage2D(name, 1, GL_RGBA32F, width, height);
+        recordTextureStorage(name, GL_RGBA32F, width, height, 1, 0, "displayTransform");
         glCreateFramebuffers(1, &name);
         framebuffer_ = Framebuffer(name);
         glNamedFramebufferTexture(framebuffer_.get(), GL_COLOR_ATTACHMENT0, target_.get(), 0);

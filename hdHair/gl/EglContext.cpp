@@ -1,8 +1,16 @@
-// Headless EGL: Mesa's surfaceless platform first (no display server, no
-// device files needed: llvmpipe on a CPU machine), then the EGL device
-// platform (vendor drivers such as NVIDIA's), then the default display.
-// The context is made current with no surface; hdHair renders into FBOs.
+// Headless EGL, the context made current with no surface (hdHair renders
+// into FBOs). Displays are tried in this order:
+//  1. hardware EGL devices (EGL_EXT_device_enumeration, EGL_EXT_platform_device):
+//     a GPU's own driver, NVIDIA's included, which Mesa's platforms never reach;
+//  2. Mesa's surfaceless platform: no display server and no device files
+//     needed (a Mesa GPU driver through its render node, else llvmpipe);
+//  3. Mesa's software EGL device (EGL_MESA_device_software);
+//  4. the default display.
+// When the context lands on a software renderer while a GPU is present, the
+// context carries a one-line warning (SoftwareRenderer.h) that the renderer
+// reports through Diagnostics.
 
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -10,6 +18,7 @@
 #include <EGL/eglext.h>
 
 #include "hdHair/gl/GlContext.h"
+#include "hdHair/gl/SoftwareRenderer.h"
 
 namespace hdhair::gl {
 namespace {
@@ -39,8 +48,10 @@ public:
         eglTerminate(display_);
     }
     GlBackend backend() const override { return GlBackend::Egl; }
-    void load(const std::string& what) {
+    void load(const std::string& what, const GpuEvidence& evidence) {
         loadFunctions(reinterpret_cast<void* (*)(const char*)>(&eglGetProcAddress), what);
+        setOrigin(what);
+        setSoftwareRendererWarning(hdhair::gl::softwareRendererWarning(description(), evidence));
     }
 
 private:
@@ -51,34 +62,64 @@ private:
 struct DisplayCandidate {
     std::string name;
     EGLDisplay display;
+    bool hardware = false;  // an enumerated hardware device (its failures go into the warning)
 };
 
-std::vector<DisplayCandidate> candidateDisplays(std::vector<std::string>& tried) {
-    std::vector<DisplayCandidate> displays;
+// "EGL device 1 (NVIDIA H200, /dev/dri/renderD129)": the index and what the
+// device says of itself, where its extensions let it.
+std::string describeDevice(PFNEGLQUERYDEVICESTRINGEXTPROC queryString, EGLDeviceEXT device, EGLint index,
+                           const std::string& extensions) {
+    std::string details;
+    auto add = [&](EGLint name, const char* extension) {
+        if (!queryString || extensions.find(extension) == std::string::npos) return;
+        const char* value = queryString(device, name);
+        if (value && *value) details += (details.empty() ? "" : ", ") + std::string(value);
+    };
+    add(EGL_RENDERER_EXT, "EGL_EXT_device_query_name");
+    add(EGL_DRM_RENDER_NODE_FILE_EXT, "EGL_EXT_device_drm_render_node");
+    if (details.find("/dev/") == std::string::npos) add(EGL_DRM_DEVICE_FILE_EXT, "EGL_EXT_device_drm");
+    if (isSoftwareEglDevice(extensions)) details += (details.empty() ? "" : ", ") + std::string("software");
+    return "EGL device " + std::to_string(index) + (details.empty() ? "" : " (" + details + ")");
+}
+
+std::vector<DisplayCandidate> candidateDisplays(std::vector<std::string>& tried, GpuEvidence& evidence) {
+    std::vector<DisplayCandidate> hardware, surfaceless, software;
     auto getPlatformDisplay = reinterpret_cast<PFNEGLGETPLATFORMDISPLAYEXTPROC>(
         eglGetProcAddress("eglGetPlatformDisplayEXT"));
     if (getPlatformDisplay) {
-        EGLDisplay surfaceless =
-            getPlatformDisplay(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
-        if (surfaceless != EGL_NO_DISPLAY) displays.push_back({"EGL surfaceless (Mesa)", surfaceless});
-        else tried.push_back("EGL surfaceless (Mesa): no display");
-
         auto queryDevices =
             reinterpret_cast<PFNEGLQUERYDEVICESEXTPROC>(eglGetProcAddress("eglQueryDevicesEXT"));
-        EGLDeviceEXT devices[8];
+        auto queryString =
+            reinterpret_cast<PFNEGLQUERYDEVICESTRINGEXTPROC>(eglGetProcAddress("eglQueryDeviceStringEXT"));
+        EGLDeviceEXT devices[16];
         EGLint deviceCount = 0;
-        if (queryDevices && queryDevices(8, devices, &deviceCount)) {
+        if (queryDevices && queryDevices(16, devices, &deviceCount)) {
             for (EGLint i = 0; i < deviceCount; ++i) {
+                const char* extensions = queryString ? queryString(devices[i], EGL_EXTENSIONS) : nullptr;
+                const std::string deviceExtensions = extensions ? extensions : "";
+                const bool isHardware = !isSoftwareEglDevice(deviceExtensions);
+                const std::string name = describeDevice(queryString, devices[i], i, deviceExtensions);
+                if (isHardware) evidence.hardwareDevices.push_back(name);
                 EGLDisplay display = getPlatformDisplay(EGL_PLATFORM_DEVICE_EXT, devices[i], nullptr);
-                if (display != EGL_NO_DISPLAY)
-                    displays.push_back({"EGL device " + std::to_string(i), display});
+                if (display == EGL_NO_DISPLAY) {
+                    tried.push_back(name + ": no display");
+                    if (isHardware) evidence.hardwareFailures.push_back(tried.back());
+                    continue;
+                }
+                (isHardware ? hardware : software).push_back({name, display, isHardware});
             }
         } else {
             tried.push_back("EGL device platform: no devices");
         }
+        EGLDisplay mesa = getPlatformDisplay(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
+        if (mesa != EGL_NO_DISPLAY) surfaceless.push_back({"EGL surfaceless (Mesa)", mesa});
+        else tried.push_back("EGL surfaceless (Mesa): no display");
     } else {
         tried.push_back("eglGetPlatformDisplayEXT: not available");
     }
+    std::vector<DisplayCandidate> displays = hardware;
+    displays.insert(displays.end(), surfaceless.begin(), surfaceless.end());
+    displays.insert(displays.end(), software.begin(), software.end());
     EGLDisplay fallback = eglGetDisplay(EGL_DEFAULT_DISPLAY);
     if (fallback != EGL_NO_DISPLAY) displays.push_back({"EGL default display", fallback});
     return displays;
@@ -88,25 +129,39 @@ std::vector<DisplayCandidate> candidateDisplays(std::vector<std::string>& tried)
 
 std::unique_ptr<GlContext> createEglContext() {
     std::vector<std::string> tried;
-    for (const DisplayCandidate& candidate : candidateDisplays(tried)) {
+    GpuEvidence evidence;
+    // The NVIDIA kernel driver's device file: a GPU even when its EGL driver
+    // is missing and no device is enumerated.
+    std::error_code ignored;
+    evidence.nvidiaDeviceFile = std::filesystem::exists("/dev/nvidia0", ignored);
+    for (const DisplayCandidate& candidate : candidateDisplays(tried, evidence)) {
+        // Each failure is also kept for the warning when it was a GPU's.
+        auto fail = [&](const std::string& why) {
+            tried.push_back(candidate.name + ": " + why);
+            if (candidate.hardware) evidence.hardwareFailures.push_back(tried.back());
+        };
         EGLint major = 0, minor = 0;
         if (!eglInitialize(candidate.display, &major, &minor)) {
-            tried.push_back(candidate.name + ": eglInitialize failed (" + eglErrorName(eglGetError()) + ")");
+            fail("eglInitialize failed (" + eglErrorName(eglGetError()) + ")");
             continue;
         }
         if (!eglBindAPI(EGL_OPENGL_API)) {
-            tried.push_back(candidate.name + ": no desktop OpenGL API");
+            fail("no desktop OpenGL API");
             eglTerminate(candidate.display);
             continue;
         }
-        const EGLint configAttributes[] = {EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT, EGL_NONE};
+        // A pbuffer-capable config first: EGL's default surface type is a
+        // window, which device displays (NVIDIA's) have no configs for. Then
+        // any OpenGL config; with EGL_KHR_no_config_context a config is
+        // optional, so none is passed when the driver matches neither.
+        const EGLint pbufferConfig[] = {EGL_SURFACE_TYPE, EGL_PBUFFER_BIT, EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT,
+                                        EGL_NONE};
+        const EGLint anyConfig[] = {EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT, EGL_NONE};
         EGLConfig config = nullptr;
         EGLint configCount = 0;
-        // With EGL_KHR_no_config_context a config is optional; ask for one anyway
-        // and pass none if the driver has no matching config.
-        if (!eglChooseConfig(candidate.display, configAttributes, &config, 1, &configCount) ||
-            configCount == 0)
-            config = nullptr;
+        if (!eglChooseConfig(candidate.display, pbufferConfig, &config, 1, &configCount) || configCount == 0)
+            if (!eglChooseConfig(candidate.display, anyConfig, &config, 1, &configCount) || configCount == 0)
+                config = nullptr;
         const EGLint contextAttributes[] = {EGL_CONTEXT_MAJOR_VERSION, 4,
                                             EGL_CONTEXT_MINOR_VERSION, 5,
                                             EGL_CONTEXT_OPENGL_PROFILE_MASK,
@@ -115,23 +170,22 @@ std::unique_ptr<GlContext> createEglContext() {
         EGLContext context =
             eglCreateContext(candidate.display, config, EGL_NO_CONTEXT, contextAttributes);
         if (context == EGL_NO_CONTEXT) {
-            tried.push_back(candidate.name + ": no OpenGL 4.5 core context (" +
-                            eglErrorName(eglGetError()) + ")");
+            fail("no OpenGL 4.5 core context (" + eglErrorName(eglGetError()) + ")");
             eglTerminate(candidate.display);
             continue;
         }
         if (!eglMakeCurrent(candidate.display, EGL_NO_SURFACE, EGL_NO_SURFACE, context)) {
-            tried.push_back(candidate.name + ": eglMakeCurrent without a surface failed (" +
-                            eglErrorName(eglGetError()) + ")");
+            fail("eglMakeCurrent without a surface failed (" + eglErrorName(eglGetError()) + ")");
             eglDestroyContext(candidate.display, context);
             eglTerminate(candidate.display);
             continue;
         }
         auto result = std::make_unique<EglContext>(candidate.display, context);
         try {
-            result->load(candidate.name);
+            result->load(candidate.name, evidence);
         } catch (const GlUnavailableError& error) {
             tried.push_back(error.what());
+            if (candidate.hardware) evidence.hardwareFailures.push_back(error.what());
             continue;
         }
         return result;

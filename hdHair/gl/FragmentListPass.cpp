@@ -1,5 +1,6 @@
 #include "hdHair/gl/FragmentListPass.h"
 
+#include "hdHair/gl/GpuMemory.h"
 #include "hdHair/gl/RenderTarget.h"
 #include "hdHair/gl/StrandPass.h"
 
@@ -15,8 +16,8 @@ FragmentListPass::FragmentListPass()
     : listProgram_(createProgram({"strand.vert", "strand.tesc", "strand.tese", "strandFragmentList.frag"})),
       resolveProgram_(createProgram({"fullscreen.vert", "fragmentListResolve.frag"})),
       emptyVertexArray_(createVertexArray()),
-      counter_(createBuffer(nullptr, 2 * sizeof(uint32_t), GL_DYNAMIC_STORAGE_BIT | GL_MAP_READ_BIT)),
-      order_(createBuffer(nullptr, sizeof(uint32_t))) {
+      counter_(createBuffer(nullptr, 2 * sizeof(uint32_t), GL_DYNAMIC_STORAGE_BIT | GL_MAP_READ_BIT, "fragmentLists")),
+      order_(createBuffer(nullptr, sizeof(uint32_t), 0, "fragmentLists")) {
     checkGlError("setting up exact transparency");
 }
 
@@ -27,11 +28,12 @@ uint64_t FragmentListPass::render(const StrandGeometry& geometry, const std::vec
         glCreateTextures(GL_TEXTURE_2D, 1, &name);
         heads_ = Texture(name);
         glTextureStorage2D(heads_.get(), 1, GL_R32UI, width, height);
+        recordTextureStorage(heads_.get(), GL_R32UI, width, height, 1, 0, "fragmentLists");
         headsWidth_ = width;
         headsHeight_ = height;
     }
     if (capacity != nodeCapacity_) {
-        nodes_ = createBuffer(nullptr, std::max<size_t>(capacity, 1) * kFragmentNodeBytes);
+        nodes_ = createBuffer(nullptr, std::max<size_t>(capacity, 1) * kFragmentNodeBytes, 0, "fragmentLists");
         nodeCapacity_ = capacity;
     }
     const GLuint listEnd = 0xffffffffu;

@@ -7,6 +7,7 @@
 #include <memory>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 namespace hdhair::gl {
 
@@ -34,15 +35,23 @@ public:
     virtual GlBackend backend() const = 0;
     // GL_RENDERER and GL_VERSION, e.g. "llvmpipe (LLVM 15.0.6, 256 bits), 4.5 (Core Profile) Mesa 22.3.6".
     const std::string& description() const { return description_; }
+    // Where the context was made: "EGL surfaceless (Mesa)", "EGL device 0
+    // (NVIDIA H200, /dev/dri/renderD128)", "OSMesa".
+    const std::string& origin() const { return origin_; }
+    // One line when the context landed on a software renderer although a GPU
+    // is present (SoftwareRenderer.h); "" otherwise.
+    const std::string& softwareRendererWarning() const { return softwareRendererWarning_; }
 
 protected:
     GlContext() = default;
     // Loads GL entry points through glad and checks for 4.5 core; throws
     // GlUnavailableError otherwise. Called by each backend once current.
     void loadFunctions(void* (*getProcAddress)(const char*), const std::string& what);
+    void setOrigin(std::string origin) { origin_ = std::move(origin); }
+    void setSoftwareRendererWarning(std::string warning) { softwareRendererWarning_ = std::move(warning); }
 
 private:
-    std::string description_;
+    std::string description_, origin_, softwareRendererWarning_;
 };
 
 // Makes a context current on the calling thread. Throws GlUnavailableError.

@@ -2,23 +2,31 @@
 
 #include <stdexcept>
 
+#include "hdHair/gl/GpuMemory.h"
 #include "hdHair/gl/ShaderSources.h"
 
 namespace hdhair::gl {
 
-void deleteBuffer(GLuint name) { glDeleteBuffers(1, &name); }
+void deleteBuffer(GLuint name) {
+    forgetBuffer(name);
+    glDeleteBuffers(1, &name);
+}
 void deleteVertexArray(GLuint name) { glDeleteVertexArrays(1, &name); }
-void deleteTexture(GLuint name) { glDeleteTextures(1, &name); }
+void deleteTexture(GLuint name) {
+    forgetTexture(name);
+    glDeleteTextures(1, &name);
+}
 void deleteFramebuffer(GLuint name) { glDeleteFramebuffers(1, &name); }
 void deleteProgram(GLuint name) { glDeleteProgram(name); }
 void deleteQuery(GLuint name) { glDeleteQueries(1, &name); }
 
-Buffer createBuffer(const void* data, size_t bytes, GLbitfield flags) {
+Buffer createBuffer(const void* data, size_t bytes, GLbitfield flags, const char* use) {
     GLuint name = 0;
     glCreateBuffers(1, &name);
     // glNamedBufferStorage rejects size 0; an empty buffer still gets a name.
     glNamedBufferStorage(name, static_cast<GLsizeiptr>(bytes ? bytes : 1), bytes ? data : nullptr, flags);
     checkGlError("creating a buffer");
+    recordBufferBytes(name, bytes ? bytes : 1, use);
     return Buffer(name);
 }
 

@@ -56,7 +56,9 @@ using Framebuffer = GlName<deleteFramebuffer>;
 using Program = GlName<deleteProgram>;
 using Query = GlName<deleteQuery>;
 
-Buffer createBuffer(const void* data, size_t bytes, GLbitfield flags = 0);
+// `use` names what the buffer is for in the GPU memory ledger (GpuMemory.h);
+// nullptr: the GpuMemoryUse in effect, else "other".
+Buffer createBuffer(const void* data, size_t bytes, GLbitfield flags = 0, const char* use = nullptr);
 VertexArray createVertexArray();
 
 // Compiles and links the named shaders from shaders/ (stage from the file

@@ -35,6 +35,8 @@ void GlRenderThread::loop(std::promise<void>& started) {
     try {
         context_ = createGlContext(backend_);
         description_ = context_->description();
+        origin_ = context_->origin();
+        softwareRendererWarning_ = context_->softwareRendererWarning();
     } catch (...) {
         started.set_exception(std::current_exception());
         return;

@@ -41,13 +41,16 @@ public:
 
     GlBackend backend() const { return backend_; }
     const std::string& contextDescription() const { return description_; }
+    // GlContext::origin() and softwareRendererWarning() of the context.
+    const std::string& contextOrigin() const { return origin_; }
+    const std::string& softwareRendererWarning() const { return softwareRendererWarning_; }
 
 private:
     void post(std::function<void()> job);
     void loop(std::promise<void>& started);
 
     GlBackend backend_;
-    std::string description_;
+    std::string description_, origin_, softwareRendererWarning_;
     std::unique_ptr<GlContext> context_;
     std::mutex mutex_;
     std::condition_variable wake_;

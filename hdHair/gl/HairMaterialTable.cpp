@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "hdHair/gl/GpuMemory.h"
+
 namespace hdhair::gl {
 
 HairMaterialTable::HairMaterialTable() {
@@ -15,7 +17,7 @@ void HairMaterialTable::update(const std::vector<GpuHairMaterial>& materials,
     size_t count = std::max<size_t>(materials.size(), 1);
     if (count > materialCapacity_) {
         materialCapacity_ = count;
-        materials_ = createBuffer(nullptr, count * sizeof(GpuHairMaterial), GL_DYNAMIC_STORAGE_BIT);
+        materials_ = createBuffer(nullptr, count * sizeof(GpuHairMaterial), GL_DYNAMIC_STORAGE_BIT, "hairMaterials");
     }
     if (!materials.empty())
         glNamedBufferSubData(materials_.get(), 0, GLsizeiptr(materials.size() * sizeof(GpuHairMaterial)),
@@ -25,7 +27,8 @@ void HairMaterialTable::update(const std::vector<GpuHairMaterial>& materials,
     size_t points = std::max<size_t>(parameterPoints.size(), 2);
     if (points > parameterPointCapacity_) {
         parameterPointCapacity_ = points;
-        parameterPoints_ = createBuffer(nullptr, points * sizeof(glm::vec4), GL_DYNAMIC_STORAGE_BIT);
+        parameterPoints_ =
+            createBuffer(nullptr, points * sizeof(glm::vec4), GL_DYNAMIC_STORAGE_BIT, "hairMaterials");
     }
     if (!parameterPoints.empty())
         glNamedBufferSubData(parameterPoints_.get(), 0, GLsizeiptr(parameterPoints.size() * sizeof(glm::vec4)),
@@ -37,6 +40,8 @@ void HairMaterialTable::update(const std::vector<GpuHairMaterial>& materials,
     GLsizei layers = GLsizei(std::max<size_t>(2 * tableTexels.size(), 2));
     glTextureStorage3D(tables_.get(), 1, GL_RGBA16F, tableTexels.empty() ? 1 : width,
                        tableTexels.empty() ? 1 : height, layers);
+    recordTextureStorage(tables_.get(), GL_RGBA16F, tableTexels.empty() ? 1 : width, tableTexels.empty() ? 1 : height,
+                         layers, 0, "hairMaterials");
     for (size_t k = 0; k < tableTexels.size(); ++k)
         glTextureSubImage3D(tables_.get(), 0, 0, 0, GLint(2 * k), width, height, 2, GL_RGBA, GL_HALF_FLOAT,
                             tableTexels[k]->data());

@@ -9,7 +9,7 @@ namespace hdhair::gl {
 void MeshGeometry::reserve(size_t vertices) {
     if (vertices <= capacity_ && vertices_) return;
     capacity_ = std::max<size_t>(vertices, 3);
-    vertices_ = createBuffer(nullptr, capacity_ * sizeof(MeshVertex), GL_DYNAMIC_STORAGE_BIT);
+    vertices_ = createBuffer(nullptr, capacity_ * sizeof(MeshVertex), GL_DYNAMIC_STORAGE_BIT, "meshGeometry");
     checkGlError("growing the mesh buffer");
 }
 

@@ -23,6 +23,9 @@ public:
     }
     void load() {
         loadFunctions(reinterpret_cast<void* (*)(const char*)>(&OSMesaGetProcAddress), "OSMesa");
+        // OSMesa is always a software renderer, and asked for by name
+        // (--gl osmesa, HDHAIR_GL): no warning that a GPU goes unused.
+        setOrigin("OSMesa");
     }
 
 private:

@@ -4,6 +4,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "hdHair/gl/GpuMemory.h"
+
 namespace hdhair::gl {
 
 RenderTarget::RenderTarget(int width, int height, const RenderTargetImages& images)
@@ -45,6 +47,8 @@ void RenderTarget::create(Attachments& a, int samples) {
         glCreateTextures(samples > 0 ? GL_TEXTURE_2D_MULTISAMPLE : GL_TEXTURE_2D, 1, &name);
         if (samples > 0) glTextureStorage2DMultisample(name, samples, format, width_, height_, GL_TRUE);
         else glTextureStorage2D(name, 1, format, width_, height_);
+        // Its use is the one its owner names (FrameResources: frame or light batch).
+        recordTextureStorage(name, format, width_, height_, 1, samples);
         return Texture(name);
     };
     GLuint name = 0;

@@ -3,6 +3,8 @@
 #include <array>
 #include <string>
 
+#include "hdHair/gl/GpuMemory.h"
+
 namespace hdhair::gl {
 
 namespace {
@@ -13,6 +15,7 @@ Texture arrayTexture(GLenum format, int resolution, int layers) {
     GLuint name = 0;
     glCreateTextures(GL_TEXTURE_2D_ARRAY, 1, &name);
     glTextureStorage3D(name, 1, format, resolution, resolution, layers);
+    recordTextureStorage(name, format, resolution, resolution, layers, 0, "shadowMaps");
     // Read with texelFetch only: z0-relative values cannot be filtered.
     glTextureParameteri(name, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
     glTextureParameteri(name, GL_TEXTURE_MAG_FILTER, GL_NEAREST);

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "hdHair/gl/GpuMemory.h"
+
 namespace hdhair::gl {
 
 namespace {
@@ -12,9 +14,9 @@ constexpr GLuint kListEnd = 0xffffffffu;  // HDHAIR_SHADOW_LIST_END
 
 ShadowReferencePass::ShadowReferencePass()
     : program_(createProgram({"strand.vert", "strand.tesc", "strand.tese", "shadowFragmentList.frag"})),
-      unusedPool_(createBuffer(nullptr, kShadowNodeBytes, GL_DYNAMIC_STORAGE_BIT)),
-      counter_(createBuffer(nullptr, 2 * sizeof(uint32_t), GL_DYNAMIC_STORAGE_BIT | GL_MAP_READ_BIT)) {
-    pools_.push_back(createBuffer(nullptr, kShadowNodeBytes, GL_DYNAMIC_STORAGE_BIT));
+      unusedPool_(createBuffer(nullptr, kShadowNodeBytes, GL_DYNAMIC_STORAGE_BIT, "shadowReference")),
+      counter_(createBuffer(nullptr, 2 * sizeof(uint32_t), GL_DYNAMIC_STORAGE_BIT | GL_MAP_READ_BIT, "shadowReference")) {
+    pools_.push_back(createBuffer(nullptr, kShadowNodeBytes, GL_DYNAMIC_STORAGE_BIT, "shadowReference"));
     GLint64 maxBytes = 0;
     glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &maxBytes);
     maxNodes_ = size_t(maxBytes) / kShadowNodeBytes;
@@ -30,6 +32,7 @@ void ShadowReferencePass::ensure(int resolution, int slots) {
     glCreateTextures(GL_TEXTURE_2D_ARRAY, 1, &name);
     heads_ = Texture(name);
     glTextureStorage3D(heads_.get(), 1, GL_R32UI, resolution, resolution, slots);
+    recordTextureStorage(heads_.get(), GL_R32UI, resolution, resolution, slots, 0, "shadowReference");
     glClearTexImage(heads_.get(), 0, GL_RED_INTEGER, GL_UNSIGNED_INT, &kListEnd);
     glCreateFramebuffers(1, &name);
     framebuffer_ = Framebuffer(name);
@@ -82,14 +85,14 @@ bool ShadowReferencePass::reserve(size_t nodes) {
     // The first pool grows, keeping its nodes, up to what a block addresses.
     if (pools_.size() == 1 && poolSize_ < maxNodes_) {
         const size_t size = std::min(maxNodes_, std::max(nodes, poolSize_ + poolSize_ / 2));
-        Buffer grown = createBuffer(nullptr, size * kShadowNodeBytes, GL_DYNAMIC_STORAGE_BIT);
+        Buffer grown = createBuffer(nullptr, size * kShadowNodeBytes, GL_DYNAMIC_STORAGE_BIT, "shadowReference");
         if (used_ > 0) glCopyNamedBufferSubData(pools_[0].get(), grown.get(), 0, 0, GLsizeiptr(used_ * kShadowNodeBytes));
         pools_[0] = std::move(grown);
         poolSize_ = size;
     }
     // Then pools of that size are added.
     while (capacity() < nodes)
-        pools_.push_back(createBuffer(nullptr, poolSize_ * kShadowNodeBytes, GL_DYNAMIC_STORAGE_BIT));
+        pools_.push_back(createBuffer(nullptr, poolSize_ * kShadowNodeBytes, GL_DYNAMIC_STORAGE_BIT, "shadowReference"));
     return true;
 }
 

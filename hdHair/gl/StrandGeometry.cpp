@@ -14,7 +14,7 @@ constexpr size_t kCurveBytes = sizeof(int32_t), kPrimBytes = sizeof(glm::ivec2),
 
 // A buffer of `bytes` holding the first `keep` bytes of `old` (a GPU copy).
 Buffer grown(const Buffer& old, size_t keep, size_t bytes) {
-    Buffer buffer = createBuffer(nullptr, bytes, GL_DYNAMIC_STORAGE_BIT);
+    Buffer buffer = createBuffer(nullptr, bytes, GL_DYNAMIC_STORAGE_BIT, "strandGeometry");
     if (old && keep > 0) glCopyNamedBufferSubData(old.get(), buffer.get(), 0, 0, GLsizeiptr(keep));
     return buffer;
 }

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <filesystem>
 #include <stdexcept>
+#include <utility>
 
 #include <OpenImageIO/imagebuf.h>
 #include <OpenImageIO/imagebufalgo.h>
@@ -29,12 +30,18 @@ FileKind fileKindOf(const std::string& path) {
     return FileKind::Unsupported;
 }
 
-OIIO::ImageBuf toImageBuf(const Image& image) {
-    OIIO::ImageSpec spec(image.width, image.height, image.channels, OIIO::TypeDesc::FLOAT);
-    if (image.channels == 4) spec.alpha_channel = 3;
-    OIIO::ImageBuf buffer(spec);
-    buffer.set_pixels(OIIO::ROI::All(), OIIO::TypeDesc::FLOAT, image.pixels.data());
-    return buffer;
+// An ImageBuf over the image's own floats, not a copy of them: a frame is
+// 16 bytes a pixel, 200 MB at 4096 px wide, and writing needs none of it
+// twice. `channels` (3 or 4) of the image's 4 are written; OpenImageIO only
+// reads through the pointer when it writes a file.
+OIIO::ImageBuf wrapImage(const Image& image, int channels) {
+    if (channels > image.channels)
+        throw std::logic_error("writeImage: " + std::to_string(channels) + " channels asked of an image of " +
+                               std::to_string(image.channels));
+    OIIO::ImageSpec spec(image.width, image.height, channels, OIIO::TypeDesc::FLOAT);
+    if (channels == 4) spec.alpha_channel = 3;
+    const OIIO::stride_t pixelBytes = OIIO::stride_t(image.channels) * OIIO::stride_t(sizeof(float));
+    return OIIO::ImageBuf(spec, const_cast<float*>(image.pixels.data()), pixelBytes);
 }
 
 }  // namespace
@@ -45,8 +52,11 @@ bool isSceneLinearImagePath(const std::string& path) { return fileKindOf(path) =
 
 bool keepsAlpha(const std::string& path) { return fileKindOf(path) != FileKind::Jpeg; }
 
-Image displayImage(const Image& linear, const DisplayTransform& display, bool overBlack) {
-    Image shown(linear.width, linear.height, 4);
+namespace {
+
+// Un-premultiplies (or keeps over black) from `linear` into `shown`, which
+// may be the same memory: each pixel's alpha is read before it is written.
+void makeDisplayImage(const Image& linear, Image& shown, const DisplayTransform& display, bool overBlack) {
     const size_t pixels = size_t(linear.width) * size_t(linear.height);
     for (size_t p = 0; p < pixels; ++p) {
         const float* in = linear.pixels.data() + p * size_t(linear.channels);
@@ -59,6 +69,20 @@ Image displayImage(const Image& linear, const DisplayTransform& display, bool ov
         out[3] = overBlack ? 1.0f : alpha;
     }
     display.apply(shown.pixels.data(), pixels);
+}
+
+}  // namespace
+
+Image displayImage(const Image& linear, const DisplayTransform& display, bool overBlack) {
+    Image shown(linear.width, linear.height, 4);
+    makeDisplayImage(linear, shown, display, overBlack);
+    return shown;
+}
+
+Image displayImage(Image&& linear, const DisplayTransform& display, bool overBlack) {
+    if (linear.channels != 4) return displayImage(static_cast<const Image&>(linear), display, overBlack);
+    Image shown = std::move(linear);
+    makeDisplayImage(shown, shown, display, overBlack);
     return shown;
 }
 
@@ -77,24 +101,29 @@ ImageWriteReport writeImage(const Image& image, const std::string& path, const I
 
     OIIO::ImageBuf out;
     OIIO::TypeDesc format;
+    Image clamped, shown;  // only when the written pixels differ from the ones given
     if (kind == FileKind::Exr) {
         if (color.exrFloat32) {
-            out = toImageBuf(image);
+            out = wrapImage(image, image.channels);
             format = OIIO::TypeDesc::FLOAT;
         } else {
-            Image clamped = image;
+            // Counted first: the image is copied to be clamped only when a
+            // value is beyond half float's range.
             const size_t channels = size_t(image.channels);
-            for (size_t i = 0; i < clamped.pixels.size(); i += channels) {
+            for (size_t i = 0; i < image.pixels.size(); i += channels) {
                 bool beyond = false;
-                for (size_t c = i; c < i + channels; ++c) {
-                    float& value = clamped.pixels[c];
-                    if (!(std::fabs(value) > kHalfMax)) continue;  // also NaN: the renderer replaces those
-                    beyond = true;
-                    value = std::copysign(kHalfMax, value);
-                }
+                for (size_t c = i; c < i + channels; ++c)
+                    beyond = beyond || std::fabs(image.pixels[c]) > kHalfMax;  // NaN: the renderer replaces those
                 report.pixelsClampedToHalf += beyond ? 1 : 0;
             }
-            out = toImageBuf(clamped);
+            const Image* written = &image;
+            if (report.pixelsClampedToHalf > 0) {
+                clamped = image;
+                for (float& value : clamped.pixels)
+                    if (std::fabs(value) > kHalfMax) value = std::copysign(kHalfMax, value);
+                written = &clamped;
+            }
+            out = wrapImage(*written, image.channels);
             format = OIIO::TypeDesc::HALF;
         }
         out.specmod().attribute("compression", "zip");
@@ -105,16 +134,15 @@ ImageWriteReport writeImage(const Image& image, const std::string& path, const I
         out.specmod().attribute("chromaticities", OIIO::TypeDesc(OIIO::TypeDesc::FLOAT, 8), chromaticities.data());
     } else {
         const bool overBlack = kind == FileKind::Jpeg;
-        Image shown;
-        if (color.displayed) {
-            shown = *color.displayed;
-        } else {
+        const Image* displayed = color.displayed;
+        if (!displayed) {
             const DisplayTransform srgb = DisplayTransform::create({ColorCorrectionMode::SRGB, "", "", "", "", "",
                                                                     toString(color.space)});
             shown = displayImage(image, color.display ? *color.display : srgb, overBlack);
+            displayed = &shown;
         }
-        out = toImageBuf(shown);
-        if (overBlack) out = OIIO::ImageBufAlgo::channels(out, 3, {0, 1, 2});
+        // JPEG has no alpha: its three channels are read from the four.
+        out = wrapImage(*displayed, overBlack ? 3 : 4);
         format = OIIO::TypeDesc::UINT8;
         if (!color.display || color.display->mode() == ColorCorrectionMode::SRGB)
             out.specmod().attribute("oiio:ColorSpace", "sRGB");

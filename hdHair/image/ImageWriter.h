@@ -55,6 +55,9 @@ bool keepsAlpha(const std::string& path);
 // The display image a display format stores: `linear` (pre-multiplied)
 // un-premultiplied, or over black when `overBlack`, through `display`.
 Image displayImage(const Image& linear, const DisplayTransform& display, bool overBlack);
+// The same made in the linear image's own memory (RGBA only; others are
+// copied): for callers done with the linear pixels, a frame less of memory.
+Image displayImage(Image&& linear, const DisplayTransform& display, bool overBlack);
 
 // True for the extensions writeImage() accepts.
 bool isSupportedImagePath(const std::string& path);

@@ -3,12 +3,14 @@
 #include <algorithm>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 #include <fmt/format.h>
 #include <glm/geometric.hpp>
 #include <glm/matrix.hpp>
 
 #include "hdHair/base/Diagnostics.h"
+#include "hdHair/gl/GpuMemory.h"
 #include "hdHair/meshes/PreparedMesh.h"
 #include "hdHair/render/FrameResources.h"
 #include "hdHair/render/RenderSettings.h"
@@ -41,7 +43,9 @@ void sortAndSend(FrameContext& context) {
     const CameraView& camera = *context.inputs.camera;
     binSortSegments(context.inputs.sortSpans, camera.position(), camera.forward(),
                     context.plan.sortBins, context.drawOrder);
-    // Once a frame: every light batch draws with the same order.
+    // Once a frame: every light batch draws with the same order. The pass
+    // makes its order buffer without naming it; it is the draw order's.
+    const gl::GpuMemoryUse use("drawOrder");
     context.resources.strandPass.setDrawOrder(context.drawOrder);
 }
 
@@ -226,13 +230,24 @@ void shadowFragments(FrameContext& context, size_t shadow) {
     context.unshadowed.push_back(planned.key);
 }
 
+// An image of `channels` holding `pixels` as read back: made around them, so
+// that a frame's floats are never held twice (Image(w, h, c) would allocate
+// and zero a frame of its own first).
+Image imageOf(int width, int height, int channels, std::vector<float> pixels) {
+    Image image;
+    image.width = width;
+    image.height = height;
+    image.channels = channels;
+    image.pixels = std::move(pixels);
+    return image;
+}
+
 void readback(FrameContext& context) {
     const CameraView& camera = *context.inputs.camera;
     RenderResult& result = context.result;
-    result.color = Image(camera.imageWidth, camera.imageHeight, 4);
-    result.color.pixels = context.target->readColor();
-    result.depth = Image(camera.imageWidth, camera.imageHeight, 1);
-    result.depth.pixels = context.target->readDepth();
+    result.color = imageOf(camera.imageWidth, camera.imageHeight, 4, context.target->readColor());
+    if (context.inputs.depthRequested)
+        result.depth = imageOf(camera.imageWidth, camera.imageHeight, 1, context.target->readDepth());
     if (context.inputs.idsRequested) {
         result.primIds = context.target->readIds(0);
         result.instanceIds = context.target->readIds(1);
@@ -243,10 +258,10 @@ void readback(FrameContext& context) {
 // The display image from the frame's resolved colour, on the GPU.
 void displayTransform(FrameContext& context) {
     const CameraView& camera = *context.inputs.camera;
-    context.result.display = Image(camera.imageWidth, camera.imageHeight, 4);
-    context.result.display.pixels =
+    context.result.display = imageOf(
+        camera.imageWidth, camera.imageHeight, 4,
         context.resources.displayTransform.run(*context.inputs.gpuDisplay, context.target->resolvedColorTexture(),
-                                               camera.imageWidth, camera.imageHeight, context.inputs.displayOverBlack);
+                                               camera.imageWidth, camera.imageHeight, context.inputs.displayOverBlack));
 }
 
 }  // namespace

@@ -55,6 +55,7 @@ struct FrameInputs {
     const CameraView* camera = nullptr;
     const RenderSettings* settings = nullptr;
     bool idsRequested = false;
+    bool depthRequested = true;
     const DisplayShader* gpuDisplay = nullptr;  // the displayTransform pass's shader
     bool displayOverBlack = false;
     std::vector<DrawnPrim> drawn;            // visible prims, in draw order

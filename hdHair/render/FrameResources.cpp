@@ -1,5 +1,7 @@
 #include "hdHair/render/FrameResources.h"
 
+#include "hdHair/gl/GpuMemory.h"
+
 namespace hdhair {
 
 namespace {
@@ -14,15 +16,22 @@ bool fits(const std::unique_ptr<gl::RenderTarget>& target, int width, int height
 FrameResources::FrameResources() { glGetIntegerv(GL_MAX_SAMPLES, &maxSamples); }
 
 gl::RenderTarget& FrameResources::frameTarget(int width, int height, const gl::RenderTargetImages& images) {
-    if (!fits(target_, width, height, images)) target_ = std::make_unique<gl::RenderTarget>(width, height, images);
+    if (!fits(target_, width, height, images)) {
+        const gl::GpuMemoryUse use("frameTarget");
+        target_.reset();  // before the new one: a resized frame never holds both
+        target_ = std::make_unique<gl::RenderTarget>(width, height, images);
+    }
     return *target_;
 }
 
 gl::RenderTarget& FrameResources::lightBatchTarget(int width, int height, int samples) {
     // Later light batches add colour only.
     const gl::RenderTargetImages images{false, false, samples};
-    if (!fits(batchTarget_, width, height, images))
+    if (!fits(batchTarget_, width, height, images)) {
+        const gl::GpuMemoryUse use("lightBatchTarget");
+        batchTarget_.reset();
         batchTarget_ = std::make_unique<gl::RenderTarget>(width, height, images);
+    }
     return *batchTarget_;
 }
 

@@ -15,6 +15,7 @@ nlohmann::json RenderStats::toJson() const {
     json["prims"] = {{"basisCurves", curvesPrims}, {"meshes", meshPrims}, {"lights", lights}};
     json["curves"] = curves;
     json["segments"] = segments;
+    json["authoredPoints"] = authoredPoints;
     json["meshTriangles"] = meshTriangles;
     json["strandTriangles"] = strandTriangles;
     nlohmann::json passList = nlohmann::json::array();
@@ -22,6 +23,7 @@ nlohmann::json RenderStats::toJson() const {
     json["passes"] = passList;
     json["totalMilliseconds"] = totalMilliseconds;
     json["gl"] = glRenderer;
+    json["glDevice"] = glDevice;
     json["settings"] = settings;
     json["plan"] = plan;
     json["warnings"] = warnings;
@@ -35,6 +37,15 @@ nlohmann::json RenderStats::toJson() const {
     json["shadowMapsRebuilt"] = shadowMapsRebuilt;
     json["shadowMapsKept"] = shadowMapsKept;
     json["shadowMaps"] = shadowMaps;
+    // Each use, and their total: what the frame's memory is made of.
+    nlohmann::json gpuMemory = nlohmann::json::object();
+    uint64_t total = 0;
+    for (const auto& [use, bytes] : gpuBytes) {
+        gpuMemory[use] = bytes;
+        total += bytes;
+    }
+    gpuMemory["total"] = total;
+    json["gpuMemory"] = gpuMemory;
     if (fragments > 0) json["fragments"] = fragments;
     if (!fallback.empty()) json["fallback"] = fallback;
     return json;

@@ -3,6 +3,7 @@
 // the plan, each pass's time, and the settings in effect.
 
 #include <cstdint>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -21,6 +22,7 @@ struct RenderStats {
     double time = 0.0;            // time code; NaN: UsdTimeCode::Default(), -inf: EarliestTime()
     size_t curvesPrims = 0, meshPrims = 0, lights = 0;
     uint64_t curves = 0, segments = 0;
+    uint64_t authoredPoints = 0;  // control vertices the drawn curves prims author (their points)
     uint64_t meshTriangles = 0;   // of the meshes drawn, after refinement
     // Triangles one colour pass over the strands drew (as tessellated, culled
     // spans excluded; 0 for exact transparency, which draws its own way).
@@ -29,6 +31,7 @@ struct RenderStats {
     std::vector<PassTiming> passes;
     double totalMilliseconds = 0.0;
     std::string glRenderer;
+    std::string glDevice;         // where the context was made: "EGL surfaceless (Mesa)", "EGL device 0 (...)"
     nlohmann::json settings;
     nlohmann::json plan;
     size_t warnings = 0;
@@ -45,6 +48,9 @@ struct RenderStats {
     // map is "rebuilt", "kept" or "none").
     size_t shadowMapsRebuilt = 0, shadowMapsKept = 0;
     nlohmann::json shadowMaps = nlohmann::json::array();
+    // Bytes of GL storage the renderer holds after the frame, by use
+    // (hdHair/gl/GpuMemory.h): strandGeometry, drawOrder, frameTarget, ...
+    std::map<std::string, uint64_t> gpuBytes;
 
     nlohmann::json toJson() const;
 };

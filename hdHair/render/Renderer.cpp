@@ -14,6 +14,7 @@
 
 #include "hdHair/base/Diagnostics.h"
 #include "hdHair/gl/GlRenderThread.h"
+#include "hdHair/gl/GpuMemory.h"
 #include "hdHair/render/BinSort.h"
 #include "hdHair/render/FrameResources.h"
 #include "hdHair/render/FrameScheduler.h"
@@ -135,6 +136,8 @@ Renderer::~Renderer() {
 }
 
 const std::string& Renderer::glDescription() const { return glThread_->contextDescription(); }
+
+const std::string& Renderer::glDevice() const { return glThread_->contextOrigin(); }
 
 void Renderer::prepareChangedCurves(const Scene& scene, const RenderSettings& settings, Diagnostics& diagnostics) {
     Clock::time_point start = Clock::now();
@@ -379,6 +382,9 @@ RenderResult Renderer::render(const Scene& scene, const CameraView& camera, cons
     RenderResult result;
     RenderStats& stats = result.stats;
     size_t warningsBefore = diagnostics.warningCount();
+    if (!glWarningReported_ && !glThread_->softwareRendererWarning().empty())
+        diagnostics.warn("gl", glThread_->softwareRendererWarning());
+    glWarningReported_ = true;
     prepareChangedCurves(scene, settings, diagnostics);
     stats.passes.push_back({"prepareCurves", pendingPrepareMilliseconds_});
     stats.preparedPrims = pendingPreparedPrims_;
@@ -435,6 +441,7 @@ RenderResult Renderer::render(const Scene& scene, const CameraView& camera, cons
         casters.max = first ? high : glm::max(casters.max, high);
         casters.maxWidth = std::max(casters.maxWidth, double(cached.maxWidth));
         curveCount += cached.prepared->curveCount;
+        stats.authoredPoints += entry.prim->points.size();
     }
     inputs.uploads = uploads_.update(inputs.drawn);
     // Any strand written, moved or dropped changes what casts shadows.
@@ -461,6 +468,7 @@ RenderResult Renderer::render(const Scene& scene, const CameraView& camera, cons
     inputs.camera = &camera;
     inputs.settings = &settings;
     inputs.idsRequested = outputs.ids;
+    inputs.depthRequested = outputs.depth;
     inputs.gpuDisplay = outputs.gpuDisplay;
     inputs.displayOverBlack = outputs.displayOverBlack;
     inputs.frame = frameUniforms(camera, settings, plan,
@@ -477,6 +485,7 @@ RenderResult Renderer::render(const Scene& scene, const CameraView& camera, cons
         FrameContext context{inputs, plan, *resources_, diagnostics, result, {}, nullptr, false, {}};
         runFrameGraph(context, timing);
         stats.strandTriangles = resources_->strandPass.takeTriangles();
+        stats.gpuBytes = gl::gpuBytesByUse();
         // A shadow that could not be built is tried again next frame.
         for (const std::string& key : context.unshadowed) shadowMaps_.forget(key);
     });
@@ -502,6 +511,7 @@ RenderResult Renderer::render(const Scene& scene, const CameraView& camera, cons
     stats.meshTriangles = meshSummary.triangles;
     stats.transparency = toString(plan.transparency);
     stats.glRenderer = glDescription();
+    stats.glDevice = glDevice();
     stats.settings = settings.toJson();
     stats.plan = plan.toJson();
     stats.warnings = diagnostics.warningCount() - warningsBefore;

@@ -55,11 +55,16 @@ struct RenderOutputs {
     // without alpha. nullptr: none (hdhair-record applies it on the CPU).
     const DisplayShader* gpuDisplay = nullptr;
     bool displayOverBlack = false;
+    // The depth image read back to the CPU (RenderResult::depth). Hosts pick
+    // and composite with it; a tool that writes colour only turns it off and
+    // saves 4 bytes a pixel of readback.
+    bool depth = true;
 };
 
 struct RenderResult {
     Image color;  // RGBA, scene-linear, pre-multiplied
-    // One channel, window depth in [0, 1], 1 where empty. Blended frames: the
+    // One channel, window depth in [0, 1], 1 where empty (empty itself when
+    // RenderOutputs::depth is off). Blended frames: the
     // depth of the nearest fragment of alpha >= kNearestStrandMinAlpha
     // (NearestStrandRule.h), whether or not ids are asked for.
     Image depth;
@@ -91,6 +96,9 @@ public:
                         Diagnostics& diagnostics, const RenderOutputs& outputs = {});
 
     const std::string& glDescription() const;
+    // Where the GL context was made (GlContext::origin()): which EGL device
+    // or platform, or OSMesa.
+    const std::string& glDevice() const;
 
 private:
     // Prepares the curves prims that changed since they were last prepared
@@ -164,6 +172,9 @@ private:
     double pendingPrepareMilliseconds_ = 0.0;
     size_t pendingPreparedPrims_ = 0;
     size_t pendingPreparedMeshes_ = 0;
+    // The context's software-renderer warning goes to the first frame's
+    // diagnostics only: it is about the machine, not about any one frame.
+    bool glWarningReported_ = false;
 };
 
 }  // namespace hdhair

@@ -465,7 +465,8 @@ int main(int argc, char** argv) {
             }
             stages.push_back(std::move(stage));
         }
-        std::printf("hdhair-bench: %s\n", renderer()->glDescription().c_str());
+        std::printf("hdhair-bench: %s on %s\n", renderer()->glDescription().c_str(),
+                    renderer()->glDevice().c_str());
     } catch (const std::exception& error) {
         std::fprintf(stderr, "hdhair-bench: error: %s\n", error.what());
         return 1;

@@ -114,8 +114,9 @@ DisplayTransform displayTransformFor(const Options& options, RenderingSpace rend
 
 // Writes a frame's image: EXR scene-linear, display formats through the
 // display transform (made on the GPU already in `gpuDisplayed`, or here on
-// the CPU, timed). Adds what it did to `frameStats`.
-void writeFrameImage(const Image& linear, const Image* gpuDisplayed, const DisplayTransform& display,
+// the CPU, timed). Adds what it did to `frameStats`. Takes the linear image:
+// a display image is made in its memory, so a frame's floats exist once.
+void writeFrameImage(Image linear, const Image* gpuDisplayed, const DisplayTransform& display,
                      RenderingSpace space, const std::string& outputPath, bool exrFloat32, Diagnostics& diagnostics,
                      std::vector<PassTiming>& passes, nlohmann::json& frameStats) {
     ImageColor color;
@@ -129,13 +130,15 @@ void writeFrameImage(const Image& linear, const Image* gpuDisplayed, const Displ
             color.displayed = gpuDisplayed;
         } else {
             Clock::time_point start = Clock::now();
-            shown = displayImage(linear, display, !keepsAlpha(outputPath));
+            shown = displayImage(std::move(linear), display, !keepsAlpha(outputPath));
             passes.push_back({"displayTransform (cpu)", millisecondsSince(start)});
             color.displayed = &shown;
         }
     }
     Clock::time_point writeStart = Clock::now();
-    const ImageWriteReport report = writeImage(linear, outputPath, color);
+    // A display format reads only `color.displayed`; the linear image given
+    // is checked for its size, so the display image stands in for it.
+    const ImageWriteReport report = writeImage(color.displayed ? *color.displayed : linear, outputPath, color);
     passes.push_back({"writeImage", millisecondsSince(writeStart)});
     if (report.pixelsClampedToHalf > 0)
         diagnostics.warn(outputPath, fmt::format("{} pixels exceed half float's largest value (65504) and were clamped "
@@ -250,12 +253,16 @@ int runThroughUsdImaging(const Options& options, const usda::SceneReadOptions& p
         writeDiagnostics.setListener([](const Diagnostic& warning) {
             std::fprintf(stderr, "hdhair-record: warning: %s: %s\n", warning.where.c_str(), warning.message.c_str());
         });
-        writeFrameImage(result.color, nullptr, display, space, outputPath, options.exrFloat32, writeDiagnostics,
-                        writing, frameStats);
+        const int width = result.color.width, height = result.color.height;
+        writeFrameImage(std::move(result.color), nullptr, display, space, outputPath, options.exrFloat32,
+                        writeDiagnostics, writing, frameStats);
         for (const PassTiming& pass : writing)
             frameStats["passes"].push_back({{"name", pass.name}, {"milliseconds", pass.milliseconds}});
         if (options.explain && !result.plan.empty())
             std::printf("hdhair-record: plan (%s):\n%s", describeTime(time).c_str(), result.plan.c_str());
+        if (options.verbose && frameStats.contains("gl"))
+            std::printf("hdhair-record: GL (the plugin's) %s on %s\n", frameStats.value("gl", "?").c_str(),
+                        frameStats.value("glDevice", "?").c_str());
         if (options.verbose || options.explain) {
             std::string passes;
             for (const nlohmann::json& pass : frameStats.value("passes", nlohmann::json::array()))
@@ -263,12 +270,12 @@ int runThroughUsdImaging(const Options& options, const usda::SceneReadOptions& p
                                       pass.value("milliseconds", 0.0));
             std::printf("hdhair-record: %s: %dx%d through OpenUSD and the HdHair plugin, camera %s, %.1f ms in all%s%s; "
                         "wrote %s\n",
-                        describeTime(time).c_str(), result.color.width, result.color.height, result.camera.c_str(),
+                        describeTime(time).c_str(), width, height, result.camera.c_str(),
                         milliseconds, passes.empty() ? "" : "; plugin passes: ", passes.c_str(), outputPath.c_str());
         }
         frameStats["reader"] = "usd";
         frameStats["camera"] = result.camera;
-        frameStats["image"] = {{"width", result.color.width}, {"height", result.color.height}};
+        frameStats["image"] = {{"width", width}, {"height", height}};
         frameStats["totalMilliseconds"] = milliseconds;
         frameStats["output"] = outputPath;
         allStats.push_back(frameStats);
@@ -329,8 +336,9 @@ int run(const Options& options) {
     DisplayShader displayShader;
     if (options.displayTransformOn == "gpu") displayShader = display.shader();
     if (options.verbose)
-        std::printf("hdhair-record: GL %s (%s); read %s in %.1f ms\n", gl::toString(backend),
-                    renderer.glDescription().c_str(), options.usdFile.c_str(), readMilliseconds);
+        std::printf("hdhair-record: GL %s (%s) on %s; read %s in %.1f ms\n", gl::toString(backend),
+                    renderer.glDescription().c_str(), renderer.glDevice().c_str(), options.usdFile.c_str(),
+                    readMilliseconds);
 
     nlohmann::json allStats = nlohmann::json::array();
     // One scene for every frame: prims that do not change between frames keep
@@ -367,6 +375,7 @@ int run(const Options& options) {
         RenderOutputs outputs;
         outputs.gpuDisplay = gpuDisplay ? &displayShader : nullptr;
         outputs.displayOverBlack = !keepsAlpha(options.outputPath);
+        outputs.depth = false;  // only colour is written
         RenderResult result = renderer.render(scene, camera, settings, diagnostics, outputs);
         if (std::string why = whyNothingDrawn(scene, result, diagnostics.warningCount()); !why.empty())
             diagnostics.warn(options.usdFile, why);
@@ -377,7 +386,7 @@ int run(const Options& options) {
         std::string outputPath =
             std::isfinite(time) ? expandFramePlaceholder(options.outputPath, time) : options.outputPath;
         nlohmann::json frameColor;
-        writeFrameImage(result.color, gpuDisplay ? &result.display : nullptr, display, space, outputPath,
+        writeFrameImage(std::move(result.color), gpuDisplay ? &result.display : nullptr, display, space, outputPath,
                         options.exrFloat32, diagnostics, result.stats.passes, frameColor);
 
         if (options.explain)

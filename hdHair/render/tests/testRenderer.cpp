@@ -7,6 +7,8 @@
 #include <gtest/gtest.h>
 
 #include "hdHair/base/Diagnostics.h"
+#include "hdHair/gl/SoftwareRenderer.h"
+#include "hdHair/gl/tests/MachineGpu.h"
 #include "hdHair/image/DisplayTransform.h"
 #include "hdHair/image/ImageWriter.h"
 #include "hdHair/render/Renderer.h"
@@ -406,4 +408,24 @@ TEST(Renderer, GpuDisplayTransformMatchesTheCpuOne) {
     RenderResult plain = renderer.render(scene, camera, settings, diagnostics);
     EXPECT_FALSE(plain.plan.isEnabled("displayTransform"));
     EXPECT_TRUE(plain.display.pixels.empty());
+}
+
+// The software-renderer warning (hdHair/gl/SoftwareRenderer.h) reaches the
+// first frame's diagnostics, once, exactly when the context is on a software
+// renderer while this machine has a GPU: on the CPU-only CI machine, never.
+TEST(Renderer, ReportsASoftwareRendererBesideAGpuOnceAndOtherwiseNothing) {
+    const gl::testsupport::MachineGpu gpu = gl::testsupport::probeMachineGpu();
+    Scene scene;
+    scene.setCurves(horizontalStrands("/a", 1, {0.0f}));
+    Renderer renderer(gl::GlBackend::Egl);
+    Diagnostics diagnostics;
+    const CameraView camera = squareCamera(32);
+    RenderResult first = renderer.render(scene, camera, RenderSettings{}, diagnostics);
+    renderer.render(scene, camera, RenderSettings{}, diagnostics);
+    size_t glWarnings = 0;
+    for (const Diagnostic& warning : diagnostics.warnings()) glWarnings += warning.where == "gl" ? 1 : 0;
+    const bool expected = gpu.present() && gl::isSoftwareRenderer(renderer.glDescription());
+    EXPECT_EQ(glWarnings, expected ? 1u : 0u) << renderer.glDescription() << " on " << renderer.glDevice();
+    EXPECT_EQ(first.stats.glDevice, renderer.glDevice());
+    EXPECT_FALSE(renderer.glDevice().empty());
 }
