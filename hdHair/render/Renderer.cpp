@@ -368,7 +368,7 @@ std::optional<MaterialUpload> Renderer::materialUpload(const std::vector<HairMat
 }
 
 RenderResult Renderer::render(const Scene& scene, const CameraView& camera, const RenderSettings& settings,
-                              Diagnostics& diagnostics, const RenderOutputs& outputs) {
+                              Diagnostics& diagnostics, const RenderOutputs& outputs, const FrameControl& control) {
     Clock::time_point frameStart = Clock::now();
     if (!isFiniteTransform(camera.view) || !isFiniteTransform(camera.projection))
         throw std::invalid_argument("the camera's view or projection is not finite (a NaN or infinite transform, "
@@ -465,13 +465,18 @@ RenderResult Renderer::render(const Scene& scene, const CameraView& camera, cons
     inputs.fragmentListCapacity = size_t(settings.getInt("exactMemoryMB")) * 1024 * 1024 / gl::kFragmentNodeBytes;
     const gl::PassTiming timing = settings.getBool("passTimings") ? passTiming_ : gl::PassTiming::Off;
 
-    glThread_->run([&] {
+    const bool stopped = glThread_->run([&] {
         inputs.samples = std::min(plan.msaaSamples, resources_->maxSamples);
         FrameContext context{inputs, plan, *resources_, diagnostics, result, {}, nullptr, false, {}};
+        context.cancellation = control.cancellation;
+        context.strandPieceSegments = control.strandPieceSegments;
         runFrameGraph(context, timing);
-        // A shadow that could not be built is tried again next frame.
-        for (const std::string& key : context.unshadowed) shadowMaps_.forget(key);
+        // A shadow that could not be built, or whose passes a stopped frame
+        // skipped, is built again next frame.
+        for (const std::string& key : context.unbuiltShadowMaps) shadowMaps_.forget(key);
+        return context.stopped;
     });
+    if (stopped) throw FrameCancelled();
     if (plan.lightsOverCap > 0)
         diagnostics.warn("render", fmt::format("the stage has {} lights, more than the {} a frame shades; the last {} "
                                                "in path order are left out",

@@ -27,6 +27,7 @@
 #include "hdHair/image/Image.h"
 #include "hdHair/meshes/PreparedMesh.h"
 #include "hdHair/render/CameraView.h"
+#include "hdHair/render/FrameCancellation.h"
 #include "hdHair/render/FramePasses.h"
 #include "hdHair/render/FramingBounds.h"
 #include "hdHair/render/RenderPlan.h"
@@ -55,6 +56,21 @@ struct RenderOutputs {
     // without alpha. nullptr: none (hdhair-record applies it on the CPU).
     const DisplayShader* gpuDisplay = nullptr;
     bool displayOverBlack = false;
+};
+
+// Segments per piece of a cancellable frame's strand draws (FramePasses.h):
+// a request to stop waits for at most one piece, and every piece costs a
+// finish of the GL work; README ("Hydra plugin") has what 2,048 gives on
+// the dense clump (27,900 segments: 14 pieces a draw).
+constexpr size_t kStrandPieceSegments = 2048;
+
+// How a frame may be stopped.
+struct FrameControl {
+    // Asked between passes and between strand pieces whether to stop
+    // (FrameCancellation.h); a stopped frame throws FrameCancelled. Null:
+    // the frame runs to its end and draws its strands at once.
+    const FrameCancellation* cancellation = nullptr;
+    size_t strandPieceSegments = kStrandPieceSegments;
 };
 
 struct RenderResult {
@@ -87,8 +103,10 @@ public:
     // when rendered, at the refine level the settings give).
     SceneBounds prepare(const Scene& scene, const RenderSettings& settings, Diagnostics& diagnostics);
 
+    // Throws FrameCancelled when control.cancellation stops the frame, and
+    // std::invalid_argument for a camera that is not finite.
     RenderResult render(const Scene& scene, const CameraView& camera, const RenderSettings& settings,
-                        Diagnostics& diagnostics, const RenderOutputs& outputs = {});
+                        Diagnostics& diagnostics, const RenderOutputs& outputs = {}, const FrameControl& control = {});
 
     const std::string& glDescription() const;
 
