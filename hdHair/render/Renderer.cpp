@@ -373,6 +373,9 @@ RenderResult Renderer::render(const Scene& scene, const CameraView& camera, cons
     if (!isFiniteTransform(camera.view) || !isFiniteTransform(camera.projection))
         throw std::invalid_argument("the camera's view or projection is not finite (a NaN or infinite transform, "
                                     "lens or clipping range)");
+    if (control.preview && settings.getToken("shadowMode") != "off")
+        throw std::invalid_argument("a preview frame must not cast shadows (shadowMode=off): it keeps the full "
+                                    "frames' shadow maps as they are");
     RenderResult result;
     RenderStats& stats = result.stats;
     size_t warningsBefore = diagnostics.warningCount();
@@ -460,8 +463,12 @@ RenderResult Renderer::render(const Scene& scene, const CameraView& camera, cons
     inputs.idsRequested = outputs.ids;
     inputs.gpuDisplay = outputs.gpuDisplay;
     inputs.displayOverBlack = outputs.displayOverBlack;
+    // A preview leaves the shadow maps to the full frames; its levels
+    // follow its own camera.
     inputs.frame = frameUniforms(camera, settings, plan,
-                                 decideShadowMaps(plan, summary, camera, settings, diagnostics, stats));
+                                 control.preview
+                                     ? tessellationViewOf(camera, 0)
+                                     : decideShadowMaps(plan, summary, camera, settings, diagnostics, stats));
     inputs.fragmentListCapacity = size_t(settings.getInt("exactMemoryMB")) * 1024 * 1024 / gl::kFragmentNodeBytes;
     const gl::PassTiming timing = settings.getBool("passTimings") ? passTiming_ : gl::PassTiming::Off;
 

@@ -64,13 +64,19 @@ struct RenderOutputs {
 // the dense clump (27,900 segments: 14 pieces a draw).
 constexpr size_t kStrandPieceSegments = 2048;
 
-// How a frame may be stopped.
+// How a frame may be stopped or simplified (ProgressiveRenderer.h).
 struct FrameControl {
     // Asked between passes and between strand pieces whether to stop
     // (FrameCancellation.h); a stopped frame throws FrameCancelled. Null:
     // the frame runs to its end and draws its strands at once.
     const FrameCancellation* cancellation = nullptr;
     size_t strandPieceSegments = kStrandPieceSegments;
+    // A preview (InteractivePreview.h): its settings and image size are not
+    // those of the frames before and after it, so it keeps the shadow maps
+    // and their tessellation view as the last full frame left them (building
+    // and dropping none: its settings must have shadowMode=off) and
+    // tessellates for its own camera.
+    bool preview = false;
 };
 
 struct RenderResult {
@@ -104,7 +110,8 @@ public:
     SceneBounds prepare(const Scene& scene, const RenderSettings& settings, Diagnostics& diagnostics);
 
     // Throws FrameCancelled when control.cancellation stops the frame, and
-    // std::invalid_argument for a camera that is not finite.
+    // std::invalid_argument for a camera that is not finite or a preview
+    // that would cast shadows.
     RenderResult render(const Scene& scene, const CameraView& camera, const RenderSettings& settings,
                         Diagnostics& diagnostics, const RenderOutputs& outputs = {}, const FrameControl& control = {});
 

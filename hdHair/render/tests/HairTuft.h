@@ -13,7 +13,7 @@
 #include "hdHair/render/CameraView.h"
 #include "hdHair/scene/Scene.h"
 
-namespace hdhair::testing {
+namespace hdhair::testscenes {
 
 // `curves` wavy strands of 6 points rising from a disk of radius 0.5 to a
 // height of about 2, 0.02 wide, half opaque; `seed` shifts every point so
@@ -87,4 +87,4 @@ inline CameraView tuftCamera(double degrees, int width) {
     return cameraViewFromPrim(camera, width);
 }
 
-}  // namespace hdhair::testing
+}  // namespace hdhair::testscenes

@@ -15,7 +15,7 @@
 #include "hdHair/render/Renderer.h"
 
 using namespace hdhair;
-using namespace hdhair::testing;
+using namespace hdhair::testscenes;
 
 namespace {
 
