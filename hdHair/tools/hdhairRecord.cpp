@@ -198,10 +198,14 @@ usda::SceneReadOptions purposesFrom(const std::string& purposes) {
 
 // The --setting assignments, after passTimings=true when the run reports
 // what it did (--verbose, --explain, --stats): an explicit setting wins.
+// Then interactiveBudgetMs=0 whatever was asked: a recorder writes full
+// frames only, and through OpenUSD a preview would only delay them (run()
+// warns when --setting asks for previews).
 std::vector<std::string> settingAssignments(const Options& options) {
     std::vector<std::string> assignments;
     if (options.verbose || options.explain || !options.statsFile.empty()) assignments.push_back("passTimings=true");
     assignments.insert(assignments.end(), options.settings.begin(), options.settings.end());
+    assignments.push_back("interactiveBudgetMs=0");
     return assignments;
 }
 
@@ -295,6 +299,11 @@ int run(const Options& options) {
     if (!parseComplexity(options.complexity, &complexity))
         throw std::invalid_argument("--complexity must be low, medium, high or veryhigh");
     RenderSettings settings = RenderSettings::fromAssignments(complexity, settingAssignments(options));
+    const RenderSettings asked = RenderSettings::fromAssignments(complexity, options.settings);
+    if (asked.getInt("interactiveBudgetMs") != 0 && asked.isExplicitlySet("interactiveBudgetMs"))
+        std::fprintf(stderr, "hdhair-record: warning: interactiveBudgetMs=%d has no effect here: it sets the previews "
+                             "interactive Hydra hosts (usdview) show, and hdhair-record writes full frames only\n",
+                     asked.getInt("interactiveBudgetMs"));
     if (options.imageWidth < 1 || options.imageWidth > 16384)
         throw std::invalid_argument("--imageWidth must be between 1 and 16384");
     if (!isSupportedImagePath(options.outputPath))
