@@ -65,13 +65,16 @@ public:
 
     // What the render pass last put into its buffers ("preview", "final",
     // "failed"; "none" before any), whether its renderer is working on a
-    // view, how many previews and full frames it finished and how many full
-    // frames a newer view stopped: for the render stats, where hosts and
-    // tests see progress. Updated whenever the pass executes.
+    // view, how many previews and full frames it finished, how many full
+    // frames a newer view stopped, and how far the last preview was cut
+    // down: for the render stats, where hosts and tests see progress.
+    // Updated whenever the pass executes.
     struct Progress {
         std::string shown = "none";
         bool rendering = false;
         uint64_t previews = 0, finals = 0, cancelled = 0;
+        // How far the last preview shown was cut down (InteractivePreview.h).
+        int previewPixelDivisor = 0, previewCurveStride = 0;
     };
     void SetProgress(Progress progress);
     Progress GetProgress() const;

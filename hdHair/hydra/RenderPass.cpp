@@ -5,6 +5,7 @@
 
 #include "pxr/base/gf/vec4f.h"
 #include "pxr/base/tf/diagnostic.h"
+#include "pxr/base/tf/stringUtils.h"
 #include "pxr/imaging/cameraUtil/framing.h"
 #include "pxr/imaging/hd/renderPassState.h"
 #include "pxr/imaging/hd/tokens.h"
@@ -120,7 +121,7 @@ void HdHairRenderPass::_Execute(HdRenderPassStateSharedPtr const& renderPassStat
             _requestLayouts.clear();
             _Write(nullptr, bindings);
             _shown = "failed";
-            _renderParam->SetProgress({_shown, false, 0, 0, 0});
+            _renderParam->SetProgress({_shown, false, 0, 0, 0, 0, 0});
             _Settle(bindings);
             return;
         }
@@ -129,8 +130,8 @@ void HdHairRenderPass::_Execute(HdRenderPassStateSharedPtr const& renderPassStat
     _TakeFinished(frame.layout, bindings);
     if (_renderer) {
         hdhair::ProgressiveRenderer::Counts const counts = _renderer->counts();
-        _renderParam->SetProgress(
-            {_shown, _renderer->rendering() != 0, counts.previews, counts.finals, counts.cancelled});
+        _renderParam->SetProgress({_shown, _renderer->rendering() != 0, counts.previews, counts.finals,
+                                   counts.cancelled, _shownPreview.first, _shownPreview.second});
     }
 }
 
@@ -152,15 +153,20 @@ void HdHairRenderPass::_TakeFinished(Layout const& current, HdRenderPassAovBindi
         _shown = "failed";
     } else {
         hdhair::RenderResult const& result = finished->result;
+        // testUsdview reads the full frame's line: keep its form.
+        std::string const what =
+            final ? std::string("frame")
+                  : TfStringPrintf("preview (1/%d of the pixels across, every %d. curve)", finished->previewDivisor,
+                                   finished->previewCurveStride);
         TF_DEBUG(HDHAIR_FRAMES)
-            .Msg("hdHair: rendered a %s: %dx%d (1/%d of the pixels across), %llu curves, %llu segments, %s, %.1f ms\n",
-                 final ? "frame" : "preview", result.color.width, result.color.height, finished->previewDivisor,
-                 static_cast<unsigned long long>(result.stats.curves),
+            .Msg("hdHair: rendered a %s: %dx%d, %llu curves, %llu segments, %s, %.1f ms\n", what.c_str(),
+                 result.color.width, result.color.height, static_cast<unsigned long long>(result.stats.curves),
                  static_cast<unsigned long long>(result.stats.segments), result.stats.transparency.c_str(),
                  finished->milliseconds);
         if (final) _renderParam->SetLastFrame(result.stats.toJson().dump(), result.plan.describe());
         _Write(&result, bindings);
         _shown = hdhair::toString(finished->quality);
+        if (!final) _shownPreview = {finished->previewDivisor, finished->previewCurveStride};
     }
     if (final && finished->request == _newestRequest) _Settle(bindings);
 }

@@ -86,6 +86,7 @@ private:
     std::map<uint64_t, Layout> _requestLayouts;
     bool _converged = false;
     std::string _shown = "none";  // what the buffers hold (RenderParam's Progress)
+    std::pair<int, int> _shownPreview{0, 0};  // the last preview shown: pixel divisor, curve stride
 };
 
 PXR_NAMESPACE_CLOSE_SCOPE

@@ -11,18 +11,24 @@
 //    they are (FrameControl::preview);
 //  - every light in one pass (lightsPerPass=16), no multisampling,
 //    Marschner from its tables, no pass timings;
-//  - and, when that alone is over the budget, fewer pixels: 1/2, 1/4 or 1/8
-//    of them across (PreviewBudget), enlarged to the host's size by
-//    repeating pixels (NearestUpscale.h).
-// Hair on llvmpipe costs fragments: strands thinner than a pixel are drawn
-// a pixel wide (minPixelWidth), so a quarter of the width costs about a
-// quarter, not a sixteenth (README, "Hydra plugin": measured).
+//  - and, when that alone is over the budget (PreviewBudget), fewer pixels,
+//    1/2, 1/4 or 1/8 of them across, enlarged to the host's size by
+//    repeating pixels (NearestUpscale.h); then, at 1/8, every 2nd, 4th, 8th
+//    or 16th curve of each prim only, the same curves in every preview so
+//    that a moving view does not flicker between them.
+// Hair on llvmpipe costs fragments, and strands thinner than a pixel are
+// drawn a pixel wide (minPixelWidth): a quarter of the width costs about a
+// quarter, not a sixteenth, and the dense clump at 1/8 of 960 pixels is still
+// over 100 ms (README, "Hydra plugin": measured), hence the curves. Fewer
+// curves cover less: the strand shader keeps each strand's coverage to its
+// own width, so a thinned preview looks sparser and lighter than the frame.
 
 #include "hdHair/render/CameraView.h"
 #include "hdHair/render/RenderSettings.h"
 
 namespace hdhair {
 
+struct FrameInputs;
 struct RenderResult;
 
 // A full frame's settings made into its preview's (above).
@@ -36,20 +42,35 @@ CameraView previewCamera(const CameraView& full, int divisor);
 // the ids it has).
 void enlargePreview(RenderResult& preview, int width, int height);
 
-// Chooses how many times fewer pixels across the next preview has, from how
-// long the last one took: each halving of the width roughly halves the cost
-// (above), so a preview over the budget by a factor r moves ceil(log2 r)
-// steps down (at most to 1/8), and one under a third of the budget moves a
-// step back up. Starts at full width.
+// Keeps every `stride`-th curve (by its index in its prim) of each drawn
+// prim in a frame's draws: its sort spans and draw ranges. The uploads are
+// left whole: the GPU keeps every strand.
+void keepEveryNthCurve(FrameInputs& inputs, int stride);
+
+// How far the next preview is cut down, from how long the last one took.
+// Level 0 is the full width; each level above roughly halves the cost:
+// levels 1 to 3 halve the pixels across (1/2, 1/4, 1/8), levels 4 to 7 then
+// halve the curves (every 2nd, 4th, 8th, 16th). A preview over the budget by
+// a factor r moves ceil(log2 r) levels up; one under a third of it moves a
+// level down. Before any preview, the first is placed from the full frame's
+// time the same way (a preview costs less than its full frame, so it starts
+// at most a level too low and comes back down as previews come in quick).
 class PreviewBudget {
 public:
-    static constexpr int kMaxDivisor = 8;
+    static constexpr int kTopLevel = 7;
 
-    int divisor() const { return divisor_; }
-    void record(double milliseconds, double budgetMilliseconds);
+    int level() const { return level_; }
+    int pixelDivisor() const;  // 1, 2, 4 or 8
+    int curveStride() const;   // 1, 2, 4, 8 or 16
+
+    void recordPreview(double milliseconds, double budgetMilliseconds);
+    // The full frame's time, which places the first preview.
+    void recordFullFrame(double milliseconds, double budgetMilliseconds);
 
 private:
-    int divisor_ = 1;
+    void moveBy(double milliseconds, double budgetMilliseconds);
+    int level_ = 0;
+    bool previewed_ = false;
 };
 
 }  // namespace hdhair

@@ -110,8 +110,10 @@ bool ProgressiveRenderer::renderFrame(uint64_t number, const FrameRequest& reque
         start = Clock::now();
         FrameControl control;
         if (preview) {
-            frame.previewDivisor = previewBudget_.divisor();
+            frame.previewDivisor = previewBudget_.pixelDivisor();
+            frame.previewCurveStride = previewBudget_.curveStride();
             control.preview = true;
+            control.previewCurveStride = frame.previewCurveStride;
             frame.result = renderer_.render(request.scene, previewCamera(request.camera, frame.previewDivisor),
                                             previewSettings(request.settings), diagnostics_,
                                             RenderOutputs{request.ids}, control);
@@ -137,10 +139,12 @@ bool ProgressiveRenderer::renderFrame(uint64_t number, const FrameRequest& reque
         frame.error = error.what();
     }
     frame.milliseconds = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-    if (preview)
-        previewBudget_.record(frame.milliseconds, budget);
-    else if (frame.error.empty())
+    if (preview) {
+        previewBudget_.recordPreview(frame.milliseconds, budget);
+    } else if (frame.error.empty()) {
         lastFinalMilliseconds_ = frame.milliseconds;
+        previewBudget_.recordFullFrame(frame.milliseconds, budget);
+    }
     publish(std::move(frame));
     return true;
 }

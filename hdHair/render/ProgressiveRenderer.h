@@ -60,7 +60,8 @@ struct FinishedFrame {
     // empty on success.
     std::string error;
     double milliseconds = 0.0;  // rendering it, enlarging a preview included
-    int previewDivisor = 1;     // a preview's pixels across, 1 / this of the request's
+    int previewDivisor = 1;      // a preview's pixels across, 1 / this of the request's
+    int previewCurveStride = 1;  // a preview drew every this-many-th curve
 };
 
 class ProgressiveRenderer {

@@ -17,6 +17,7 @@
 #include "hdHair/render/BinSort.h"
 #include "hdHair/render/FrameResources.h"
 #include "hdHair/render/FrameScheduler.h"
+#include "hdHair/render/InteractivePreview.h"
 #include "hdHair/render/NearestStrandRule.h"
 #include "hdHair/scene/Scene.h"
 #include "hdHair/scene/MeshPrim.h"
@@ -376,6 +377,8 @@ RenderResult Renderer::render(const Scene& scene, const CameraView& camera, cons
     if (control.preview && settings.getToken("shadowMode") != "off")
         throw std::invalid_argument("a preview frame must not cast shadows (shadowMode=off): it keeps the full "
                                     "frames' shadow maps as they are");
+    if (control.previewCurveStride < 1 || (!control.preview && control.previewCurveStride != 1))
+        throw std::invalid_argument("only a preview leaves curves out (previewCurveStride 1 otherwise)");
     RenderResult result;
     RenderStats& stats = result.stats;
     size_t warningsBefore = diagnostics.warningCount();
@@ -450,6 +453,7 @@ RenderResult Renderer::render(const Scene& scene, const CameraView& camera, cons
         inputs.sortSpans.push_back(SortSpan{curves.controlPoints.data(), drawnCurves[i]->sortHashes.data(),
                                             curves.segmentCount(), inputs.uploads.ranges[i].first});
     }
+    if (control.preview) keepEveryNthCurve(inputs, control.previewCurveStride);
 
     MeshSummary meshSummary;
     inputs.meshes = meshUpload(scene, meshSummary);

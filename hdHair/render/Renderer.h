@@ -77,6 +77,9 @@ struct FrameControl {
     // and dropping none: its settings must have shadowMode=off) and
     // tessellates for its own camera.
     bool preview = false;
+    // A preview draws every this-many-th curve of each prim only
+    // (keepEveryNthCurve, InteractivePreview.h); 1 for every other frame.
+    int previewCurveStride = 1;
 };
 
 struct RenderResult {
@@ -110,8 +113,8 @@ public:
     SceneBounds prepare(const Scene& scene, const RenderSettings& settings, Diagnostics& diagnostics);
 
     // Throws FrameCancelled when control.cancellation stops the frame, and
-    // std::invalid_argument for a camera that is not finite or a preview
-    // that would cast shadows.
+    // std::invalid_argument for a camera that is not finite, a preview that
+    // would cast shadows, or curves left out of a frame that is no preview.
     RenderResult render(const Scene& scene, const CameraView& camera, const RenderSettings& settings,
                         Diagnostics& diagnostics, const RenderOutputs& outputs = {}, const FrameControl& control = {});
 

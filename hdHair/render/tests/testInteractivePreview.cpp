@@ -1,10 +1,15 @@
 // What a preview is (InteractivePreview.h): the full frame's settings made
-// cheap, the same view with fewer pixels enlarged back by whole pixels, and
-// a pixel count chosen to fit the budget.
+// cheap, the same view with fewer pixels enlarged back by whole pixels, fewer
+// curves drawn, and how far it is cut down to fit the budget.
 
+#include <stdexcept>
+#include <vector>
+
+#include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
 
 #include "HairTuft.h"
+#include "hdHair/base/Diagnostics.h"
 #include "hdHair/render/InteractivePreview.h"
 #include "hdHair/render/Renderer.h"
 
@@ -71,21 +76,77 @@ TEST(InteractivePreview, FewerPixelsSeeTheSameViewAndAreEnlargedByWholePixels) {
     EXPECT_TRUE(preview.instanceIds.empty());  // not asked for: still none
 }
 
-TEST(InteractivePreview, TheBudgetHalvesTheWidthPerDoublingOverItAndRecovers) {
+TEST(InteractivePreview, TheBudgetMovesALevelPerDoublingOverItAndComesBack) {
     PreviewBudget budget;
-    EXPECT_EQ(budget.divisor(), 1);
-    budget.record(90.0, 100.0);  // within: stays
-    EXPECT_EQ(budget.divisor(), 1);
-    budget.record(350.0, 100.0);  // 3.5 times over: two halvings
-    EXPECT_EQ(budget.divisor(), 4);
-    budget.record(5000.0, 100.0);  // never below an eighth
-    EXPECT_EQ(budget.divisor(), PreviewBudget::kMaxDivisor);
-    budget.record(50.0, 100.0);  // between a third and the budget: stays
-    EXPECT_EQ(budget.divisor(), 8);
-    budget.record(20.0, 100.0);  // well under: one step back
-    EXPECT_EQ(budget.divisor(), 4);
-    budget.record(20.0, 100.0);
-    budget.record(20.0, 100.0);
-    budget.record(20.0, 100.0);
-    EXPECT_EQ(budget.divisor(), 1);
+    EXPECT_EQ(budget.level(), 0);
+    // Before any preview, the full frame places the first: 2 seconds against
+    // 100 ms is 20 times over, ceil(log2 20) = 5 levels: 1/8 of the pixels
+    // across and every 4th curve.
+    budget.recordFullFrame(2000.0, 100.0);
+    EXPECT_EQ(budget.level(), 5);
+    EXPECT_EQ(budget.pixelDivisor(), 8);
+    EXPECT_EQ(budget.curveStride(), 4);
+    budget.recordPreview(90.0, 100.0);  // within the budget: stays
+    EXPECT_EQ(budget.level(), 5);
+    budget.recordFullFrame(100000.0, 100.0);  // previews are measured now: full frames no longer count
+    EXPECT_EQ(budget.level(), 5);
+    budget.recordPreview(350.0, 100.0);  // 3.5 times over: two levels
+    EXPECT_EQ(budget.level(), 7);
+    budget.recordPreview(5000.0, 100.0);  // never past the top
+    EXPECT_EQ(budget.level(), PreviewBudget::kTopLevel);
+    EXPECT_EQ(budget.curveStride(), 16);
+    budget.recordPreview(50.0, 100.0);  // between a third of the budget and the budget: stays
+    EXPECT_EQ(budget.level(), 7);
+    for (int level = 6; level >= 0; --level) {
+        budget.recordPreview(20.0, 100.0);  // well under: a level down each time
+        EXPECT_EQ(budget.level(), level);
+    }
+    EXPECT_EQ(budget.pixelDivisor(), 1);
+    EXPECT_EQ(budget.curveStride(), 1);
+    budget.recordPreview(20.0, 100.0);
+    EXPECT_EQ(budget.level(), 0);
+}
+
+TEST(InteractivePreview, AThinnedPreviewDrawsEveryNthCurveOnEveryPath) {
+    // One prim of eight horizontal strands, one a pixel row band each; a
+    // preview keeping every 4th curve draws curves 0 and 4 and no other.
+    CurvesPrim prim;
+    prim.path = "/rows";
+    prim.primId = 3;
+    prim.type = CurveType::Linear;
+    const std::vector<float> heights = {0.8f, 0.6f, 0.4f, 0.2f, -0.2f, -0.4f, -0.6f, -0.8f};
+    for (float y : heights) {
+        prim.curveVertexCounts.push_back(3);  // two segments a curve
+        for (float x : {-1.0f, 0.0f, 1.0f}) prim.points.push_back({x, y, 0.0f});
+    }
+    prim.primvars["widths"].name = "widths";
+    prim.primvars["widths"].values = {0.1f};
+    Scene scene;
+    scene.setCurves(prim);
+    CameraPrim lens;
+    lens.projection = Projection::Orthographic;
+    lens.horizontalAperture = lens.verticalAperture = 24.0f;
+    lens.worldTransform = glm::translate(glm::dmat4(1.0), glm::dvec3(0.0, 0.0, 5.0));
+    const CameraView camera = cameraViewFromPrim(lens, 96);
+    Renderer renderer(gl::defaultGlBackend());
+    Diagnostics diagnostics;
+    for (const char* path : {"binSorted", "unsorted", "opaque"}) {
+        RenderSettings full;
+        full.set("transparency", path);
+        FrameControl control;
+        control.preview = true;
+        control.previewCurveStride = 4;
+        const RenderResult result =
+            renderer.render(scene, camera, previewSettings(full), diagnostics, RenderOutputs{true}, control);
+        for (size_t curve = 0; curve < heights.size(); ++curve) {
+            const int row = int(camera.worldToPixel(glm::dvec3(0.0, heights[curve], 0.0)).y);
+            const int32_t element = result.elementIds[size_t(row) * 96 + 48];
+            EXPECT_EQ(element, curve % 4 == 0 ? int32_t(curve) : -1) << path << ", curve " << curve;
+        }
+    }
+    // Only previews leave curves out.
+    FrameControl notAPreview;
+    notAPreview.previewCurveStride = 2;
+    EXPECT_THROW(renderer.render(scene, camera, RenderSettings{}, diagnostics, {}, notAPreview), std::invalid_argument);
+    EXPECT_TRUE(diagnostics.warnings().empty());
 }
