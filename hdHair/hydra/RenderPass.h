@@ -22,8 +22,6 @@
 #include "pxr/base/gf/rect2i.h"
 #include "pxr/imaging/hd/renderPass.h"
 
-#include "hdHair/hydra/RenderBufferWriting.h"
-
 namespace hdhair {
 class ProgressiveRenderer;
 struct RenderResult;

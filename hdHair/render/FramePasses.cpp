@@ -117,7 +117,7 @@ void clear(FrameContext& context) {
 // pass. The pieces are consecutive runs of the order (or of the ranges), and
 // blending and the depth test see primitives in the same order across draws
 // as within one, so the pieces give the single draw's image to the bit
-// (testRenderer: every transparency path, pieces of 7 segments).
+// (testFrameCancellation: every transparency path, pieces of 7 segments).
 void drawStrandPieces(FrameContext& context, bool ordered, gl::StrandBlending blending) {
     FrameResources& resources = context.resources;
     const std::vector<gl::SegmentRange>& ranges = context.inputs.uploads.drawRanges;
