@@ -1,7 +1,7 @@
 #pragma once
 // The engine's front door: renders a Scene as seen by a CameraView into a
 // linear, pre-multiplied RGBA image and a depth image. Used by hdhair-record
-// and (later) the Hydra render pass.
+// and, on a ProgressiveRenderer's thread, the Hydra render pass.
 //
 // Flow per frame: prepare changed curves and meshes on the CPU (in parallel,
 // cached by prim version) -> the frame graph (RenderPlan) -> its passes on
