@@ -12,9 +12,6 @@ StrandPass::StrandPass()
       frameBlock_(createBuffer(nullptr, sizeof(FrameUniforms), GL_DYNAMIC_STORAGE_BIT)),
       lightBlock_(createBuffer(nullptr, sizeof(LightUniforms), GL_DYNAMIC_STORAGE_BIT)),
       shadowBlock_(createBuffer(nullptr, sizeof(ShadowUniforms), GL_DYNAMIC_STORAGE_BIT)) {
-    GLuint query = 0;
-    glCreateQueries(GL_PRIMITIVES_GENERATED, 1, &query);
-    trianglesQuery_ = Query(query);
     checkGlError("setting up the strand pass");
 }
 
@@ -40,11 +37,14 @@ void StrandPass::setDrawOrder(const std::vector<uint32_t>& order) {
 }
 
 uint64_t StrandPass::takeTriangles() {
-    if (!trianglesCounted_) return 0;
-    trianglesCounted_ = false;
-    GLuint64 triangles = 0;
-    glGetQueryObjectui64v(trianglesQuery_.get(), GL_QUERY_RESULT, &triangles);
-    return triangles;
+    uint64_t total = 0;
+    for (size_t i = 0; i < triangleQueriesUsed_; ++i) {
+        GLuint64 triangles = 0;
+        glGetQueryObjectui64v(triangleQueries_[i].get(), GL_QUERY_RESULT, &triangles);
+        total += triangles;
+    }
+    triangleQueriesUsed_ = 0;
+    return total;
 }
 
 void StrandPass::draw(const StrandGeometry& geometry, const std::vector<SegmentRange>& ranges,
@@ -93,10 +93,16 @@ void StrandPass::draw(const StrandGeometry& geometry, const std::vector<SegmentR
     }
     // Colour passes are counted; the ids pass draws the same triangles again.
     const bool counted = blending != StrandBlending::IdsOnly;
-    if (counted) glBeginQuery(GL_PRIMITIVES_GENERATED, trianglesQuery_.get());
+    if (counted) {
+        if (triangleQueriesUsed_ == triangleQueries_.size()) {
+            GLuint query = 0;
+            glCreateQueries(GL_PRIMITIVES_GENERATED, 1, &query);
+            triangleQueries_.emplace_back(query);
+        }
+        glBeginQuery(GL_PRIMITIVES_GENERATED, triangleQueries_[triangleQueriesUsed_++].get());
+    }
     geometry.drawPatches(patches, maxSegmentsPerSpan_);
     if (counted) glEndQuery(GL_PRIMITIVES_GENERATED);
-    trianglesCounted_ = trianglesCounted_ || counted;
     glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     glBlendEquation(GL_FUNC_ADD);
     glDisable(GL_BLEND);

@@ -38,10 +38,10 @@ public:
     // drawn prims' segments) as they lie. setUniforms() must have been called.
     void draw(const StrandGeometry& geometry, const std::vector<SegmentRange>& ranges, StrandBlending blending);
 
-    // Triangles the last colour pass over the strands drew since the last
-    // call (GL_PRIMITIVES_GENERATED: what the tessellator made, culled
-    // spans excluded), then forgets it; 0 when no colour pass ran. Waits
-    // for that pass to finish: call it after the frame's readback.
+    // Triangles the colour draws over the strands made since the last call
+    // (GL_PRIMITIVES_GENERATED: what the tessellator made, culled spans
+    // excluded; every light batch's pass counted), then forgets them; 0 when
+    // none ran. Waits for those draws: call it after the frame's readback.
     uint64_t takeTriangles();
 
 private:
@@ -51,8 +51,9 @@ private:
     size_t orderCapacity_ = 0, orderedSegments_ = 0;
     float maxSegmentsPerSpan_ = 8.0f;
     bool orderedDraw_ = false;
-    Query trianglesQuery_;
-    bool trianglesCounted_ = false;
+    // One query a colour draw since the last takeTriangles(); kept for reuse.
+    std::vector<Query> triangleQueries_;
+    size_t triangleQueriesUsed_ = 0;
 };
 
 }  // namespace hdhair::gl

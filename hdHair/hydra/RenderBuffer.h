@@ -1,8 +1,9 @@
 #pragma once
 // HdHairRenderBuffer: an AOV's pixels in CPU memory, tightly packed with row
 // 0 at the bottom (what hosts read through Map(); see RenderBufferWriting.h).
-// hdHair renders synchronously: a buffer is unconverged only while its render
-// pass writes it, and converged once the frame is in.
+// Only the render pass writes it, on the host's thread, and only with whole
+// images (RenderPass.h): unconverged from the moment a new view is asked for,
+// through any previews, until the full frame is in.
 
 #include <atomic>
 #include <cstdint>

@@ -133,10 +133,22 @@ VtDictionary HdHairRenderDelegate::GetRenderStats() const {
     VtDictionary syncs;
     for (auto const& [path, count] : _renderParam->GetSyncCounts()) syncs[path] = VtValue(int(count));
     stats["hdHairSyncCounts"] = VtValue(syncs);
-    // The last frame's passes, timings and plan (hdHair/render/RenderStats.h).
+    // The last full frame's passes, timings and plan (hdHair/render/RenderStats.h);
+    // previews are not reported there.
     auto [frameStats, plan] = _renderParam->GetLastFrame();
     stats["hdHairFrameStats"] = VtValue(frameStats);
     stats["hdHairPlan"] = VtValue(plan);
+    // Progressive rendering (RenderPass.h): what the buffers hold now,
+    // whether a view is being rendered, how many previews and full frames
+    // were finished and cancelled, and the last preview's pixels and curves.
+    HdHairRenderParam::Progress const progress = _renderParam->GetProgress();
+    stats["hdHairShownFrame"] = VtValue(progress.shown);
+    stats["hdHairRendering"] = VtValue(progress.rendering);
+    stats["hdHairPreviews"] = VtValue(int(progress.previews));
+    stats["hdHairFullFrames"] = VtValue(int(progress.finals));
+    stats["hdHairCancelledFrames"] = VtValue(int(progress.cancelled));
+    stats["hdHairPreviewPixelDivisor"] = VtValue(progress.previewPixelDivisor);
+    stats["hdHairPreviewCurveStride"] = VtValue(progress.previewCurveStride);
     return stats;
 }
 

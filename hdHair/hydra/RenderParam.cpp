@@ -141,6 +141,16 @@ std::pair<std::string, std::string> HdHairRenderParam::GetLastFrame() const {
     return {_lastFrameStats, _lastFramePlan};
 }
 
+void HdHairRenderParam::SetProgress(Progress progress) {
+    std::lock_guard<std::mutex> lock(_mutex);
+    _progress = std::move(progress);
+}
+
+HdHairRenderParam::Progress HdHairRenderParam::GetProgress() const {
+    std::lock_guard<std::mutex> lock(_mutex);
+    return _progress;
+}
+
 size_t HdHairRenderParam::GetSyncCount(std::string const& path) const {
     std::lock_guard<std::mutex> lock(_mutex);
     auto it = _syncCounts.find(path);

@@ -1,8 +1,10 @@
 #pragma once
 // What every prim's Sync and the render pass share: the engine's scene
-// (written by prims syncing in parallel, hence the mutex), the renderer with
-// its GL thread (created on first use, on the host thread that renders), and
-// the warnings raised while preparing curves.
+// (written by prims syncing in parallel, hence the mutex; render passes take
+// snapshots of it), the renderer with its GL thread (created on first use,
+// on the host thread that renders; passes render with it on their
+// ProgressiveRenderer's thread, one frame at a time), and the warnings
+// raised while preparing curves and rendering.
 
 #include <cstdint>
 #include <map>
@@ -51,13 +53,31 @@ public:
     // Creates the renderer (and its GL context) on first use. Throws
     // hdhair::gl::GlUnavailableError.
     hdhair::Renderer& GetRenderer();
+    // Held around each frame the renderer renders (hdhair::ProgressiveRenderer).
+    std::mutex& GetRendererMutex() { return _frameMutex; }
     hdhair::Diagnostics& GetDiagnostics() { return _diagnostics; }
 
-    // What the last frame did (RenderStats as JSON, and the plan as
+    // What the last full frame did (RenderStats as JSON, and the plan as
     // --explain prints it), for the delegate's render stats: hosts such as
     // hdhair-record --reader usd report them.
     void SetLastFrame(std::string statsJson, std::string plan);
     std::pair<std::string, std::string> GetLastFrame() const;
+
+    // What the render pass last put into its buffers ("preview", "final",
+    // "failed"; "none" before any), whether its renderer is working on a
+    // view, how many previews and full frames it finished, how many full
+    // frames a newer view stopped, and how far the last preview was cut
+    // down: for the render stats, where hosts and tests see progress.
+    // Updated whenever the pass executes.
+    struct Progress {
+        std::string shown = "none";
+        bool rendering = false;
+        uint64_t previews = 0, finals = 0, cancelled = 0;
+        // How far the last preview shown was cut down (InteractivePreview.h).
+        int previewPixelDivisor = 0, previewCurveStride = 0;
+    };
+    void SetProgress(Progress progress);
+    Progress GetProgress() const;
 
     // How many times each prim was synced: tests check that an edit re-syncs
     // only the prim it touched.
@@ -84,7 +104,9 @@ private:
     std::map<std::string, std::vector<std::string>> _instancePaths;  // instanced rprim -> its engine prims
     std::map<std::string, size_t> _syncCounts;
     std::string _lastFrameStats, _lastFramePlan;
-    std::mutex _rendererMutex;
+    Progress _progress;
+    std::mutex _rendererMutex;  // creating the renderer
+    std::mutex _frameMutex;     // rendering with it
     std::unique_ptr<hdhair::Renderer> _renderer;
     hdhair::Diagnostics _diagnostics;
 };

@@ -1,9 +1,11 @@
 #include "hdHair/hydra/RenderPass.h"
 
 #include <exception>
+#include <optional>
 
 #include "pxr/base/gf/vec4f.h"
 #include "pxr/base/tf/diagnostic.h"
+#include "pxr/base/tf/stringUtils.h"
 #include "pxr/imaging/cameraUtil/framing.h"
 #include "pxr/imaging/hd/renderPassState.h"
 #include "pxr/imaging/hd/tokens.h"
@@ -14,32 +16,58 @@
 #include "hdHair/hydra/RenderBuffer.h"
 #include "hdHair/hydra/RenderDelegate.h"
 #include "hdHair/hydra/RenderParam.h"
+#include "hdHair/render/ProgressiveRenderer.h"
 
 PXR_NAMESPACE_OPEN_SCOPE
 
+namespace {
+
+HdHairRenderBuffer* colorBufferOf(HdRenderPassAovBindingVector const& bindings) {
+    for (HdRenderPassAovBinding const& binding : bindings)
+        if (binding.aovName == HdAovTokens->color) return static_cast<HdHairRenderBuffer*>(binding.renderBuffer);
+    return nullptr;
+}
+
+bool wantsIds(HdRenderPassAovBindingVector const& bindings) {
+    for (HdRenderPassAovBinding const& binding : bindings)
+        if (binding.aovName == HdAovTokens->primId || binding.aovName == HdAovTokens->instanceId ||
+            binding.aovName == HdAovTokens->elementId)
+            return true;
+    return false;
+}
+
+void setConverged(HdRenderPassAovBindingVector const& bindings, bool converged) {
+    for (HdRenderPassAovBinding const& binding : bindings)
+        if (binding.renderBuffer) static_cast<HdHairRenderBuffer*>(binding.renderBuffer)->SetConverged(converged);
+}
+
+}  // namespace
+
+bool HdHairRenderPass::Layout::operator==(Layout const& other) const {
+    return buffers == other.buffers && bufferShapes == other.bufferShapes && dataWindow == other.dataWindow;
+}
+
 bool HdHairRenderPass::FrameKey::operator==(FrameKey const& other) const {
     return sceneVersion == other.sceneVersion && settingsVersion == other.settingsVersion && view == other.view &&
-           projection == other.projection && dataWindow == other.dataWindow && buffers == other.buffers &&
-           bufferShapes == other.bufferShapes && renderTags == other.renderTags;
+           projection == other.projection && layout == other.layout && renderTags == other.renderTags;
 }
 
 HdHairRenderPass::HdHairRenderPass(HdRenderIndex* index, HdRprimCollection const& collection,
                                    HdHairRenderDelegate* delegate, HdHairRenderParam* renderParam)
     : HdRenderPass(index, collection), _delegate(delegate), _renderParam(renderParam) {}
 
+HdHairRenderPass::~HdHairRenderPass() = default;
+
 void HdHairRenderPass::_Execute(HdRenderPassStateSharedPtr const& renderPassState,
                                 TfTokenVector const& renderTags) {
     HdRenderPassAovBindingVector const& bindings = renderPassState->GetAovBindings();
-    HdHairRenderBuffer* colorBuffer = nullptr;
-    for (HdRenderPassAovBinding const& binding : bindings)
-        if (binding.aovName == HdAovTokens->color) colorBuffer = static_cast<HdHairRenderBuffer*>(binding.renderBuffer);
+    HdHairRenderBuffer* colorBuffer = colorBufferOf(bindings);
     if (!colorBuffer || !renderPassState->GetCamera()) {
         // Nothing to render into, or nothing to render from: done, so that
         // hosts waiting for convergence do not wait forever.
         _converged = true;
         return;
     }
-    int bufferWidth = int(colorBuffer->GetWidth()), bufferHeight = int(colorBuffer->GetHeight());
 
     // The framing's data window is where the image goes (y down); without a
     // framing, the legacy viewport.
@@ -57,79 +85,129 @@ void HdHairRenderPass::_Execute(HdRenderPassStateSharedPtr const& renderPassStat
     frame.settingsVersion = _delegate->GetRenderSettingsVersion();
     frame.view = renderPassState->GetWorldToViewMatrix();
     frame.projection = renderPassState->GetProjectionMatrix();
-    frame.dataWindow = dataWindow;
+    frame.layout.dataWindow = dataWindow;
     for (HdRenderPassAovBinding const& binding : bindings) {
-        frame.buffers.emplace_back(binding.renderBufferId, binding.renderBuffer);
+        frame.layout.buffers.emplace_back(binding.renderBufferId, binding.renderBuffer);
         if (binding.renderBuffer)
-            frame.bufferShapes.emplace_back(binding.renderBuffer->GetWidth(), binding.renderBuffer->GetHeight(),
-                                            int(binding.renderBuffer->GetFormat()));
+            frame.layout.bufferShapes.emplace_back(binding.renderBuffer->GetWidth(), binding.renderBuffer->GetHeight(),
+                                                   int(binding.renderBuffer->GetFormat()));
     }
     frame.renderTags = renderTags;
-    if (_hasLastFrame && frame == _lastFrame && _converged) return;
 
-    _converged = false;
-    for (HdRenderPassAovBinding const& binding : bindings)
-        if (binding.renderBuffer) static_cast<HdHairRenderBuffer*>(binding.renderBuffer)->SetConverged(false);
-
-    hdhair::hydra::DataWindow window{dataWindow.GetMinX(), dataWindow.GetMinY(), dataWindow.GetWidth(),
-                                     dataWindow.GetHeight()};
-    bool wantIds = false;
-    for (HdRenderPassAovBinding const& binding : bindings)
-        wantIds = wantIds || binding.aovName == HdAovTokens->primId || binding.aovName == HdAovTokens->instanceId ||
-                  binding.aovName == HdAovTokens->elementId;
-
-    try {
-        int refineLevel = 0;
-        hdhair::Scene scene = _renderParam->Snapshot(renderTags, &refineLevel);
-        hdhair::RenderSettings settings = _delegate->GetEngineSettings();
-        settings.setComplexity(hdhair::hydra::complexityFromRefineLevel(refineLevel));
-        hdhair::CameraView camera = hdhair::hydra::cameraViewFromHydra(frame.view.data(), frame.projection.data(),
-                                                                        window.width, window.height);
-        hdhair::RenderResult result = _renderParam->GetRenderer().render(
-            scene, camera, settings, _renderParam->GetDiagnostics(), hdhair::RenderOutputs{wantIds});
-        _renderParam->SetLastFrame(result.stats.toJson().dump(), result.plan.describe());
-        TF_DEBUG(HDHAIR_FRAMES)
-            .Msg("hdHair: rendered a frame: %dx%d, %llu curves, %llu segments, %s, %.1f ms\n", camera.imageWidth,
-                 camera.imageHeight, static_cast<unsigned long long>(result.stats.curves),
-                 static_cast<unsigned long long>(result.stats.segments), result.stats.transparency.c_str(),
-                 result.stats.totalMilliseconds);
-
-        for (HdRenderPassAovBinding const& binding : bindings) {
-            auto* buffer = static_cast<HdHairRenderBuffer*>(binding.renderBuffer);
-            if (!buffer || int(buffer->GetWidth()) != bufferWidth || int(buffer->GetHeight()) != bufferHeight) continue;
-            hdhair::hydra::BufferFormat format;
-            if (!buffer->GetWritableFormat(&format)) continue;
-            buffer->Clear(binding.clearValue);
-            if (binding.aovName == HdAovTokens->color) {
-                // Empty pixels show the host's clear colour (usdview's
-                // background): the frame is composited over it.
-                GfVec4f clear = binding.clearValue.IsHolding<GfVec4f>() ? binding.clearValue.UncheckedGet<GfVec4f>()
-                                                                         : GfVec4f(0.0f);
-                hdhair::Image color = result.color;
-                hdhair::hydra::compositeOver(color, {clear[0], clear[1], clear[2], clear[3]});
-                hdhair::hydra::writeImageToBuffer(color, format, window, bufferWidth, bufferHeight, buffer->GetData());
-            } else if (binding.aovName == HdAovTokens->depth) {
-                hdhair::hydra::writeImageToBuffer(result.depth, format, window, bufferWidth, bufferHeight,
-                                                  buffer->GetData());
-            } else if (wantIds && format == hdhair::hydra::BufferFormat::Int32) {
-                std::vector<int32_t> const* ids = binding.aovName == HdAovTokens->primId       ? &result.primIds
-                                                  : binding.aovName == HdAovTokens->instanceId ? &result.instanceIds
-                                                  : binding.aovName == HdAovTokens->elementId  ? &result.elementIds
-                                                                                               : nullptr;
-                if (ids) hdhair::hydra::writeIdsToBuffer(*ids, window, bufferWidth, bufferHeight, buffer->GetData());
-            }
+    if (!_hasLastFrame || !(frame == _lastFrame)) {
+        _lastFrame = frame;
+        _hasLastFrame = true;
+        _converged = false;
+        setConverged(bindings, false);
+        try {
+            if (!_renderer)
+                _renderer = std::make_unique<hdhair::ProgressiveRenderer>(
+                    _renderParam->GetRenderer(), _renderParam->GetRendererMutex(), _renderParam->GetDiagnostics());
+            hdhair::FrameRequest request;
+            int refineLevel = 0;
+            request.scene = _renderParam->Snapshot(renderTags, &refineLevel);
+            request.settings = _delegate->GetEngineSettings();
+            request.settings.setComplexity(hdhair::hydra::complexityFromRefineLevel(refineLevel));
+            request.camera = hdhair::hydra::cameraViewFromHydra(frame.view.data(), frame.projection.data(),
+                                                                dataWindow.GetWidth(), dataWindow.GetHeight());
+            request.ids = wantsIds(bindings);
+            _newestRequest = _renderer->submit(std::move(request));
+            _requestLayouts[_newestRequest] = frame.layout;
+        } catch (std::exception const& error) {
+            // No GL, say: reported once per change and the buffers left
+            // cleared; hosts must not hang waiting for a frame that cannot come.
+            TF_RUNTIME_ERROR("hdHair: the frame could not be rendered: %s", error.what());
+            _newestRequest = 0;
+            _requestLayouts.clear();
+            _Write(nullptr, bindings);
+            _shown = "failed";
+            _renderParam->SetProgress({_shown, false, 0, 0, 0, 0, 0});
+            _Settle(bindings);
+            return;
         }
-    } catch (std::exception const& error) {
-        // A failed frame is reported once per change and left cleared; hosts
-        // must not hang waiting for it.
-        TF_RUNTIME_ERROR("hdHair: the frame could not be rendered: %s", error.what());
     }
 
-    for (HdRenderPassAovBinding const& binding : bindings)
-        if (binding.renderBuffer) static_cast<HdHairRenderBuffer*>(binding.renderBuffer)->SetConverged(true);
-    _lastFrame = frame;
-    _hasLastFrame = true;
+    _TakeFinished(frame.layout, bindings);
+    if (_renderer) {
+        hdhair::ProgressiveRenderer::Counts const counts = _renderer->counts();
+        _renderParam->SetProgress({_shown, _renderer->rendering() != 0, counts.previews, counts.finals,
+                                   counts.cancelled, _shownPreview.first, _shownPreview.second});
+    }
+}
+
+void HdHairRenderPass::_TakeFinished(Layout const& current, HdRenderPassAovBindingVector const& bindings) {
+    std::optional<hdhair::FinishedFrame> finished = _renderer ? _renderer->takeFinished() : std::nullopt;
+    if (!finished) return;
+    // Requests older than this one will send nothing more (this one may
+    // still send its full frame after a preview).
+    auto layout = _requestLayouts.find(finished->request);
+    const bool fits = layout != _requestLayouts.end() && layout->second == current;
+    _requestLayouts.erase(_requestLayouts.begin(), _requestLayouts.lower_bound(finished->request));
+    // An older view's image is shown while the newest renders, unless the
+    // buffers changed since it was asked for.
+    if (!fits) return;
+    const bool final = finished->quality == hdhair::FrameQuality::Final;
+    if (!finished->error.empty()) {
+        TF_RUNTIME_ERROR("hdHair: the frame could not be rendered: %s", finished->error.c_str());
+        _Write(nullptr, bindings);
+        _shown = "failed";
+    } else {
+        hdhair::RenderResult const& result = finished->result;
+        // testUsdview reads the full frame's line: keep its form.
+        std::string const what =
+            final ? std::string("frame")
+                  : TfStringPrintf("preview (1/%d of the pixels across, every %d. curve)", finished->previewDivisor,
+                                   finished->previewCurveStride);
+        TF_DEBUG(HDHAIR_FRAMES)
+            .Msg("hdHair: rendered a %s: %dx%d, %llu curves, %llu segments, %s, %.1f ms\n", what.c_str(),
+                 result.color.width, result.color.height, static_cast<unsigned long long>(result.stats.curves),
+                 static_cast<unsigned long long>(result.stats.segments), result.stats.transparency.c_str(),
+                 finished->milliseconds);
+        if (final) _renderParam->SetLastFrame(result.stats.toJson().dump(), result.plan.describe());
+        _Write(&result, bindings);
+        _shown = hdhair::toString(finished->quality);
+        if (!final) _shownPreview = {finished->previewDivisor, finished->previewCurveStride};
+    }
+    if (final && finished->request == _newestRequest) _Settle(bindings);
+}
+
+void HdHairRenderPass::_Settle(HdRenderPassAovBindingVector const& bindings) {
+    setConverged(bindings, true);
     _converged = true;
+}
+
+void HdHairRenderPass::_Write(hdhair::RenderResult const* result, HdRenderPassAovBindingVector const& bindings) {
+    HdHairRenderBuffer* colorBuffer = colorBufferOf(bindings);
+    const int bufferWidth = int(colorBuffer->GetWidth()), bufferHeight = int(colorBuffer->GetHeight());
+    GfRect2i const& dataWindow = _lastFrame.layout.dataWindow;
+    hdhair::hydra::DataWindow window{dataWindow.GetMinX(), dataWindow.GetMinY(), dataWindow.GetWidth(),
+                                     dataWindow.GetHeight()};
+    for (HdRenderPassAovBinding const& binding : bindings) {
+        auto* buffer = static_cast<HdHairRenderBuffer*>(binding.renderBuffer);
+        if (!buffer || int(buffer->GetWidth()) != bufferWidth || int(buffer->GetHeight()) != bufferHeight) continue;
+        hdhair::hydra::BufferFormat format;
+        if (!buffer->GetWritableFormat(&format)) continue;
+        buffer->Clear(binding.clearValue);
+        if (!result) continue;
+        if (binding.aovName == HdAovTokens->color) {
+            // Empty pixels show the host's clear colour (usdview's
+            // background): the frame is composited over it.
+            GfVec4f clear = binding.clearValue.IsHolding<GfVec4f>() ? binding.clearValue.UncheckedGet<GfVec4f>()
+                                                                     : GfVec4f(0.0f);
+            hdhair::Image color = result->color;
+            hdhair::hydra::compositeOver(color, {clear[0], clear[1], clear[2], clear[3]});
+            hdhair::hydra::writeImageToBuffer(color, format, window, bufferWidth, bufferHeight, buffer->GetData());
+        } else if (binding.aovName == HdAovTokens->depth) {
+            hdhair::hydra::writeImageToBuffer(result->depth, format, window, bufferWidth, bufferHeight,
+                                              buffer->GetData());
+        } else if (format == hdhair::hydra::BufferFormat::Int32) {
+            std::vector<int32_t> const* ids = binding.aovName == HdAovTokens->primId       ? &result->primIds
+                                              : binding.aovName == HdAovTokens->instanceId ? &result->instanceIds
+                                              : binding.aovName == HdAovTokens->elementId  ? &result->elementIds
+                                                                                           : nullptr;
+            if (ids) hdhair::hydra::writeIdsToBuffer(*ids, window, bufferWidth, bufferHeight, buffer->GetData());
+        }
+    }
 }
 
 PXR_NAMESPACE_CLOSE_SCOPE

@@ -1,16 +1,31 @@
 #pragma once
-// HdHairRenderPass: renders one frame synchronously. On the host's thread it
-// gathers the camera, framing, lights (already in the scene), AOV bindings
-// and settings; the engine renders on its own GL thread (never the host's,
-// whose GLX context must stay current); then the pixels go into the bound
-// render buffers, which report converged. A frame whose inputs did not change
-// is not rendered again.
+// HdHairRenderPass: renders progressively, as hdEmbree does. On the host's
+// thread _Execute gathers the camera, framing, AOV bindings, settings and a
+// snapshot of the scene, hands them to its hdhair::ProgressiveRenderer (the
+// engine renders on threads of its own, never the host's, whose GL context
+// must stay current) and returns at once. Whenever the host executes the
+// pass again (usdview every 5 ms, usdrecord every 10 to 100 ms while it is
+// not converged) the newest finished image, a preview or the full frame, is
+// copied into the bound render buffers, on the host's thread, so a buffer
+// only ever holds a complete image. The pass and its buffers report
+// converged once the full frame of the newest view is in. A frame whose
+// inputs did not change is not asked for again.
 
+#include <cstdint>
+#include <map>
+#include <memory>
 #include <string>
+#include <tuple>
+#include <vector>
 
 #include "pxr/base/gf/matrix4d.h"
 #include "pxr/base/gf/rect2i.h"
 #include "pxr/imaging/hd/renderPass.h"
+
+namespace hdhair {
+class ProgressiveRenderer;
+struct RenderResult;
+}  // namespace hdhair
 
 PXR_NAMESPACE_OPEN_SCOPE
 
@@ -21,7 +36,10 @@ class HdHairRenderPass final : public HdRenderPass {
 public:
     HdHairRenderPass(HdRenderIndex* index, HdRprimCollection const& collection, HdHairRenderDelegate* delegate,
                      HdHairRenderParam* renderParam);
-    ~HdHairRenderPass() override = default;
+    // Stops the frame in flight. Hydra destroys render passes (with the
+    // task controller's tasks) before their delegate and its render param,
+    // whose renderer the frames use.
+    ~HdHairRenderPass() override;
 
     bool IsConverged() const override { return _converged; }
 
@@ -29,23 +47,44 @@ protected:
     void _Execute(HdRenderPassStateSharedPtr const& renderPassState, TfTokenVector const& renderTags) override;
 
 private:
+    // Where a frame's images go: equal layouts write the same buffers.
+    struct Layout {
+        std::vector<std::pair<SdfPath, HdRenderBuffer*>> buffers;
+        std::vector<std::tuple<unsigned, unsigned, int>> bufferShapes;
+        GfRect2i dataWindow;
+        bool operator==(Layout const& other) const;
+    };
     // Everything a frame depends on; equal keys mean an identical frame.
     struct FrameKey {
         uint64_t sceneVersion = 0;
         unsigned settingsVersion = 0;
         GfMatrix4d view, projection;
-        GfRect2i dataWindow;
-        std::vector<std::pair<SdfPath, HdRenderBuffer*>> buffers;
-        std::vector<std::tuple<unsigned, unsigned, int>> bufferShapes;
+        Layout layout;
         TfTokenVector renderTags;
         bool operator==(FrameKey const& other) const;
     };
 
+    // Shows the newest finished frame, if any, when it fits the buffers as
+    // they are (`current`), and settles when it is the newest view's full frame.
+    void _TakeFinished(Layout const& current, HdRenderPassAovBindingVector const& bindings);
+    // Clears the bound buffers and copies a frame's images into them
+    // (nothing more when `result` is null: a failed frame).
+    void _Write(hdhair::RenderResult const* result, HdRenderPassAovBindingVector const& bindings);
+    // The pass and its buffers report converged: the newest view is in.
+    void _Settle(HdRenderPassAovBindingVector const& bindings);
+
     HdHairRenderDelegate* _delegate;
     HdHairRenderParam* _renderParam;
-    FrameKey _lastFrame;
+    std::unique_ptr<hdhair::ProgressiveRenderer> _renderer;
+    FrameKey _lastFrame;  // the newest request's
     bool _hasLastFrame = false;
+    uint64_t _newestRequest = 0;
+    // The layouts of requests whose images may still come: an older view's
+    // image is shown while the newer one renders, if it fits the buffers.
+    std::map<uint64_t, Layout> _requestLayouts;
     bool _converged = false;
+    std::string _shown = "none";  // what the buffers hold (RenderParam's Progress)
+    std::pair<int, int> _shownPreview{0, 0};  // the last preview shown: pixel divisor, curve stride
 };
 
 PXR_NAMESPACE_CLOSE_SCOPE

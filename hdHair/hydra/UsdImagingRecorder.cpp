@@ -1,5 +1,6 @@
 #include "hdHair/hydra/UsdImagingRecorder.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <stdexcept>
@@ -149,14 +150,17 @@ UsdImagingRecordResult recordWithUsdImaging(const UsdImagingRecordRequest& reque
     renderParams.showGuides = request.guidePurpose;
     renderParams.clearColor = GfVec4f(0.0f);
     renderParams.enableLighting = true;
-    // Until convergence, as usdrecord does; hdHair converges in one frame,
-    // the bound guards against a host-side stall.
-    for (int attempt = 0; attempt < 1000; ++attempt) {
+    // Until convergence, as usdrecord does (10 ms between renders, growing to
+    // 100): the plugin renders on its own thread, and a slow frame takes as
+    // long as it takes. It always converges: a frame that fails converges
+    // with an error, reported through Tf.
+    std::chrono::milliseconds pause(10);
+    for (;;) {
         engine.Render(stage->GetPseudoRoot(), renderParams);
         if (engine.IsConverged()) break;
-        std::this_thread::sleep_for(std::chrono::milliseconds(10));
+        std::this_thread::sleep_for(pause);
+        pause = std::min(pause + std::chrono::milliseconds(5), std::chrono::milliseconds(100));
     }
-    if (!engine.IsConverged()) throw std::runtime_error("the HdHair render did not converge");
     result.color = readColor(engine.GetAovRenderBuffer(HdAovTokens->color));
     VtDictionary stats = engine.GetRenderStats();
     auto text = [&](char const* key) {

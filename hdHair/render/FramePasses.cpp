@@ -6,6 +6,7 @@
 #include <utility>
 
 #include <fmt/format.h>
+#include <glad/gl.h>
 #include <glm/geometric.hpp>
 #include <glm/matrix.hpp>
 
@@ -112,6 +113,55 @@ void clear(FrameContext& context) {
     context.target->bindAndClear(glm::vec4(0.0f));
 }
 
+// Draws the strands with the uniforms bound (ordered: in the draw order the
+// sort sent; else the drawn prims' ranges). A frame that can be cancelled
+// draws them in pieces of strandPieceSegments and finishes each piece's GL
+// work before asking whether to stop: llvmpipe rasterises only when work is
+// flushed, so without the finish a camera move would wait for the whole
+// pass. The pieces are consecutive runs of the order (or of the ranges), and
+// blending and the depth test see primitives in the same order across draws
+// as within one, so the pieces give the single draw's image to the bit
+// (testFrameCancellation: every transparency path, pieces of 7 segments).
+void drawStrandPieces(FrameContext& context, bool ordered, gl::StrandBlending blending) {
+    FrameResources& resources = context.resources;
+    const std::vector<gl::SegmentRange>& ranges = context.inputs.uploads.drawRanges;
+    const size_t piece = context.strandPieceSegments;
+    if (!context.cancellation || piece == 0) {
+        resources.strandPass.draw(resources.strands, ranges, blending);
+        return;
+    }
+    if (ordered) {
+        const std::vector<uint32_t>& order = context.drawOrder;
+        for (size_t first = 0; first < order.size() && !stopRequested(context); first += piece) {
+            const size_t end = std::min(order.size(), first + piece);
+            resources.strandPass.setDrawOrder(std::vector<uint32_t>(order.begin() + ptrdiff_t(first),
+                                                                    order.begin() + ptrdiff_t(end)));
+            resources.strandPass.draw(resources.strands, {}, blending);
+            glFinish();
+        }
+        return;
+    }
+    std::vector<gl::SegmentRange> pieceRanges;
+    size_t pieceSegments = 0;
+    auto drawPiece = [&] {
+        resources.strandPass.draw(resources.strands, pieceRanges, blending);
+        glFinish();
+        pieceRanges.clear();
+        pieceSegments = 0;
+    };
+    for (const gl::SegmentRange& range : ranges) {
+        for (uint64_t first = range.first; first < range.first + range.count;) {
+            if (stopRequested(context)) return;
+            const uint64_t count = std::min<uint64_t>(range.first + range.count - first, piece - pieceSegments);
+            pieceRanges.push_back(gl::SegmentRange{first, count});
+            pieceSegments += count;
+            first += count;
+            if (pieceSegments == piece) drawPiece();
+        }
+    }
+    if (!pieceRanges.empty() && !stopRequested(context)) drawPiece();
+}
+
 // Draws the strands with the lights of one batch into `target`, over what
 // it holds (the meshes of that batch, or nothing), as the plan says. Exact
 // transparency over its memory budget warns, falls back to the finest bin
@@ -142,9 +192,9 @@ void drawStrands(FrameContext& context, gl::RenderTarget& target, size_t batch) 
         if (plan.isEnabled("meshes")) drawMeshes(context, target, batch);
         bindBatchInputs(context, target, batch);
     }
-    resources.strandPass.draw(resources.strands, inputs.uploads.drawRanges,
-                              plan.transparency == TransparencyPath::Opaque ? gl::StrandBlending::Opaque
-                                                                            : gl::StrandBlending::PremultipliedOver);
+    drawStrandPieces(context, inputs.frame.orderedDraw != 0,
+                     plan.transparency == TransparencyPath::Opaque ? gl::StrandBlending::Opaque
+                                                                   : gl::StrandBlending::PremultipliedOver);
 }
 
 void ids(FrameContext& context) {
@@ -152,8 +202,7 @@ void ids(FrameContext& context) {
     idsFrame.drawMode = 2;
     idsFrame.orderedDraw = 0;
     context.resources.strandPass.setUniforms(idsFrame, lightUniforms(context.plan, 0), gl::ShadowUniforms{});
-    context.resources.strandPass.draw(context.resources.strands, context.inputs.uploads.drawRanges,
-                                      gl::StrandBlending::IdsOnly);
+    drawStrandPieces(context, false, gl::StrandBlending::IdsOnly);
 }
 
 // "lightBatch k": the meshes and strands again with lights of batch k - 1
@@ -227,7 +276,7 @@ void shadowFragments(FrameContext& context, size_t shadow) {
                                                       "its shadows (lower shadowMapResolution)",
                                                       (nodes * gl::kShadowNodeBytes + (1 << 20) - 1) >> 20));
     planned.slot = -1;
-    context.unshadowed.push_back(planned.key);
+    context.unbuiltShadowMaps.push_back(planned.key);
 }
 
 // An image of `channels` holding `pixels` as read back: made around them, so
@@ -267,6 +316,21 @@ void displayTransform(FrameContext& context) {
 }  // namespace
 
 bool isCpuPass(const FramePass& pass) { return pass.name == "sort"; }
+
+bool stopRequested(FrameContext& context) {
+    if (!context.stopped && context.cancellation && context.cancellation->requested()) context.stopped = true;
+    return context.stopped;
+}
+
+bool runsWhenStopped(const FramePass& pass) { return pass.name == "upload" || pass.name == "meshUpload"; }
+
+std::optional<std::string> shadowMapBuiltBy(const FramePass& pass) {
+    for (const char* kind : {"shadowDepth ", "deepOpacity ", "meshShadow ", "shadowFragments "}) {
+        const std::string prefix(kind);
+        if (pass.name.rfind(prefix, 0) == 0) return pass.name.substr(prefix.size());
+    }
+    return std::nullopt;
+}
 
 void runFramePass(const FramePass& pass, FrameContext& context) {
     const std::string& name = pass.name;

@@ -17,6 +17,7 @@
 #include "hdHair/image/DisplayShader.h"
 #include "hdHair/render/BinSort.h"
 #include "hdHair/render/CameraView.h"
+#include "hdHair/render/FrameCancellation.h"
 #include "hdHair/render/RenderPlan.h"
 #include "hdHair/render/StrandUploads.h"
 
@@ -77,11 +78,32 @@ struct FrameContext {
     std::vector<uint32_t> drawOrder;         // the sort's output
     gl::RenderTarget* target = nullptr;      // set by the clear pass
     bool shadowPoolEmptied = false;          // shadowMode=reference: the pool was emptied this frame
-    std::vector<std::string> unshadowed;     // lights whose shadow could not be built (warned)
+    // Lights whose map this frame was to build and did not: it needed more
+    // memory than GL gives (warned), or the frame stopped before its passes
+    // ran. The renderer forgets them, so the next frame builds them again.
+    std::vector<std::string> unbuiltShadowMaps;
+    // Polled between passes and between pieces of the strand draws; null:
+    // the frame runs to its end, its strands drawn at once.
+    const FrameCancellation* cancellation = nullptr;
+    size_t strandPieceSegments = 0;  // segments per piece when cancellable
+    bool stopped = false;            // the cancellation was seen: the rest of the frame is skipped
 };
 
 // Runs one pass of the plan. Throws std::logic_error for a pass it does not know.
 void runFramePass(const FramePass& pass, FrameContext& context);
+
+// Whether the frame has been asked to stop (FrameCancellation.h); once it
+// has, it stays stopped.
+bool stopRequested(FrameContext& context);
+
+// The passes a stopped frame still runs: the uploads, whose data the
+// renderer counted as on the GPU when it planned them (StrandUploads,
+// the material table, the mesh buffer).
+bool runsWhenStopped(const FramePass& pass);
+
+// The light whose shadow map a pass builds ("shadowDepth L" and the other
+// map passes), or nothing.
+std::optional<std::string> shadowMapBuiltBy(const FramePass& pass);
 
 // The passes that run on the CPU (timed by the CPU clock).
 bool isCpuPass(const FramePass& pass);

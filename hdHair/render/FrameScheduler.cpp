@@ -9,9 +9,15 @@ void runFrameGraph(FrameContext& context, gl::PassTiming timing) {
     gl::PassTimer timer(timing, passes.size());
     for (size_t i = 0; i < passes.size(); ++i) {
         if (!passes[i].enabled) continue;
+        if (stopRequested(context) && !runsWhenStopped(passes[i])) {
+            if (std::optional<std::string> light = shadowMapBuiltBy(passes[i]))
+                context.unbuiltShadowMaps.push_back(*light);
+            continue;
+        }
         timer.begin(i, isCpuPass(passes[i]));
         runFramePass(passes[i], context);
         timer.end(i);
+        if (context.cancellation) glFinish();
     }
     const std::vector<double> milliseconds = timer.collect();
     RenderStats& stats = context.result.stats;

@@ -5,6 +5,12 @@
 // the plan as it runs (exact transparency falling back to bin sorting
 // enables the ids pass); the scheduler reads each pass's state as it comes
 // to it.
+//
+// A frame that can be cancelled (FrameContext::cancellation) finishes each
+// pass's GL work before the next (llvmpipe would otherwise do it all at the
+// readback, past every chance to stop) and asks before each pass whether to
+// stop; once stopped, it runs only the passes runsWhenStopped() names and
+// records the shadow maps it left unbuilt.
 
 #include "hdHair/gl/PassTimer.h"
 #include "hdHair/render/FramePasses.h"

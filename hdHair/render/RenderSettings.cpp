@@ -127,6 +127,11 @@ const std::vector<SettingDescriptor>& RenderSettings::descriptors() {
          "Camera when none is given: fitAll (every corner of the stage bounds in view) or usdrecord "
          "(usdrecord's exact framing, which can cut tall stages)",
          0, 0, {"fitAll", "usdrecord"}},
+        {"interactiveBudgetMs", SettingType::Int, "100",
+         "Hydra hosts (usdview): when a full frame takes longer than this many milliseconds, each new view is "
+         "first shown as a preview made to fit it (coarse tessellation, 16 bins, no shadows, fewer pixels as "
+         "needed) and the full frame follows once the view stops changing; 0: no previews, full frames only",
+         0, 60000, {}},
         {"renderingSpace", SettingType::Token, "lin_rec709",
          "Scene-linear space the frame is shaded and written in: lin_rec709 or ACEScg; authored colours "
          "(linear Rec.709) are converted into it, EXRs are tagged with it, display transforms start from it",

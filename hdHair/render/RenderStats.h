@@ -24,8 +24,9 @@ struct RenderStats {
     uint64_t curves = 0, segments = 0;
     uint64_t authoredPoints = 0;  // control vertices the drawn curves prims author (their points)
     uint64_t meshTriangles = 0;   // of the meshes drawn, after refinement
-    // Triangles one colour pass over the strands drew (as tessellated, culled
-    // spans excluded; 0 for exact transparency, which draws its own way).
+    // Triangles the colour passes over the strands drew, every light batch's
+    // (as tessellated, culled spans excluded; 0 for exact transparency,
+    // which draws its own way).
     uint64_t strandTriangles = 0;
     size_t preparedMeshes = 0;    // meshes refined and triangulated this frame (changed ones only)
     std::vector<PassTiming> passes;

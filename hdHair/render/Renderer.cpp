@@ -18,6 +18,7 @@
 #include "hdHair/render/BinSort.h"
 #include "hdHair/render/FrameResources.h"
 #include "hdHair/render/FrameScheduler.h"
+#include "hdHair/render/InteractivePreview.h"
 #include "hdHair/render/NearestStrandRule.h"
 #include "hdHair/scene/Scene.h"
 #include "hdHair/scene/MeshPrim.h"
@@ -374,11 +375,16 @@ std::optional<MaterialUpload> Renderer::materialUpload(const std::vector<HairMat
 }
 
 RenderResult Renderer::render(const Scene& scene, const CameraView& camera, const RenderSettings& settings,
-                              Diagnostics& diagnostics, const RenderOutputs& outputs) {
+                              Diagnostics& diagnostics, const RenderOutputs& outputs, const FrameControl& control) {
     Clock::time_point frameStart = Clock::now();
     if (!isFiniteTransform(camera.view) || !isFiniteTransform(camera.projection))
         throw std::invalid_argument("the camera's view or projection is not finite (a NaN or infinite transform, "
                                     "lens or clipping range)");
+    if (control.preview && settings.getToken("shadowMode") != "off")
+        throw std::invalid_argument("a preview frame must not cast shadows (shadowMode=off): it keeps the full "
+                                    "frames' shadow maps as they are");
+    if (control.previewCurveStride < 1 || (!control.preview && control.previewCurveStride != 1))
+        throw std::invalid_argument("only a preview leaves curves out (previewCurveStride 1 otherwise)");
     RenderResult result;
     RenderStats& stats = result.stats;
     size_t warningsBefore = diagnostics.warningCount();
@@ -457,6 +463,7 @@ RenderResult Renderer::render(const Scene& scene, const CameraView& camera, cons
         inputs.sortSpans.push_back(SortSpan{curves.controlPoints.data(), drawnCurves[i]->sortHashes.data(),
                                             curves.segmentCount(), inputs.uploads.ranges[i].first});
     }
+    if (control.preview) keepEveryNthCurve(inputs, control.previewCurveStride);
 
     MeshSummary meshSummary;
     inputs.meshes = meshUpload(scene, meshSummary);
@@ -471,24 +478,33 @@ RenderResult Renderer::render(const Scene& scene, const CameraView& camera, cons
     inputs.depthRequested = outputs.depth;
     inputs.gpuDisplay = outputs.gpuDisplay;
     inputs.displayOverBlack = outputs.displayOverBlack;
+    // A preview leaves the shadow maps to the full frames; its levels
+    // follow its own camera.
     inputs.frame = frameUniforms(camera, settings, plan,
-                                 decideShadowMaps(plan, summary, camera, settings, diagnostics, stats));
+                                 control.preview
+                                     ? tessellationViewOf(camera, 0)
+                                     : decideShadowMaps(plan, summary, camera, settings, diagnostics, stats));
     inputs.fragmentListCapacity = size_t(settings.getInt("exactMemoryMB")) * 1024 * 1024 / gl::kFragmentNodeBytes;
     const gl::PassTiming timing = settings.getBool("passTimings") ? passTiming_ : gl::PassTiming::Off;
 
     const gl::PatchBatching batching =
         gl::PatchBatching::choose(settings.getToken("drawBatching"), glThread_->contextDescription());
     stats.drawBatching = batching.describe();
-    glThread_->run([&] {
+    const bool stopped = glThread_->run([&] {
         resources_->strands.setBatching(batching);
         inputs.samples = std::min(plan.msaaSamples, resources_->maxSamples);
         FrameContext context{inputs, plan, *resources_, diagnostics, result, {}, nullptr, false, {}};
+        context.cancellation = control.cancellation;
+        context.strandPieceSegments = control.strandPieceSegments;
         runFrameGraph(context, timing);
         stats.strandTriangles = resources_->strandPass.takeTriangles();
         stats.gpuBytes = gl::gpuBytesByUse();
-        // A shadow that could not be built is tried again next frame.
-        for (const std::string& key : context.unshadowed) shadowMaps_.forget(key);
+        // A shadow that could not be built, or whose passes a stopped frame
+        // skipped, is built again next frame.
+        for (const std::string& key : context.unbuiltShadowMaps) shadowMaps_.forget(key);
+        return context.stopped;
     });
+    if (stopped) throw FrameCancelled();
     if (plan.lightsOverCap > 0)
         diagnostics.warn("render", fmt::format("the stage has {} lights, more than the {} a frame shades; the last {} "
                                                "in path order are left out",

@@ -1,7 +1,7 @@
 #pragma once
 // The engine's front door: renders a Scene as seen by a CameraView into a
 // linear, pre-multiplied RGBA image and a depth image. Used by hdhair-record
-// and (later) the Hydra render pass.
+// and, on a ProgressiveRenderer's thread, the Hydra render pass.
 //
 // Flow per frame: prepare changed curves and meshes on the CPU (in parallel,
 // cached by prim version) -> the frame graph (RenderPlan) -> its passes on
@@ -27,6 +27,7 @@
 #include "hdHair/image/Image.h"
 #include "hdHair/meshes/PreparedMesh.h"
 #include "hdHair/render/CameraView.h"
+#include "hdHair/render/FrameCancellation.h"
 #include "hdHair/render/FramePasses.h"
 #include "hdHair/render/FramingBounds.h"
 #include "hdHair/render/RenderPlan.h"
@@ -61,6 +62,30 @@ struct RenderOutputs {
     bool depth = true;
 };
 
+// Segments per piece of a cancellable frame's strand draws (FramePasses.h):
+// a request to stop waits for at most one piece, and every piece costs a
+// finish of the GL work; README ("Progressive rendering") has what 2,048 gives on
+// the dense clump (27,900 segments: 14 pieces a draw).
+constexpr size_t kStrandPieceSegments = 2048;
+
+// How a frame may be stopped or simplified (ProgressiveRenderer.h).
+struct FrameControl {
+    // Asked between passes and between strand pieces whether to stop
+    // (FrameCancellation.h); a stopped frame throws FrameCancelled. Null:
+    // the frame runs to its end and draws its strands at once.
+    const FrameCancellation* cancellation = nullptr;
+    size_t strandPieceSegments = kStrandPieceSegments;
+    // A preview (InteractivePreview.h): its settings and image size are not
+    // those of the frames before and after it, so it keeps the shadow maps
+    // and their tessellation view as the last full frame left them (building
+    // and dropping none: its settings must have shadowMode=off) and
+    // tessellates for its own camera.
+    bool preview = false;
+    // A preview draws every this-many-th curve of each prim only
+    // (keepEveryNthCurve, InteractivePreview.h); 1 for every other frame.
+    int previewCurveStride = 1;
+};
+
 struct RenderResult {
     Image color;  // RGBA, scene-linear, pre-multiplied
     // One channel, window depth in [0, 1], 1 where empty (empty itself when
@@ -92,8 +117,11 @@ public:
     // when rendered, at the refine level the settings give).
     SceneBounds prepare(const Scene& scene, const RenderSettings& settings, Diagnostics& diagnostics);
 
+    // Throws FrameCancelled when control.cancellation stops the frame, and
+    // std::invalid_argument for a camera that is not finite, a preview that
+    // would cast shadows, or curves left out of a frame that is no preview.
     RenderResult render(const Scene& scene, const CameraView& camera, const RenderSettings& settings,
-                        Diagnostics& diagnostics, const RenderOutputs& outputs = {});
+                        Diagnostics& diagnostics, const RenderOutputs& outputs = {}, const FrameControl& control = {});
 
     const std::string& glDescription() const;
     // Where the GL context was made (GlContext::origin()): which EGL device

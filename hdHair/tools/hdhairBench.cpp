@@ -378,7 +378,7 @@ void printTessellationTable(BenchStage& stage) {
         stage.scene, stage.camera,
         RenderSettings::fromAssignments(Complexity::VeryHigh, {"tessellationTolerance=0.001", "maxSegmentsPerSpan=64"}),
         diagnostics));
-    std::printf("\nTessellation, %s (%dx%d): triangles of one colour pass; process CPU time of a frame relative to "
+    std::printf("\nTessellation, %s (%dx%d): triangles the colour passes drew; process CPU time of a frame relative to "
                 "projectedLength at low; error against a %dx%d-supersampled dense render (RMSE floor of a converged "
                 "tessellation: %.5f)\n\n",
                 stage.path.c_str(), stage.camera.imageWidth, stage.camera.imageHeight, kSupersampling, kSupersampling,

@@ -201,10 +201,14 @@ usda::SceneReadOptions purposesFrom(const std::string& purposes) {
 
 // The --setting assignments, after passTimings=true when the run reports
 // what it did (--verbose, --explain, --stats): an explicit setting wins.
+// Then interactiveBudgetMs=0 whatever was asked: a recorder writes full
+// frames only, and through OpenUSD a preview would only delay them (run()
+// warns when --setting asks for previews).
 std::vector<std::string> settingAssignments(const Options& options) {
     std::vector<std::string> assignments;
     if (options.verbose || options.explain || !options.statsFile.empty()) assignments.push_back("passTimings=true");
     assignments.insert(assignments.end(), options.settings.begin(), options.settings.end());
+    assignments.push_back("interactiveBudgetMs=0");
     return assignments;
 }
 
@@ -302,6 +306,11 @@ int run(const Options& options) {
     if (!parseComplexity(options.complexity, &complexity))
         throw std::invalid_argument("--complexity must be low, medium, high or veryhigh");
     RenderSettings settings = RenderSettings::fromAssignments(complexity, settingAssignments(options));
+    const RenderSettings asked = RenderSettings::fromAssignments(complexity, options.settings);
+    if (asked.getInt("interactiveBudgetMs") != 0 && asked.isExplicitlySet("interactiveBudgetMs"))
+        std::fprintf(stderr, "hdhair-record: warning: interactiveBudgetMs=%d has no effect here: it sets the previews "
+                             "interactive Hydra hosts (usdview) show, and hdhair-record writes full frames only\n",
+                     asked.getInt("interactiveBudgetMs"));
     if (options.imageWidth < 1 || options.imageWidth > 16384)
         throw std::invalid_argument("--imageWidth must be between 1 and 16384");
     if (!isSupportedImagePath(options.outputPath))
@@ -396,8 +405,8 @@ int run(const Options& options) {
             std::string passes;
             for (const PassTiming& pass : result.stats.passes)
                 passes += fmt::format("{}{} {:.1f} ms", passes.empty() ? "" : ", ", pass.name, pass.milliseconds);
-            std::printf("hdhair-record: %s: %dx%d, camera %s, %llu curves, %llu segments, %llu strand triangles a "
-                        "pass; %s; strand %s; wrote %s\n",
+            std::printf("hdhair-record: %s: %dx%d, camera %s, %llu curves, %llu segments, %llu strand triangles"
+                        "; %s; strand %s; wrote %s\n",
                         describeTime(time).c_str(), camera.imageWidth,
                         camera.imageHeight, cameraName.c_str(),
                         static_cast<unsigned long long>(result.stats.curves),

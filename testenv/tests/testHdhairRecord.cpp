@@ -299,6 +299,30 @@ TEST_F(HdhairRecord, FramesFillTheOutputPlaceholder) {
     EXPECT_NE(noPlaceholder.output.find("needs a '#' placeholder"), std::string::npos) << noPlaceholder.output;
 }
 
+// interactiveBudgetMs sets the previews interactive Hydra hosts show; a
+// recorder writes full frames only, so asking for previews is a warning and
+// the frames are rendered without any (through OpenUSD too).
+TEST_F(HdhairRecord, AskingForPreviewsWarnsThatARecorderWritesFullFramesOnly) {
+    for (const char* reader : {"embedded", "usd"}) {
+#if !HDHAIR_WITH_USD
+        if (std::string(reader) == "usd") continue;
+#endif
+        RecordRun run = record(std::string("--reader ") + reader + " -s interactiveBudgetMs=50 --imageWidth 48 --stats " +
+                               file("stats.json") + " " + example("straight_strands.usda") + " " + file("o.png"));
+        ASSERT_EQ(run.exitCode, 0) << run.output;
+        EXPECT_NE(run.output.find("hdhair-record: warning: interactiveBudgetMs=50 has no effect here: it sets the "
+                                  "previews interactive Hydra hosts (usdview) show, and hdhair-record writes full "
+                                  "frames only\n"),
+                  std::string::npos)
+            << run.output;
+        nlohmann::json stats = nlohmann::json::parse(std::ifstream(file("stats.json")));
+        EXPECT_EQ(stats["frames"][0]["settings"]["interactiveBudgetMs"], 0) << reader;
+    }
+    RecordRun quiet = record("--imageWidth 48 " + example("straight_strands.usda") + " " + file("o.png"));
+    ASSERT_EQ(quiet.exitCode, 0) << quiet.output;
+    EXPECT_EQ(quiet.output.find("interactiveBudgetMs"), std::string::npos) << quiet.output;
+}
+
 TEST_F(HdhairRecord, ExplainPrintsThePlanAndVerbosePrintsPassTimes) {
     RecordRun run = record("--explain --verbose --imageWidth 64 " + example("straight_strands.usda") + " " + file("o.png"));
     ASSERT_EQ(run.exitCode, 0) << run.output;

@@ -25,6 +25,7 @@ TEST(RenderSettings, DefaultsComeFromTheDescriptors) {
     RenderSettings settings;
     EXPECT_DOUBLE_EQ(settings.getFloat("kajiyaKay:specular"), 0.35);
     EXPECT_EQ(settings.getToken("cameraLight"), "auto");
+    EXPECT_EQ(settings.getInt("interactiveBudgetMs"), 100);
     for (const SettingDescriptor& descriptor : RenderSettings::descriptors())
         EXPECT_TRUE(settings.toJson().contains(descriptor.name)) << descriptor.name;
 }

@@ -1,0 +1,118 @@
+// Stopping a frame in flight (FrameCancellation.h, FrameControl): a frame
+// drawn in pieces gives the single draw's image to the bit on every
+// transparency path, a frame stopped at any point throws FrameCancelled,
+// and the renderer then renders exactly what a renderer that never saw the
+// stopped frame renders (uploads kept, half-built shadow maps built again).
+
+#include <climits>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "HairTuft.h"
+#include "hdHair/base/Diagnostics.h"
+#include "hdHair/render/FrameCancellation.h"
+#include "hdHair/render/Renderer.h"
+
+using namespace hdhair;
+using namespace hdhair::testscenes;
+
+namespace {
+
+// Asks the frame to stop the `stopAt`-th time it is asked (1: before its
+// first pass); counts how often it was asked.
+class StopAtPoll final : public FrameCancellation {
+public:
+    explicit StopAtPoll(int stopAt) : stopAt_(stopAt) {}
+    bool requested() const override { return ++polls_ >= stopAt_; }
+    int polls() const { return polls_; }
+
+private:
+    int stopAt_;
+    mutable int polls_ = 0;
+};
+
+void expectIdentical(const RenderResult& actual, const RenderResult& expected, const std::string& what) {
+    EXPECT_EQ(actual.color.pixels, expected.color.pixels) << what;
+    EXPECT_EQ(actual.depth.pixels, expected.depth.pixels) << what;
+    EXPECT_EQ(actual.primIds, expected.primIds) << what;
+    EXPECT_EQ(actual.instanceIds, expected.instanceIds) << what;
+    EXPECT_EQ(actual.elementIds, expected.elementIds) << what;
+}
+
+RenderSettings tuftSettings(const std::string& transparency) {
+    RenderSettings settings;
+    settings.set("transparency", transparency);
+    settings.set("lightsPerPass", "2");  // three light batches, each drawing the strands again
+    return settings;
+}
+
+}  // namespace
+
+TEST(FrameCancellation, StrandPiecesGiveTheSingleDrawsImageOnEveryPath) {
+    const Scene scene = hairTuft(40);
+    const CameraView camera = tuftCamera(0.0, 96);
+    Renderer renderer(gl::defaultGlBackend());
+    Diagnostics diagnostics;
+    for (const char* path : {"binSorted", "unsorted", "opaque", "exact"}) {
+        const RenderSettings settings = tuftSettings(path);
+        const RenderResult whole = renderer.render(scene, camera, settings, diagnostics, RenderOutputs{true});
+        StopAtPoll never(INT_MAX);
+        FrameControl pieces;
+        pieces.cancellation = &never;
+        pieces.strandPieceSegments = 7;
+        const RenderResult pieced = renderer.render(scene, camera, settings, diagnostics, RenderOutputs{true}, pieces);
+        // Asked before every piece of every strand draw (three light batches,
+        // and the ids pass where it runs); exact transparency draws its
+        // fragment lists at once and is asked between passes only.
+        ASSERT_EQ(whole.stats.segments, 360u);  // 120 curves of 3 spans
+        if (std::string(path) != "exact") {
+            EXPECT_GE(never.polls(), 3 * (360 + 6) / 7) << path;
+        }
+        expectIdentical(pieced, whole, path);
+    }
+    EXPECT_TRUE(diagnostics.warnings().empty());
+}
+
+TEST(FrameCancellation, AFrameStoppedAtAnyPointLeavesTheRendererAsIfItNeverRan) {
+    // The stopped frame changes the hair (one prim moves: its upload and
+    // every shadow map are in that frame) and the camera, by more than the
+    // tessellation tolerance (so the maps would be rebuilt for it anyway).
+    const Scene before = hairTuft(30);
+    Scene after = before;
+    after.setCurves(tuftStrands("/tuft/b", 2, 30, 1.5f));
+    const CameraView a = tuftCamera(0.0, 64), b = tuftCamera(35.0, 64);
+    const RenderSettings settings = tuftSettings("binSorted");
+    Diagnostics diagnostics;
+    RenderResult expected;
+    {
+        Renderer fresh(gl::defaultGlBackend());
+        fresh.render(before, a, settings, diagnostics, RenderOutputs{true});
+        expected = fresh.render(after, b, settings, diagnostics, RenderOutputs{true});
+    }
+
+    Renderer renderer(gl::defaultGlBackend());
+    auto stoppable = [](const FrameCancellation& cancellation) {
+        FrameControl control;
+        control.cancellation = &cancellation;
+        control.strandPieceSegments = 64;
+        return control;
+    };
+    renderer.render(before, a, settings, diagnostics, RenderOutputs{true});
+    StopAtPoll never(INT_MAX);
+    expectIdentical(renderer.render(after, b, settings, diagnostics, RenderOutputs{true}, stoppable(never)), expected,
+                    "not stopped");
+    const int polls = never.polls();
+    ASSERT_GT(polls, 20);  // every pass, and every piece of 64 of the 270 segments in three batches and ids
+
+    for (int stopAt = 1; stopAt <= polls; ++stopAt) {
+        renderer.render(before, a, settings, diagnostics, RenderOutputs{true});
+        StopAtPoll stop(stopAt);
+        EXPECT_THROW(renderer.render(after, b, settings, diagnostics, RenderOutputs{true}, stoppable(stop)),
+                     FrameCancelled)
+            << "stopped at poll " << stopAt;
+        expectIdentical(renderer.render(after, b, settings, diagnostics, RenderOutputs{true}), expected,
+                        "the frame after one stopped at poll " + std::to_string(stopAt));
+    }
+    EXPECT_TRUE(diagnostics.warnings().empty());
+}
