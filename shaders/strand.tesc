@@ -123,7 +123,11 @@ void main() {
             // polyline's vertices: cut finely enough that they stay within
             // kAttributeTolerance of their cubic, but never finer than a
             // segment a pixel, where nothing finer could show.
-            vec4 a0 = vsColorOpacity[0], a1 = vsColorOpacity[1], a2 = vsColorOpacity[2], a3 = vsColorOpacity[3];
+            // Measured in linear Rec.709, as authored: the same levels in
+            // every rendering space.
+            vec4 a[4];
+            for (int i = 0; i < 4; ++i) a[i] = vec4(frame.colorToRec709 * vsColorOpacity[i].rgb, vsColorOpacity[i].a);
+            vec4 a0 = a[0], a1 = a[1], a2 = a[2], a3 = a[3];
             vec4 attributeHull[4] = vec4[4](a1, a1 + (a2 - a0) / 6.0, a2 - (a3 - a1) / 6.0, a2);
             vec4 d0 = abs(attributeHull[0] - 2.0 * attributeHull[1] + attributeHull[2]);
             vec4 d1 = abs(attributeHull[1] - 2.0 * attributeHull[2] + attributeHull[3]);

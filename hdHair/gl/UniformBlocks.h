@@ -36,8 +36,12 @@ struct FrameUniforms {  // binding 0, shaders/include/frameUniforms.glsl
     // shadow maps were built with.
     glm::vec2 tessellationViewport{1.0f};
     glm::mat4 tessellationViewProjection{1.0f};
+    // From the rendering space back to linear Rec.709, as std140 mat3
+    // columns: screenError tessellation measures colour in the space colours
+    // are authored in, so the geometry does not depend on renderingSpace.
+    glm::vec4 colorToRec709[3] = {{1, 0, 0, 0}, {0, 1, 0, 0}, {0, 0, 1, 0}};
 };
-static_assert(sizeof(FrameUniforms) == 208, "std140 layout of FrameUniforms");
+static_assert(sizeof(FrameUniforms) == 256, "std140 layout of FrameUniforms");
 
 struct LightUniforms {  // binding 1, shaders/include/lights.glsl
     glm::vec4 lightVector[kMaxLightsPerPass]{};

@@ -10,6 +10,7 @@
 #include <fmt/format.h>
 #include <glad/gl.h>
 #include <glm/geometric.hpp>
+#include <glm/matrix.hpp>
 #include <tbb/parallel_for.h>
 
 #include "hdHair/base/Diagnostics.h"
@@ -54,6 +55,8 @@ gl::FrameUniforms frameUniforms(const CameraView& camera, const RenderSettings& 
     frame.nearestStrandMinAlpha = kNearestStrandMinAlpha;
     frame.tessellationViewport = glm::vec2(tessellation.viewport);
     frame.tessellationViewProjection = glm::mat4(tessellation.viewProjection);
+    const glm::mat3 toRec709 = glm::inverse(rec709To(settings.renderingSpace()));
+    for (int column = 0; column < 3; ++column) frame.colorToRec709[column] = glm::vec4(toRec709[column], 0.0f);
     return frame;
 }
 

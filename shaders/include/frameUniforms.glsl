@@ -28,6 +28,9 @@ layout(std140, binding = 0) uniform FrameUniforms {
     // the camera draws.
     vec2 tessellationViewport;
     mat4 tessellationViewProjection;
+    // From the rendering space back to linear Rec.709: screenError
+    // tessellation measures colour as authored, whatever renderingSpace.
+    mat3 colorToRec709;
 } frame;
 
 // Whether a blended fragment of this alpha may give its pixel depth and ids.
