@@ -12,11 +12,11 @@
 #include "include/marschner.glsl"
 #include "include/marschnerAnalytic.glsl"
 #include "include/catmullRom.glsl"
+#include "include/strandGeometry.glsl"
 #include "include/hairMaterials.glsl"
 #include "include/shadowFragmentLists.glsl"
 #include "include/shadows.glsl"
 #include "include/strandShading.glsl"
-#include "include/strandGeometry.glsl"
 
 layout(location = 0) in vec3 worldPosition;
 layout(location = 1) in vec3 worldTangent;

@@ -2,7 +2,7 @@
 #extension GL_GOOGLE_include_directive : require
 // Pulls each patch's four Catmull-Rom control points from the combined
 // geometry, in drawing order: vertex 4p + k is control point k of the p-th
-// segment drawn. No vertex attributes, so a sorted frame needs no index buffer.
+// segment drawn (shared with the curve's neighbouring spans). No vertex attributes, so a sorted frame needs no index buffer.
 #include "include/frameUniforms.glsl"
 #include "include/strandGeometry.glsl"
 
@@ -14,7 +14,7 @@ void main() {
     uint patchIndex = uint(gl_VertexID) / 4u;
     uint corner = uint(gl_VertexID) % 4u;
     uint segment = frame.orderedDraw != 0 ? drawOrder[patchIndex] : patchIndex;
-    uint controlPoint = 4u * segment + corner;
+    uint controlPoint = segmentFirstControl[segment] + corner;
     vsPositionWidth = controlPoints[2u * controlPoint];
     vsColorOpacity = controlPoints[2u * controlPoint + 1u];
     vsSegment = int(segment);

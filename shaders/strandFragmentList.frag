@@ -9,6 +9,7 @@
 #include "include/marschner.glsl"
 #include "include/marschnerAnalytic.glsl"
 #include "include/catmullRom.glsl"
+#include "include/strandGeometry.glsl"
 #include "include/hairMaterials.glsl"
 #include "include/shadowFragmentLists.glsl"
 #include "include/shadows.glsl"

@@ -113,6 +113,31 @@ SpanStencil linearSpanStencil(int count, bool periodic, int span) {
     return linearStencilFor(a, b);
 }
 
+namespace {
+
+bool sameControl(const SpanStencil::Control& a, const SpanStencil::Control& b) {
+    if (a.termCount != b.termCount) return false;
+    for (int t = 0; t < a.termCount; ++t)
+        if (a.terms[size_t(t)].vertex != b.terms[size_t(t)].vertex || a.terms[size_t(t)].weight != b.terms[size_t(t)].weight)
+            return false;
+    return true;
+}
+
+}  // namespace
+
+bool spansShareControls(const CurveKind& kind, int n) {
+    const int spans = segmentCount(kind, n);
+    if (spans <= 1) return true;
+    SpanStencil previous = catmullRomStencil(kind, n, 0);
+    for (int s = 1; s < spans; ++s) {
+        SpanStencil next = catmullRomStencil(kind, n, s);
+        for (size_t r = 0; r < 3; ++r)
+            if (!sameControl(previous.controls[r + 1], next.controls[r])) return false;
+        previous = next;
+    }
+    return true;
+}
+
 SpanStencil catmullRomStencil(const CurveKind& kind, int n, int span) {
     assert(n >= 1 && span >= 0);
     if (kind.isLinear()) return linearSpanStencil(n, kind.isPeriodic(), span);

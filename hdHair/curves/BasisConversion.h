@@ -62,6 +62,13 @@ SpanStencil catmullRomStencil(const CurveKind& kind, int n, int span);
 // linear curves and for varying primvars, which are linear between span ends.
 SpanStencil linearSpanStencil(int count, bool periodic, int span);
 
+// True when each span's last three controls are the next span's first three,
+// term for term, for every span of a curve with n vertices: the spans can then
+// share one control polygon (PreparedCurves). Holds for Catmull-Rom curves of
+// any wrap (phantoms included); not for bezier, bspline or linear, whose
+// converted controls are combinations local to each span.
+bool spansShareControls(const CurveKind& kind, int n);
+
 // Writes the 4 controls (4 * tupleSize floats, control-major) that `stencil`
 // makes of one curve's values (element-major, tupleSize floats per vertex).
 // Reads only the vertices the stencil names; computes in double precision.

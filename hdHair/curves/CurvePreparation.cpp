@@ -281,19 +281,51 @@ PreparedCurves prepareCurves(const CurvesPrim& prim, Diagnostics& diagnostics,
         shading.push_back(std::move(resolved));
     }
 
-    // Where each kept curve's segments go: an exclusive prefix sum.
-    std::vector<size_t> firstSegment(curveCount + 1, 0);
+    // Spans share controls when the basis makes them overlap and no
+    // attribute is linear per span (varying data's per-span controls
+    // (2a-b, a, b, 2b-a) differ between neighbours).
+    auto linearPerSpan = [](const ResolvedPrimvar& primvar) {
+        return primvar.interpolation == Interpolation::Varying || primvar.interpolation == Interpolation::FaceVarying;
+    };
+    bool attributesShare = !linearPerSpan(widths) && !linearPerSpan(colorValues) && !linearPerSpan(opacities);
+    for (size_t k = 0; k < shading.size(); ++k)
+        attributesShare = attributesShare && !(result.shadingPrimvars[k].varying && linearPerSpan(shading[k]));
+    std::vector<uint8_t> shares(curveCount, 0);
+    if (attributesShare) {
+        tbb::parallel_for(tbb::blocked_range<size_t>(0, curveCount), [&](const tbb::blocked_range<size_t>& range) {
+            int lastCount = -1;  // grooms repeat a few vertex counts: test each once
+            bool lastShares = false;
+            for (size_t i = range.begin(); i != range.end(); ++i) {
+                if (!keeps(checks[i].status)) continue;
+                const int n = topology.vertexCount(i);
+                if (n != lastCount) lastShares = spansShareControls(topology.kind, n);
+                lastCount = n;
+                shares[i] = lastShares ? 1 : 0;
+            }
+        });
+    }
+
+    // Where each kept curve's segments and controls go: exclusive prefix sums.
+    std::vector<size_t> firstSegment(curveCount + 1, 0), firstControl(curveCount + 1, 0);
     for (size_t i = 0; i < curveCount; ++i) {
         const bool kept = keeps(checks[i].status);
-        firstSegment[i + 1] = firstSegment[i] + (kept ? static_cast<size_t>(topology.segmentCount(i)) : 0);
+        const size_t segments = kept ? static_cast<size_t>(topology.segmentCount(i)) : 0;
+        firstSegment[i + 1] = firstSegment[i] + segments;
+        firstControl[i + 1] = firstControl[i] + (segments == 0 ? 0 : shares[i] ? segments + 3 : 4 * segments);
         result.curveCount += kept ? 1 : 0;
     }
-    const size_t segmentTotal = firstSegment[curveCount];
+    const size_t segmentTotal = firstSegment[curveCount], controlTotal = firstControl[curveCount];
     if (segmentTotal == 0) return result;
-    result.controlPoints.resize(4 * segmentTotal);
+    if (controlTotal > std::numeric_limits<uint32_t>::max()) {
+        diagnostics.warn(prim.path, fmt::format("{} curve controls are more than one prim can hold (2^32); not drawn",
+                                                controlTotal));
+        return result;
+    }
+    result.controlPoints.resize(controlTotal);
+    result.segmentFirstControl.resize(segmentTotal);
     result.segmentCurve.resize(segmentTotal);
     for (PreparedShadingPrimvar& primvar : result.shadingPrimvars)
-        if (primvar.varying) primvar.values.resize(4 * segmentTotal * static_cast<size_t>(primvar.tupleSize));
+        if (primvar.varying) primvar.values.resize(controlTotal * static_cast<size_t>(primvar.tupleSize));
 
     // Widths are object-space diameters (HdSt scales them by the transform).
     // A non-uniform scale stretches a round tube into an elliptical one, which
@@ -320,8 +352,12 @@ PreparedCurves prepareCurves(const CurvesPrim& prim, Diagnostics& diagnostics,
             }
             for (int s = 0; s < topology.segmentCount(i); ++s) {
                 const size_t segment = firstSegment[i] + static_cast<size_t>(s);
+                // Shared spans step one control; the next span rewrites the
+                // three they share with the same values.
+                const size_t control = firstControl[i] + static_cast<size_t>(s) * (shares[i] ? 1 : 4);
                 result.segmentCurve[segment] = static_cast<uint32_t>(i);
-                StrandControlPoint* controls = &result.controlPoints[4 * segment];
+                result.segmentFirstControl[segment] = static_cast<uint32_t>(control);
+                StrandControlPoint* controls = &result.controlPoints[control];
                 const SpanStencil stencil = catmullRomStencil(topology.kind, n, s);
                 float positions[12], widthValues[4], spanColors[12], opacityValues[4];
                 applyStencil(stencil, worldPoints.data(), 3, positions);
@@ -338,7 +374,7 @@ PreparedCurves prepareCurves(const CurvesPrim& prim, Diagnostics& diagnostics,
                     PreparedShadingPrimvar& primvar = result.shadingPrimvars[k];
                     if (primvar.varying)
                         primvarSpanControls(shading[k], topology, stencil, i, s,
-                                            &primvar.values[4 * segment * static_cast<size_t>(primvar.tupleSize)]);
+                                            &primvar.values[control * static_cast<size_t>(primvar.tupleSize)]);
                 }
                 growBoundsBySpan(controls, curveMin[i], curveMax[i]);
             }

@@ -2,6 +2,10 @@
 // Curves in the one form the renderer tessellates: every span of every curve,
 // whatever its authored type, basis and wrap, becomes a uniform Catmull-Rom
 // segment of four control points (the span runs from the 2nd to the 3rd).
+// Consecutive spans of a curve share the three control points they have in
+// common where every attribute allows it (spansShareControls, below): a
+// Catmull-Rom curve of n vertices stores its n (+2 phantom) vertices once,
+// not 4(n-1) controls, which is most of the strands' memory on CPU and GPU.
 // Attributes travel with each control point in the same form, so the GPU
 // interpolates positions, widths, colours and opacities with the same weights:
 //  - vertex primvars go through the same exact change of basis as the points;
@@ -46,8 +50,9 @@ struct ShadingPrimvarRequest {
 
 // A requested primvar as authored on the prim, resolved like the colours.
 // Constant when all its values are equal (`values` then holds one element),
-// else varying: one element per control point, 4 a segment, following the
-// same interpolation rules as displayColor.
+// else varying: one element per control point (PreparedCurves::controlPoints,
+// shared between spans the same way), following the same interpolation rules
+// as displayColor.
 struct PreparedShadingPrimvar {
     std::string name;
     int tupleSize = 1;
@@ -61,7 +66,11 @@ struct PreparedShadingPrimvar {
 
 struct PreparedCurves {
     std::string path;
-    std::vector<StrandControlPoint> controlPoints;  // 4 per segment
+    // Every curve's controls, in curve order; segment s's four are
+    // controlPoints[segmentFirstControl[s]] onwards (shared with its
+    // neighbours where the curve's spans overlap).
+    std::vector<StrandControlPoint> controlPoints;
+    std::vector<uint32_t> segmentFirstControl;      // per segment
     std::vector<uint32_t> segmentCurve;             // per segment: index of its curve in the prim
     uint32_t curveCount = 0;                        // curves kept (after dropping bad ones)
     glm::vec3 boundsMin{0.0f}, boundsMax{0.0f};     // world space, widths included; min > max when empty
@@ -74,6 +83,9 @@ struct PreparedCurves {
         for (const PreparedShadingPrimvar& primvar : shadingPrimvars)
             if (primvar.name == name) return &primvar;
         return nullptr;
+    }
+    const StrandControlPoint* spanControls(size_t segment) const {
+        return controlPoints.data() + segmentFirstControl[segment];
     }
     size_t segmentCount() const { return segmentCurve.size(); }
     bool empty() const { return segmentCurve.empty(); }

@@ -9,8 +9,9 @@ namespace hdhair::gl {
 
 namespace {
 
-constexpr size_t kControlPointBytes = 4 * sizeof(StrandControlPoint);  // per segment
-constexpr size_t kCurveBytes = sizeof(int32_t), kPrimBytes = sizeof(glm::ivec2), kMaterialBytes = sizeof(int32_t);
+constexpr size_t kControlPointBytes = sizeof(StrandControlPoint);
+constexpr size_t kFirstControlBytes = sizeof(uint32_t), kCurveBytes = sizeof(int32_t), kPrimBytes = sizeof(glm::ivec2),
+                 kMaterialBytes = sizeof(int32_t);
 
 // A buffer of `bytes` holding the first `keep` bytes of `old` (a GPU copy).
 Buffer grown(const Buffer& old, size_t keep, size_t bytes) {
@@ -21,14 +22,23 @@ Buffer grown(const Buffer& old, size_t keep, size_t bytes) {
 
 }  // namespace
 
-StrandGeometry::StrandGeometry() { reserve(1); }
+StrandGeometry::StrandGeometry() { reserve(1, 4); }
 
-void StrandGeometry::reserve(size_t segments) {
-    if (segments <= capacity_) return;
+void StrandGeometry::reserve(size_t segments, size_t controls) {
     // Half again as much as asked, so that a scene that grows a prim at a
     // time copies O(n) in total.
+    if (controls > controlCapacity_) {
+        size_t capacity = std::max(controls, controlCapacity_ + controlCapacity_ / 2);
+        controlPoints_ = grown(controlPoints_, controlCapacity_ * kControlPointBytes, capacity * kControlPointBytes);
+        controlCapacity_ = capacity;
+    }
+    if (segments <= capacity_) {
+        checkGlError("growing the strand buffers");
+        return;
+    }
     size_t capacity = std::max(segments, capacity_ + capacity_ / 2);
-    controlPoints_ = grown(controlPoints_, capacity_ * kControlPointBytes, capacity * kControlPointBytes);
+    segmentFirstControls_ =
+        grown(segmentFirstControls_, capacity_ * kFirstControlBytes, capacity * kFirstControlBytes);
     segmentCurves_ = grown(segmentCurves_, capacity_ * kCurveBytes, capacity * kCurveBytes);
     segmentPrims_ = grown(segmentPrims_, capacity_ * kPrimBytes, capacity * kPrimBytes);
     segmentMaterials_ = grown(segmentMaterials_, capacity_ * kMaterialBytes, capacity * kMaterialBytes);
@@ -36,11 +46,16 @@ void StrandGeometry::reserve(size_t segments) {
     checkGlError("growing the strand buffers");
 }
 
-void StrandGeometry::write(size_t first, const PreparedCurves& curves, glm::ivec2 primAndInstance, int32_t material) {
+void StrandGeometry::write(size_t first, size_t firstControl, const PreparedCurves& curves,
+                           glm::ivec2 primAndInstance, int32_t material) {
     const size_t count = curves.segmentCount();
     if (count == 0) return;
-    glNamedBufferSubData(controlPoints_.get(), GLintptr(first * kControlPointBytes), GLsizeiptr(count * kControlPointBytes),
-                         curves.controlPoints.data());
+    glNamedBufferSubData(controlPoints_.get(), GLintptr(firstControl * kControlPointBytes),
+                         GLsizeiptr(curves.controlPoints.size() * kControlPointBytes), curves.controlPoints.data());
+    std::vector<uint32_t> firstControls(count);
+    for (size_t s = 0; s < count; ++s) firstControls[s] = uint32_t(firstControl + curves.segmentFirstControl[s]);
+    glNamedBufferSubData(segmentFirstControls_.get(), GLintptr(first * kFirstControlBytes),
+                         GLsizeiptr(count * kFirstControlBytes), firstControls.data());
     std::vector<int32_t> curveIndices(curves.segmentCurve.begin(), curves.segmentCurve.end());
     glNamedBufferSubData(segmentCurves_.get(), GLintptr(first * kCurveBytes), GLsizeiptr(count * kCurveBytes),
                          curveIndices.data());
@@ -61,6 +76,7 @@ void StrandGeometry::bind() const {
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, segmentCurves_.get());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, segmentPrims_.get());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 7, segmentMaterials_.get());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 15, segmentFirstControls_.get());
 }
 
 }  // namespace hdhair::gl

@@ -1,12 +1,14 @@
 #pragma once
 // The GPU copy of every strand a frame draws, all prims in one set of storage
 // buffers so that their segments can be sorted against each other: control
-// points (4 a segment, read by strand.vert) and, per segment, its curve index,
-// prim id and instance index, and hair material
+// points (each curve's, shared by its spans where PreparedCurves shares them,
+// read by strand.vert) and, per segment, where its four controls start, its
+// curve index, prim id and instance index, and hair material
 // (shaders/include/strandGeometry.glsl).
 //
-// Each prim owns a range of segments (hdHair/render/StrandUploads.h decides
-// which): a changed prim rewrites its own range, and nothing else moves.
+// Each prim owns a range of segments and one of control points
+// (hdHair/render/StrandUploads.h decides which): a changed prim rewrites its
+// own ranges, and nothing else moves.
 // Capacity grows by copying on the GPU, so growing never re-sends the rest.
 
 #include <cstdint>
@@ -30,13 +32,16 @@ public:
     StrandGeometry();
 
     size_t capacity() const { return capacity_; }  // in segments
-    // Makes room for at least `segments`, keeping what is there.
-    void reserve(size_t segments);
-    // Writes a prim's segments at [first, first + curves.segmentCount()).
-    void write(size_t first, const PreparedCurves& curves, glm::ivec2 primAndInstance, int32_t material);
+    size_t controlCapacity() const { return controlCapacity_; }
+    // Makes room for at least `segments` and `controls`, keeping what is there.
+    void reserve(size_t segments, size_t controls);
+    // Writes a prim's segments at [first, first + curves.segmentCount()) and
+    // its control points from `firstControl` on.
+    void write(size_t first, size_t firstControl, const PreparedCurves& curves, glm::ivec2 primAndInstance,
+               int32_t material);
     // Changes the material of [first, first + count) only.
     void writeMaterial(size_t first, size_t count, int32_t material);
-    // Binds the storage buffers at the bindings the shaders use (1 to 3, and 7).
+    // Binds the storage buffers at the bindings the shaders use (1 to 3, 7 and 15).
     void bind() const;
 
     // How draws of these patches are cut for the driver (PatchBatching.h).
@@ -49,8 +54,8 @@ public:
     }
 
 private:
-    Buffer controlPoints_, segmentCurves_, segmentPrims_, segmentMaterials_;
-    size_t capacity_ = 0;
+    Buffer controlPoints_, segmentFirstControls_, segmentCurves_, segmentPrims_, segmentMaterials_;
+    size_t capacity_ = 0, controlCapacity_ = 0;
     PatchBatching batching_;
 };
 

@@ -40,21 +40,23 @@ uint16_t geometryHash(const StrandControlPoint& a, const StrandControlPoint& b) 
 
 }  // namespace
 
-std::vector<uint16_t> segmentSortHashes(const std::vector<StrandControlPoint>& controlPoints) {
-    std::vector<uint16_t> hashes(controlPoints.size() / 4);
+std::vector<uint16_t> segmentSortHashes(const PreparedCurves& curves) {
+    std::vector<uint16_t> hashes(curves.segmentCount());
     tbb::parallel_for(tbb::blocked_range<size_t>(0, hashes.size()), [&](const tbb::blocked_range<size_t>& range) {
-        for (size_t s = range.begin(); s != range.end(); ++s)
-            hashes[s] = geometryHash(controlPoints[4 * s + 1], controlPoints[4 * s + 2]);
+        for (size_t s = range.begin(); s != range.end(); ++s) {
+            const StrandControlPoint* controls = curves.spanControls(s);
+            hashes[s] = geometryHash(controls[1], controls[2]);
+        }
     });
     return hashes;
 }
 
-void binSortSegments(const std::vector<StrandControlPoint>& controlPoints, const glm::dvec3& cameraPosition,
-                     const glm::dvec3& viewDirection, uint32_t binCount, std::vector<uint32_t>& order,
-                     BinSortStatistics* statistics) {
-    const std::vector<uint16_t> hashes = segmentSortHashes(controlPoints);
-    binSortSegments({SortSpan{controlPoints.data(), hashes.data(), hashes.size(), 0}}, cameraPosition, viewDirection,
-                    binCount, order, statistics);
+void binSortSegments(const PreparedCurves& curves, const glm::dvec3& cameraPosition, const glm::dvec3& viewDirection,
+                     uint32_t binCount, std::vector<uint32_t>& order, BinSortStatistics* statistics) {
+    const std::vector<uint16_t> hashes = segmentSortHashes(curves);
+    binSortSegments({SortSpan{curves.controlPoints.data(), curves.segmentFirstControl.data(), hashes.data(),
+                              hashes.size(), 0}},
+                    cameraPosition, viewDirection, binCount, order, statistics);
 }
 
 void binSortSegments(const std::vector<SortSpan>& spans, const glm::dvec3& cameraPosition,
@@ -73,7 +75,7 @@ void binSortSegments(const std::vector<SortSpan>& spans, const glm::dvec3& camer
         const SortSpan& span = spans[i];
         tbb::parallel_for(tbb::blocked_range<size_t>(0, span.segments), [&](const tbb::blocked_range<size_t>& r) {
             for (size_t s = r.begin(); s != r.end(); ++s) {
-                start[offsets[i] + s] = span.controlPoints + 4 * s;
+                start[offsets[i] + s] = span.controlPoints + span.firstControl[s];
                 global[offsets[i] + s] = uint32_t(span.first + s);
                 hash[offsets[i] + s] = span.hashes[s];
             }

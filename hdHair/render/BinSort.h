@@ -30,13 +30,14 @@ struct BinSortStatistics {
 
 // The within-bin sort key of each segment (a 16-bit hash of its end
 // points), computed once when a prim is prepared rather than every frame.
-std::vector<uint16_t> segmentSortHashes(const std::vector<StrandControlPoint>& controlPoints);
+std::vector<uint16_t> segmentSortHashes(const PreparedCurves& curves);
 
 // One prim's segments as the sort sees them: segment s spans
-// controlPoints[4s + 1] to controlPoints[4s + 2], has hashes[s], and is
-// segment first + s of the frame's geometry.
+// controlPoints[firstControl[s] + 1] to controlPoints[firstControl[s] + 2],
+// has hashes[s], and is segment first + s of the frame's geometry.
 struct SortSpan {
     const StrandControlPoint* controlPoints = nullptr;
+    const uint32_t* firstControl = nullptr;
     const uint16_t* hashes = nullptr;
     size_t segments = 0;
     uint64_t first = 0;
@@ -48,9 +49,9 @@ void binSortSegments(const std::vector<SortSpan>& spans, const glm::dvec3& camer
                      const glm::dvec3& viewDirection, uint32_t binCount, std::vector<uint32_t>& order,
                      BinSortStatistics* statistics = nullptr);
 
-// The same for one contiguous set of segments numbered from 0 (tests and
-// benchmarks): hashes computed here.
-void binSortSegments(const std::vector<StrandControlPoint>& controlPoints, const glm::dvec3& cameraPosition,
+// The same for one prim's segments numbered from 0 (tests and benchmarks):
+// hashes computed here.
+void binSortSegments(const PreparedCurves& curves, const glm::dvec3& cameraPosition,
                      const glm::dvec3& viewDirection, uint32_t binCount, std::vector<uint32_t>& order,
                      BinSortStatistics* statistics = nullptr);
 

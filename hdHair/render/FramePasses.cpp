@@ -55,14 +55,15 @@ void sortAndSend(FrameContext& context) {
 void upload(FrameContext& context) {
     FrameInputs& inputs = context.inputs;
     gl::StrandGeometry& strands = context.resources.strands;
-    strands.reserve(inputs.uploads.capacityNeeded);
+    strands.reserve(inputs.uploads.capacityNeeded, inputs.uploads.controlCapacityNeeded);
     for (const StrandWrite& write : inputs.uploads.writes) {
         const DrawnPrim& prim = inputs.drawn[write.prim];
         const gl::SegmentRange& range = inputs.uploads.ranges[write.prim];
         if (write.materialOnly)
             strands.writeMaterial(range.first, range.count, prim.material);
         else
-            strands.write(range.first, *prim.curves, prim.primAndInstance, prim.material);
+            strands.write(range.first, inputs.uploads.firstControls[write.prim], *prim.curves, prim.primAndInstance,
+                          prim.material);
     }
     if (inputs.materials)
         context.resources.materials.update(inputs.materials->materials, inputs.materials->parameterPoints,

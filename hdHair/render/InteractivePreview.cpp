@@ -56,7 +56,7 @@ void keepEveryNthCurve(FrameInputs& inputs, int stride) {
             }
             size_t end = first;
             while (end < segmentCurve.size() && segmentCurve[end] % uint32_t(stride) == 0) ++end;
-            spans.push_back(SortSpan{whole.controlPoints + 4 * first, whole.hashes + first, end - first,
+            spans.push_back(SortSpan{whole.controlPoints, whole.firstControl + first, whole.hashes + first, end - first,
                                      whole.first + first});
             const gl::SegmentRange run{whole.first + first, end - first};
             if (!ranges.empty() && ranges.back().first + ranges.back().count == run.first)

@@ -182,13 +182,15 @@ void Renderer::prepareChangedCurves(const Scene& scene, const RenderSettings& se
         cached.minSpanWidth = std::numeric_limits<float>::max();
         cached.maxWidth = 0.0f;
         cached.fullyOpaque = true;
-        for (size_t c = 0; c < prepared->controlPoints.size(); ++c) {
-            const StrandControlPoint& point = prepared->controlPoints[c];
+        for (const StrandControlPoint& point : prepared->controlPoints) {
             cached.fullyOpaque = cached.fullyOpaque && point.opacity == 1.0f;
             if (std::isfinite(point.width)) cached.maxWidth = std::max(cached.maxWidth, point.width);
-            if (c % 4 == 1 || c % 4 == 2) cached.minSpanWidth = std::min(cached.minSpanWidth, point.width);
         }
-        cached.sortHashes = segmentSortHashes(prepared->controlPoints);
+        for (size_t s = 0; s < prepared->segmentCount(); ++s) {
+            const StrandControlPoint* controls = prepared->spanControls(s);
+            cached.minSpanWidth = std::min({cached.minSpanWidth, controls[1].width, controls[2].width});
+        }
+        cached.sortHashes = segmentSortHashes(*prepared);
         cached.prepared = std::move(prepared);
         cached.material.reset();
         cached.parameterPoints.clear();
@@ -206,11 +208,11 @@ SceneBounds Renderer::prepare(const Scene& scene, const RenderSettings& settings
         FramingPoints& prim = prims.emplace_back(FramingPoints{path, {}});
         // Each span's box, widths included: with no outliers the bounds are
         // the prepared curves' own.
-        const std::vector<StrandControlPoint>& controls = cached.prepared->controlPoints;
-        prim.points.reserve(controls.size() / 2);
-        for (size_t c = 0; c + 3 < controls.size(); c += 4) {
+        const PreparedCurves& curves = *cached.prepared;
+        prim.points.reserve(2 * curves.segmentCount());
+        for (size_t s = 0; s < curves.segmentCount(); ++s) {
             glm::vec3 low(std::numeric_limits<float>::max()), high(-std::numeric_limits<float>::max());
-            growBoundsBySpan(&controls[c], low, high);
+            growBoundsBySpan(curves.spanControls(s), low, high);
             prim.points.emplace_back(low);
             prim.points.emplace_back(high);
         }
@@ -329,7 +331,9 @@ std::optional<MaterialUpload> Renderer::materialUpload(const std::vector<HairMat
                                                       const std::vector<CachedCurves*>& drawnCurves,
                                                       const std::vector<DrawnPrim>& drawn,
                                                       const StrandUploadPlan& uploads) {
-    if (materials == uploadedMaterials_ && uploads.ranges == materialRanges_) return std::nullopt;
+    if (materials == uploadedMaterials_ && uploads.ranges == materialRanges_ &&
+        uploads.firstControls == materialFirstControls_)
+        return std::nullopt;
     MaterialUpload upload;
     for (const HairMaterial& material : materials) {
         gl::GpuHairMaterial entry;
@@ -361,19 +365,20 @@ std::optional<MaterialUpload> Renderer::materialUpload(const std::vector<HairMat
         upload.materials.push_back(entry);
     }
     // Per-point records, prim by prim; a per-point material belongs to one
-    // prim, so it records where that prim's segments and records start.
+    // prim, so it records where that prim's control points and records start.
     for (size_t i = 0; i < drawn.size(); ++i) {
         const HairMaterial& material = materials[size_t(drawn[i].material)];
         if (!material.perPoint()) continue;
         gl::GpuHairMaterial& entry = upload.materials[size_t(drawn[i].material)];
         entry.modelAndLayer.z |= gl::kHairMaterialPerPoint;
         entry.modelAndLayer.w = int32_t(upload.parameterPoints.size() / 2);
-        entry.segments.x = int32_t(uploads.ranges[i].first);
+        entry.segments.x = int32_t(uploads.firstControls[i]);
         const std::vector<glm::vec4>& points = drawnCurves[i]->parameterPoints;
         upload.parameterPoints.insert(upload.parameterPoints.end(), points.begin(), points.end());
     }
     uploadedMaterials_ = materials;
     materialRanges_ = uploads.ranges;
+    materialFirstControls_ = uploads.firstControls;
     return upload;
 }
 
@@ -463,7 +468,8 @@ RenderResult Renderer::render(const Scene& scene, const CameraView& camera, cons
     inputs.materials = materialUpload(materials, drawnCurves, inputs.drawn, inputs.uploads);
     for (size_t i = 0; i < inputs.drawn.size(); ++i) {
         const PreparedCurves& curves = *inputs.drawn[i].curves;
-        inputs.sortSpans.push_back(SortSpan{curves.controlPoints.data(), drawnCurves[i]->sortHashes.data(),
+        inputs.sortSpans.push_back(SortSpan{curves.controlPoints.data(), curves.segmentFirstControl.data(),
+                                            drawnCurves[i]->sortHashes.data(),
                                             curves.segmentCount(), inputs.uploads.ranges[i].first});
     }
     if (control.preview) keepEveryNthCurve(inputs, control.previewCurveStride);

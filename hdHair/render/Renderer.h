@@ -168,6 +168,7 @@ private:
     StrandUploads uploads_;
     std::vector<HairMaterial> uploadedMaterials_;
     std::vector<gl::SegmentRange> materialRanges_;  // the prims' ranges when the materials were sent
+    std::vector<uint64_t> materialFirstControls_;   // and where their control points started
     struct CachedTables {
         HairMaterial material;
         std::vector<uint16_t> halfTexels;

@@ -1,5 +1,6 @@
 #pragma once
-// Which GPU segments each drawn prim owns (gl::StrandGeometry), and what a
+// Which GPU segments and control points each drawn prim owns
+// (gl::StrandGeometry: the two are allocated side by side), and what a
 // frame must send: a prim whose prepared curves and ids are those already on
 // the GPU sends nothing, one whose material index alone changed rewrites its
 // materials, a changed prim of the same size rewrites its own range, and a
@@ -36,8 +37,10 @@ struct StrandWrite {
 
 struct StrandUploadPlan {
     std::vector<gl::SegmentRange> ranges;      // per drawn prim, in the same order
+    std::vector<uint64_t> firstControls;       // per drawn prim: where its control points start
     std::vector<StrandWrite> writes;      // what to send this frame
     uint64_t capacityNeeded = 0;          // segments the GPU buffers must hold
+    uint64_t controlCapacityNeeded = 0;   // and control points
     uint64_t writtenSegments = 0;         // geometry sent (material-only writes not counted)
     uint64_t liveSegments = 0, holeSegments = 0;
     bool repacked = false;
@@ -58,9 +61,11 @@ private:
         glm::ivec2 primAndInstance{-1, 0};
         int32_t material = 0;
         gl::SegmentRange range;
+        uint64_t firstControl = 0, controlCount = 0;
     };
     std::map<std::string, Resident> resident_;
-    uint64_t end_ = 0;  // one past the last allocated segment
+    uint64_t end_ = 0;         // one past the last allocated segment
+    uint64_t controlEnd_ = 0;  // and control point
 };
 
 }  // namespace hdhair

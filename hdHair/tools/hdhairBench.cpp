@@ -74,7 +74,11 @@ struct BenchStage {
     std::string path, name;
     Scene scene;
     CameraView camera;
-    std::vector<StrandControlPoint> controlPoints;  // every segment, for the sort benchmark
+    // Every prim's curves and sort hashes, sorted together as a frame sorts them.
+    std::vector<PreparedCurves> prepared;
+    std::vector<std::vector<uint16_t>> sortHashes;
+    std::vector<SortSpan> sortSpans;
+    size_t segments = 0;
     std::vector<LightPrim> stageLights;             // as authored, for the light-count benchmarks
 };
 
@@ -459,9 +463,15 @@ int main(int argc, char** argv) {
                                               FramingStyle::FitAll);
             for (const auto& [lightPath, entry] : stage->scene.lights()) stage->stageLights.push_back(*entry.prim);
             for (const auto& [curvesPath, entry] : stage->scene.curves()) {
-                PreparedCurves prepared = prepareCurves(*entry.prim, diagnostics);
-                stage->controlPoints.insert(stage->controlPoints.end(), prepared.controlPoints.begin(),
-                                            prepared.controlPoints.end());
+                stage->prepared.push_back(prepareCurves(*entry.prim, diagnostics));
+                stage->sortHashes.push_back(segmentSortHashes(stage->prepared.back()));
+            }
+            for (size_t i = 0; i < stage->prepared.size(); ++i) {
+                const PreparedCurves& curves = stage->prepared[i];
+                stage->sortSpans.push_back(SortSpan{curves.controlPoints.data(), curves.segmentFirstControl.data(),
+                                                    stage->sortHashes[i].data(), curves.segmentCount(),
+                                                    stage->segments});
+                stage->segments += curves.segmentCount();
             }
             stages.push_back(std::move(stage));
         }
@@ -494,10 +504,10 @@ int main(int argc, char** argv) {
             const glm::dvec3 position = stage->camera.position(), direction = stage->camera.forward();
             std::vector<uint32_t> order;
             for (auto _ : state) {
-                binSortSegments(stage->controlPoints, position, direction, 256, order);
+                binSortSegments(stage->sortSpans, position, direction, 256, order);
                 benchmark::DoNotOptimize(order.data());
             }
-            state.counters["segments/s"] = benchmark::Counter(double(stage->controlPoints.size() / 4),
+            state.counters["segments/s"] = benchmark::Counter(double(stage->segments),
                                                               benchmark::Counter::kIsIterationInvariantRate);
         })->Unit(benchmark::kMillisecond);
         std::vector<Configuration> frames;

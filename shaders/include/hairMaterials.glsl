@@ -1,11 +1,11 @@
 // Hair materials (hdHair/render/HairMaterial.h), one per distinct prim
 // material in the frame, and the per-control-point hair parameters of prims
 // whose parameters vary per curve or per vertex; hdHair/gl/HairMaterialTable.h
-// fills both. Needs catmullRom.glsl and marschnerAnalytic.glsl.
+// fills both. Needs catmullRom.glsl, marschnerAnalytic.glsl and strandGeometry.glsl.
 struct HairMaterial {
     ivec4 modelAndLayer;  // x: 0 flat, 1 Kajiya-Kay, 2 Marschner; y: first layer of its Marschner tables;
                           // z: flags (HAIR_MATERIAL_*); w: its prim's first per-point record
-    ivec4 segments;       // x: its prim's first segment (per-point materials only)
+    ivec4 segments;       // x: its prim's first control point (per-point materials only)
     vec4 kajiyaKay;       // x: Kd, y: Ks, z: shininess p
     vec4 alphaEta;        // Marschner alpha_R, alpha_TT, alpha_TRT (radians); w: eta
     vec4 betaGlint;       // Marschner beta_R, beta_TT, beta_TRT (radians); w: glint scale k_G
@@ -18,8 +18,9 @@ const int HAIR_MATERIAL_ANALYTIC = 2;   // Marschner's azimuthal terms per fragm
 layout(std430, binding = 8) readonly buffer HairMaterials {
     HairMaterial materials[];
 };
-// Two vec4s a control point, four control points a segment, for the prims
-// whose material has HAIR_MATERIAL_PER_POINT, in the model's meaning:
+// Two vec4s a control point, parallel to the prim's control points (shared
+// between spans as they are), for the prims whose material has
+// HAIR_MATERIAL_PER_POINT, in the model's meaning:
 //   Kajiya-Kay: (Kd, Ks, p, 0), unused;
 //   Marschner:  (sigma_a, eta), (alpha_R, beta_R, 0, 0) in radians.
 layout(std430, binding = 9) readonly buffer HairParameterPoints {
@@ -58,7 +59,7 @@ HairShading hairShadingAt(int materialIndex, int segment, float u) {
     if ((shading.flags & HAIR_MATERIAL_PER_POINT) == 0) return shading;
 
     vec4 w = catmullRomWeights(clamp(u, 0.0, 1.0));
-    int first = 2 * (material.modelAndLayer.w + 4 * (segment - material.segments.x));
+    int first = 2 * (material.modelAndLayer.w + int(segmentFirstControl[segment]) - material.segments.x);
     vec4 a = vec4(0.0), b = vec4(0.0);
     for (int k = 0; k < 4; ++k) {
         a += w[k] * hairParameterPoints[first + 2 * k];

@@ -1,8 +1,12 @@
 // The combined strand geometry of every prim drawn in a frame
-// (hdHair/gl/StrandGeometry.h). Segment s owns control points 4s..4s+3; each
+// (hdHair/gl/StrandGeometry.h). Segment s's four control points start at
+// segmentFirstControl[s] (neighbouring spans of a curve share three); each
 // control point is two vec4s: (position, width) and (colour, opacity).
 layout(std430, binding = 1) readonly buffer ControlPoints {
     vec4 controlPoints[];
+};
+layout(std430, binding = 15) readonly buffer SegmentFirstControls {
+    uint segmentFirstControl[];
 };
 // Per segment: the curve's index in its prim (Hydra's elementId), and the
 // prim's id and instance index (Hydra's primId and instanceId).

@@ -72,12 +72,11 @@ bool strandsOverlapOnScreen(const std::vector<VisiblePrim>& prims, const CameraV
     std::vector<ScreenPiece> pieces;
     size_t firstStrand = 0;
     for (const VisiblePrim& visible : prims) {
-        const std::vector<StrandControlPoint>& controls = visible.prepared.controlPoints;
         for (size_t s = 0; s < visible.prepared.segmentCount(); ++s) {
             glm::dvec3 previous(0.0);
             double previousHalfWidth = 0.0;
             for (int k = 0; k <= kPiecesPerSpan; ++k) {
-                StrandControlPoint point = evaluate(&controls[4 * s], float(k) / float(kPiecesPerSpan));
+                StrandControlPoint point = evaluate(visible.prepared.spanControls(s), float(k) / float(kPiecesPerSpan));
                 glm::dvec3 position(point.position);
                 glm::dvec3 pixel = camera.worldToPixel(position);
                 double width = glm::length(glm::dvec2(camera.worldToPixel(position + right * double(point.width))) -
@@ -127,9 +126,8 @@ bool spanBends(const glm::vec3& p0, const glm::vec3& p1, const glm::vec3& p2, co
 // opacity varies other than linearly along it.
 bool tessellationShows(const std::vector<VisiblePrim>& prims) {
     for (const VisiblePrim& visible : prims) {
-        const std::vector<StrandControlPoint>& points = visible.prepared.controlPoints;
-        for (size_t first = 0; first + 3 < points.size(); first += 4) {
-            const StrandControlPoint* p = &points[first];
+        for (size_t s = 0; s < visible.prepared.segmentCount(); ++s) {
+            const StrandControlPoint* p = visible.prepared.spanControls(s);
             auto widthAndOpacity = [](const StrandControlPoint& point) {
                 return glm::vec2(point.width, point.opacity);
             };

@@ -13,6 +13,7 @@
 #include <glm/gtc/type_ptr.hpp>
 
 #include "hdHair/base/Diagnostics.h"
+#include "hdHair/curves/BasisConversion.h"
 #include "hdHair/curves/CatmullRomEvaluation.h"
 #include "hdHair/curves/CurveTopology.h"
 #include "hdHair/curves/PreparedCurves.h"
@@ -35,7 +36,7 @@ std::vector<float> randomValues(size_t count, float lo, float hi, unsigned seed)
     return values;
 }
 
-const StrandControlPoint* segment(const PreparedCurves& prepared, size_t s) { return &prepared.controlPoints[4 * s]; }
+const StrandControlPoint* segment(const PreparedCurves& prepared, size_t s) { return prepared.spanControls(s); }
 
 bool containsMessage(const Diagnostics& diagnostics, const std::string& where, const std::string& message) {
     for (const Diagnostic& d : diagnostics.warnings())
@@ -45,22 +46,27 @@ bool containsMessage(const Diagnostics& diagnostics, const std::string& where, c
 
 }  // namespace
 
-TEST(PrepareCurves, FourControlPointsPerSegment) {
+// Every span has four controls; Catmull-Rom curves' spans share theirs with
+// their neighbours (a curve stores segments + 3), the other bases' do not.
+TEST(PrepareCurves, ControlPointsPerSegment) {
     struct Case {
         CurveType type;
         CurveBasis basis;
         CurveWrap wrap;
         std::vector<int> counts;
         size_t segments;
+        size_t controls;
     };
     const Case cases[] = {
-        {CurveType::Cubic, CurveBasis::Bezier, CurveWrap::Nonperiodic, {4, 7, 10}, 1 + 2 + 3},
-        {CurveType::Cubic, CurveBasis::Bezier, CurveWrap::Periodic, {3, 6}, 1 + 2},
-        {CurveType::Cubic, CurveBasis::Bspline, CurveWrap::Nonperiodic, {4, 6}, 1 + 3},
-        {CurveType::Cubic, CurveBasis::Bspline, CurveWrap::Pinned, {2, 6}, 1 + 5},
-        {CurveType::Cubic, CurveBasis::CatmullRom, CurveWrap::Periodic, {5}, 5},
-        {CurveType::Linear, CurveBasis::Bezier, CurveWrap::Nonperiodic, {2, 5}, 1 + 4},
-        {CurveType::Linear, CurveBasis::Bezier, CurveWrap::Periodic, {3, 4}, 3 + 4},
+        {CurveType::Cubic, CurveBasis::Bezier, CurveWrap::Nonperiodic, {4, 7, 10}, 1 + 2 + 3, 4 * 6},
+        {CurveType::Cubic, CurveBasis::Bezier, CurveWrap::Periodic, {3, 6}, 1 + 2, 4 * 3},
+        {CurveType::Cubic, CurveBasis::Bspline, CurveWrap::Nonperiodic, {4, 6}, 1 + 3, 4 * 4},
+        {CurveType::Cubic, CurveBasis::Bspline, CurveWrap::Pinned, {2, 6}, 1 + 5, 4 * 6},
+        {CurveType::Cubic, CurveBasis::CatmullRom, CurveWrap::Periodic, {5}, 5, 5 + 3},
+        {CurveType::Cubic, CurveBasis::CatmullRom, CurveWrap::Pinned, {2, 6}, 1 + 5, (1 + 3) + (5 + 3)},
+        {CurveType::Cubic, CurveBasis::CatmullRom, CurveWrap::Nonperiodic, {4, 9}, 1 + 6, 4 + 9},
+        {CurveType::Linear, CurveBasis::Bezier, CurveWrap::Nonperiodic, {2, 5}, 1 + 4, 4 * 5},
+        {CurveType::Linear, CurveBasis::Bezier, CurveWrap::Periodic, {3, 4}, 3 + 4, 4 * 7},
     };
     for (const Case& c : cases) {
         const CurvesPrim prim = randomPrim(c.type, c.basis, c.wrap, c.counts, 1);
@@ -70,7 +76,9 @@ TEST(PrepareCurves, FourControlPointsPerSegment) {
         EXPECT_EQ(diagnostics.warningCount(), 0u);
         EXPECT_EQ(prepared.path, "/World/hair");
         EXPECT_EQ(prepared.segmentCount(), c.segments);
-        EXPECT_EQ(prepared.controlPoints.size(), 4 * c.segments);
+        EXPECT_EQ(prepared.controlPoints.size(), c.controls);
+        ASSERT_EQ(prepared.segmentFirstControl.size(), c.segments);
+        for (size_t s = 0; s < c.segments; ++s) EXPECT_LE(prepared.segmentFirstControl[s] + 4, c.controls);
         EXPECT_EQ(prepared.curveCount, c.counts.size());
         // Segments are in curve order, each naming its curve.
         const CurveTopology topology(prim);
@@ -78,6 +86,48 @@ TEST(PrepareCurves, FourControlPointsPerSegment) {
             for (size_t s = topology.segmentOffsets[curve]; s < topology.segmentOffsets[curve + 1]; ++s)
                 EXPECT_EQ(prepared.segmentCurve[s], curve);
     }
+}
+
+// A shared span's four controls are exactly the ones the span would have
+// alone (its stencil's), for positions and for every kind of primvar that
+// allows sharing; a varying primvar (linear per span) stops the sharing.
+TEST(PrepareCurves, SharedSpansHoldTheirOwnControls) {
+    CurvesPrim prim = randomPrim(CurveType::Cubic, CurveBasis::CatmullRom, CurveWrap::Pinned, {3, 6}, 5);
+    std::vector<float> widths;
+    for (size_t v = 0; v < prim.points.size(); ++v) widths.push_back(0.01f * float(v + 1));
+    prim.primvars["widths"] = authoredPrimvar("widths", Interpolation::Vertex, 1, widths);
+    prim.primvars["displayOpacity"] = authoredPrimvar("displayOpacity", Interpolation::Uniform, 1, {0.25f, 0.75f});
+    Diagnostics diagnostics;
+    const PreparedCurves shared = prepareCurves(prim, diagnostics);
+    ASSERT_EQ(shared.segmentCount(), 2u + 5u);
+    EXPECT_EQ(shared.controlPoints.size(), (2u + 3u) + (5u + 3u));
+    const CurveTopology topology(prim);
+    for (size_t curve = 0; curve < 2; ++curve) {
+        const int n = topology.vertexCount(curve);
+        const size_t first = topology.vertexOffsets[curve];
+        for (int s = 0; s < topology.segmentCount(curve); ++s) {
+            const SpanStencil stencil = catmullRomStencil(topology.kind, n, s);
+            float positions[12], spanWidths[4];
+            applyStencil(stencil, &prim.points[first].x, 3, positions);
+            applyStencil(stencil, &widths[first], 1, spanWidths);
+            const StrandControlPoint* controls = shared.spanControls(topology.segmentOffsets[curve] + size_t(s));
+            for (int r = 0; r < 4; ++r) {
+                EXPECT_EQ(controls[r].position, glm::vec3(positions[3 * r], positions[3 * r + 1], positions[3 * r + 2]))
+                    << curve << " " << s << " " << r;
+                EXPECT_EQ(controls[r].width, spanWidths[r]);
+                EXPECT_EQ(controls[r].opacity, curve == 0 ? 0.25f : 0.75f);
+            }
+        }
+    }
+    // Varying widths: linear per span, so each span keeps four of its own.
+    prim.primvars["widths"] = authoredPrimvar("widths", Interpolation::Varying, 1, widths);
+    const PreparedCurves unshared = prepareCurves(prim, diagnostics);
+    EXPECT_EQ(unshared.controlPoints.size(), 4u * 7u);
+    for (size_t s = 0; s < 7; ++s) {
+        EXPECT_EQ(unshared.segmentFirstControl[s], 4u * s);
+        for (int r = 0; r < 4; ++r) EXPECT_EQ(unshared.spanControls(s)[r].position, shared.spanControls(s)[r].position);
+    }
+    EXPECT_EQ(diagnostics.warningCount(), 0u);
 }
 
 TEST(PrepareCurves, ANonFinitePointDropsItsCurve) {

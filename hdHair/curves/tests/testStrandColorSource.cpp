@@ -41,7 +41,8 @@ PreparedCurves prepare(const CurvesPrim& prim, const MaterialPrim* material, Dia
     return prepareCurves(prim, diagnostics, {}, &colors);
 }
 
-glm::vec3 curveColor(const PreparedCurves& prepared, size_t curve) { return prepared.controlPoints[4 * curve + 1].color; }
+// Every curve here is one span.
+glm::vec3 curveColor(const PreparedCurves& prepared, size_t curve) { return prepared.spanControls(curve)[1].color; }
 
 }  // namespace
 

@@ -27,16 +27,19 @@ struct Segment {
 };
 
 // Four control points a segment; only the span's end points count for depth.
-std::vector<StrandControlPoint> controlPoints(const std::vector<Segment>& segments) {
-    std::vector<StrandControlPoint> points;
+// Each segment a curve of its own, four controls a span.
+PreparedCurves curvesOf(const std::vector<Segment>& segments) {
+    PreparedCurves curves;
     for (const Segment& s : segments) {
         StrandControlPoint a{s.a, 0.1f, glm::vec3(0.5f), 1.0f}, b{s.b, 0.1f, glm::vec3(0.5f), 1.0f};
         StrandControlPoint before = a, after = b;
         before.position = 2.0f * s.a - s.b;  // outer controls far away must not matter
         after.position = 2.0f * s.b - s.a + glm::vec3(0.0f, 0.0f, -1000.0f);
-        points.insert(points.end(), {before, a, b, after});
+        curves.segmentFirstControl.push_back(uint32_t(curves.controlPoints.size()));
+        curves.segmentCurve.push_back(uint32_t(curves.segmentCurve.size()));
+        curves.controlPoints.insert(curves.controlPoints.end(), {before, a, b, after});
     }
-    return points;
+    return curves;
 }
 
 // As BinSort keeps it: the farther end point's depth, stored as a float.
@@ -48,7 +51,7 @@ double farDepth(const Segment& s) {
 std::vector<uint32_t> sortSegments(const std::vector<Segment>& segments, uint32_t bins,
                                    BinSortStatistics* statistics = nullptr) {
     std::vector<uint32_t> order;
-    binSortSegments(controlPoints(segments), kCamera, kForward, bins, order, statistics);
+    binSortSegments(curvesOf(segments), kCamera, kForward, bins, order, statistics);
     return order;
 }
 
@@ -197,6 +200,40 @@ TEST(BinSort, NoSegmentsAndOneDepthAreHandled) {
     EXPECT_EQ(statistics.occupiedBins, 1u);
     // Zero bins are taken as one.
     EXPECT_EQ(sortSegments(flat, 0), sortSegments(flat, 1));
+}
+
+// Spans that share their curve's controls (PreparedCurves) sort exactly as
+// the same spans with four controls each: the sort reads each span's own.
+TEST(BinSort, SharedControlsSortAsFourControlsASpan) {
+    PreparedCurves shared, unshared;
+    for (int curve = 0; curve < 3; ++curve) {
+        const uint32_t first = uint32_t(shared.controlPoints.size());
+        for (int k = 0; k < 9; ++k) {
+            const float t = float(k);
+            shared.controlPoints.push_back(StrandControlPoint{
+                glm::vec3(0.3f * curve + std::sin(t), 0.2f * t, -2.0f - std::cos(1.7f * t + curve)), 0.1f,
+                glm::vec3(0.5f), 1.0f});
+        }
+        for (uint32_t s = 0; s < 6; ++s) {
+            shared.segmentFirstControl.push_back(first + s);
+            shared.segmentCurve.push_back(uint32_t(curve));
+        }
+    }
+    for (size_t s = 0; s < shared.segmentCount(); ++s) {
+        unshared.segmentFirstControl.push_back(uint32_t(unshared.controlPoints.size()));
+        unshared.segmentCurve.push_back(shared.segmentCurve[s]);
+        unshared.controlPoints.insert(unshared.controlPoints.end(), shared.spanControls(s), shared.spanControls(s) + 4);
+    }
+    std::vector<uint32_t> sharedOrder, unsharedOrder;
+    binSortSegments(shared, kCamera, kForward, 4, sharedOrder);
+    binSortSegments(unshared, kCamera, kForward, 4, unsharedOrder);
+    EXPECT_EQ(sharedOrder, unsharedOrder);
+    // Read as four controls a span, the shared ones give another order.
+    PreparedCurves misread = shared;
+    for (size_t s = 0; s < misread.segmentCount(); ++s) misread.segmentFirstControl[s] = uint32_t(std::min(4 * s, size_t(23)));
+    std::vector<uint32_t> misreadOrder;
+    binSortSegments(misread, kCamera, kForward, 4, misreadOrder);
+    EXPECT_NE(misreadOrder, sharedOrder);
 }
 
 TEST(CountingSort, EveryBlockCountGivesTheSerialStableOrder) {

@@ -20,7 +20,10 @@ using namespace hdhair;
 
 namespace {
 
-constexpr uint64_t kStrandBytesPerSegment = 4 * 32 + 4 + 8 + 4;
+// A control point (32 bytes), and per segment where its controls start, its
+// curve, prim and instance, and material.
+constexpr uint64_t kControlPointBytes = 32;
+constexpr uint64_t kStrandBytesPerSegment = 4 + 4 + 8 + 4;
 constexpr uint64_t kOrderBytesPerSegment = 4;
 
 // `curves` horizontal catmullRom strands of `spans` spans each (spans + 3
@@ -75,9 +78,28 @@ TEST(FrameGpuMemory, StrandAndOrderBytesFollowTheSegmentCount) {
         const RenderStats stats = renderFresh(scene, 64);
         ASSERT_EQ(stats.segments, uint64_t(curves) * 3);
         ASSERT_EQ(stats.transparency, "binSorted");
-        EXPECT_EQ(bytesOf(stats, "strandGeometry"), kStrandBytesPerSegment * stats.segments) << curves << " curves";
+        // Catmull-Rom spans share their curve's controls: 6 a curve.
+        EXPECT_EQ(bytesOf(stats, "strandGeometry"),
+                  kStrandBytesPerSegment * stats.segments + kControlPointBytes * uint64_t(curves) * 6)
+            << curves << " curves";
         EXPECT_EQ(bytesOf(stats, "drawOrder"), kOrderBytesPerSegment * stats.segments) << curves << " curves";
         EXPECT_EQ(stats.authoredPoints, uint64_t(curves) * 6);
+    }
+}
+
+// Issue 14's memory goal: at most 64 GPU bytes an authored point for a
+// groom of Catmull-Rom strands (TressFX assets have 16 or 32 points a strand):
+// the strands' geometry and their drawing order together.
+TEST(FrameGpuMemory, ACatmullRomGroomTakesAtMost64BytesAnAuthoredPoint) {
+    for (int points : {8, 16, 32}) {
+        Scene scene;
+        scene.setCurves(strands("/hair", 50, points - 3, 0.5f));
+        const RenderStats stats = renderFresh(scene, 64);
+        ASSERT_EQ(stats.authoredPoints, 50u * uint64_t(points));
+        const uint64_t bytes = bytesOf(stats, "strandGeometry") + bytesOf(stats, "drawOrder");
+        EXPECT_EQ(bytes, 50u * (kControlPointBytes * uint64_t(points) +
+                                (kStrandBytesPerSegment + kOrderBytesPerSegment) * uint64_t(points - 3)));
+        EXPECT_LE(bytes, 64u * stats.authoredPoints) << points << " points a strand";
     }
 }
 
@@ -123,10 +145,11 @@ TEST(FrameGpuMemory, GrowthReservesHalfAgainAndResizingFreesTheOldTarget) {
     Renderer renderer(gl::GlBackend::Egl);
     Diagnostics diagnostics;
     RenderStats first = renderer.render(scene, squareCamera(64), RenderSettings{}, diagnostics).stats;
-    EXPECT_EQ(bytesOf(first, "strandGeometry"), kStrandBytesPerSegment * 20);
-    scene.setCurves(strands("/b", 1, 2, 0.5f));  // 22 segments: grows to max(22, 20 * 1.5) = 30
+    EXPECT_EQ(bytesOf(first, "strandGeometry"), kStrandBytesPerSegment * 20 + kControlPointBytes * 50);
+    // 22 segments: grows to max(22, 20 * 1.5) = 30; 55 controls: to max(55, 50 * 1.5) = 75.
+    scene.setCurves(strands("/b", 1, 2, 0.5f));
     RenderStats grown = renderer.render(scene, squareCamera(32), RenderSettings{}, diagnostics).stats;
     EXPECT_EQ(grown.segments, 22u);
-    EXPECT_EQ(bytesOf(grown, "strandGeometry"), kStrandBytesPerSegment * 30);
+    EXPECT_EQ(bytesOf(grown, "strandGeometry"), kStrandBytesPerSegment * 30 + kControlPointBytes * 75);
     EXPECT_EQ(bytesOf(grown, "frameTarget"), 32u * 32u * (16 + 4 + 4));  // the 64 x 64 one is gone
 }

@@ -11,10 +11,13 @@ using namespace hdhair;
 
 namespace {
 
-std::shared_ptr<const PreparedCurves> curvesOf(size_t segments) {
+// One curve of `segments` spans sharing their controls (segments + 3), or
+// with four controls each.
+std::shared_ptr<const PreparedCurves> curvesOf(size_t segments, bool shared = true) {
     auto curves = std::make_shared<PreparedCurves>();
     curves->segmentCurve.assign(segments, 0);
-    curves->controlPoints.resize(4 * segments);
+    curves->controlPoints.resize(shared ? segments + 3 : 4 * segments);
+    for (size_t s = 0; s < segments; ++s) curves->segmentFirstControl.push_back(uint32_t(shared ? s : 4 * s));
     return curves;
 }
 
@@ -32,6 +35,8 @@ TEST(StrandUploads, AnUnchangedFrameSendsNothing) {
     ASSERT_EQ(first.writes.size(), 2u);
     EXPECT_EQ(first.ranges[0], (gl::SegmentRange{0, 10}));
     EXPECT_EQ(first.ranges[1], (gl::SegmentRange{10, 20}));
+    EXPECT_EQ(first.firstControls, (std::vector<uint64_t>{0, 13}));
+    EXPECT_EQ(first.controlCapacityNeeded, 13u + 23u);
     EXPECT_EQ(first.drawRanges.size(), 1u);  // adjacent: one draw range
 
     StrandUploadPlan second = uploads.update({drawn("/a", a), drawn("/b", b)});
@@ -83,6 +88,8 @@ TEST(StrandUploads, RemovedPrimsLeaveHolesUntilTheyOutweighTheLiveSegments) {
     StrandUploadPlan packed = uploads.update({drawn("/small", small)});
     EXPECT_TRUE(packed.repacked);
     EXPECT_EQ(packed.ranges[0], (gl::SegmentRange{0, 1000}));
+    EXPECT_EQ(packed.firstControls[0], 0u);  // its controls are packed too
+    EXPECT_EQ(packed.controlCapacityNeeded, 1003u);
     EXPECT_EQ(packed.writtenSegments, 1000u);
     EXPECT_EQ(packed.holeSegments, 0u);
 
@@ -107,4 +114,25 @@ TEST(StrandUploads, NewIdsRewriteThePrim) {
     ASSERT_EQ(plan.writes.size(), 1u);
     EXPECT_FALSE(plan.writes[0].materialOnly);
     EXPECT_EQ(plan.ranges[0], (gl::SegmentRange{0, 4}));
+}
+
+// Control points are allocated beside the segments: a prim whose segment
+// count stays but whose control count changes (its spans stopped sharing)
+// must move, or it would write over its neighbour's controls.
+TEST(StrandUploads, ControlPointsMoveWithTheirPrimWhenTheirCountChanges) {
+    StrandUploads uploads;
+    auto a = curvesOf(10), b = curvesOf(20);
+    StrandUploadPlan first = uploads.update({drawn("/a", a), drawn("/b", b)});
+    ASSERT_EQ(first.firstControls, (std::vector<uint64_t>{0, 13}));
+    auto unsharedA = curvesOf(10, false);  // same 10 segments, 40 controls
+    StrandUploadPlan second = uploads.update({drawn("/a", unsharedA), drawn("/b", b)});
+    ASSERT_EQ(second.writes.size(), 1u);
+    EXPECT_EQ(second.ranges[0], (gl::SegmentRange{30, 10}));
+    EXPECT_EQ(second.firstControls[0], 36u);  // after /b's 13 .. 36
+    EXPECT_EQ(second.firstControls[1], 13u);  // /b stays
+    EXPECT_EQ(second.controlCapacityNeeded, 76u);
+    // The same counts again: rewritten in place.
+    StrandUploadPlan third = uploads.update({drawn("/a", curvesOf(10, false)), drawn("/b", b)});
+    EXPECT_EQ(third.firstControls, second.firstControls);
+    EXPECT_EQ(third.controlCapacityNeeded, 76u);
 }
