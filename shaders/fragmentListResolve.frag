@@ -44,8 +44,9 @@ void writeIds(uint head) {
     }
     if (front == HDHAIR_LIST_END) discard;
     int segment = nodes[front].segment;
-    outPrimId = segmentPrim[segment].x;
-    outInstanceId = segmentPrim[segment].y;
+    ivec2 primAndInstance = segmentPrimAndInstance(segment);
+    outPrimId = primAndInstance.x;
+    outInstanceId = primAndInstance.y;
     outElementId = segmentCurve[segment];
 }
 

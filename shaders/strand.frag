@@ -51,7 +51,7 @@ void main() {
         outColor = frame.drawMode == 0 ? vec4(radiance, 1.0) : vec4(radiance * colorAlpha.a, colorAlpha.a);
     }
     outPrimId = ids.x;
-    outInstanceId = segmentPrim[ids.w].y;
+    outInstanceId = segmentPrimAndInstance(ids.w).y;
     outElementId = ids.y;
     outNearestDepth = definesDepth ? gl_FragCoord.z : 1.0;
 }

@@ -67,7 +67,7 @@ void main() {
     worldTangent = tangent;
     colorAlpha = vec4(max(shade.rgb, vec3(0.0)), opacity);
     int segment = tcsSegment[0];
-    ids = ivec4(segmentPrim[segment].x, segmentCurve[segment], segmentMaterial[segment], segment);
+    ids = ivec4(segmentPrimAndInstance(segment).x, segmentCurve[segment], segmentMaterial(segment), segment);
     spanU = u;
     strandCentre = positionWidth.xyz;
     gl_Position = frame.viewProjection * vec4(position, 1.0);

@@ -10,8 +10,8 @@ namespace hdhair::gl {
 namespace {
 
 constexpr size_t kControlPointBytes = sizeof(StrandControlPoint);
-constexpr size_t kFirstControlBytes = sizeof(uint32_t), kCurveBytes = sizeof(int32_t), kPrimBytes = sizeof(glm::ivec2),
-                 kMaterialBytes = sizeof(int32_t);
+constexpr size_t kFirstControlBytes = sizeof(uint32_t), kCurveBytes = sizeof(int32_t), kSlotBytes = sizeof(int32_t),
+                 kDrawnPrimBytes = sizeof(glm::ivec4);
 
 // A buffer of `bytes` holding the first `keep` bytes of `old` (a GPU copy).
 Buffer grown(const Buffer& old, size_t keep, size_t bytes) {
@@ -22,7 +22,10 @@ Buffer grown(const Buffer& old, size_t keep, size_t bytes) {
 
 }  // namespace
 
-StrandGeometry::StrandGeometry() { reserve(1, 4); }
+StrandGeometry::StrandGeometry() {
+    reserve(1, 4);
+    writeDrawnPrims({glm::ivec4(0)});
+}
 
 void StrandGeometry::reserve(size_t segments, size_t controls) {
     // Half again as much as asked, so that a scene that grows a prim at a
@@ -40,14 +43,12 @@ void StrandGeometry::reserve(size_t segments, size_t controls) {
     segmentFirstControls_ =
         grown(segmentFirstControls_, capacity_ * kFirstControlBytes, capacity * kFirstControlBytes);
     segmentCurves_ = grown(segmentCurves_, capacity_ * kCurveBytes, capacity * kCurveBytes);
-    segmentPrims_ = grown(segmentPrims_, capacity_ * kPrimBytes, capacity * kPrimBytes);
-    segmentMaterials_ = grown(segmentMaterials_, capacity_ * kMaterialBytes, capacity * kMaterialBytes);
+    segmentSlots_ = grown(segmentSlots_, capacity_ * kSlotBytes, capacity * kSlotBytes);
     capacity_ = capacity;
     checkGlError("growing the strand buffers");
 }
 
-void StrandGeometry::write(size_t first, size_t firstControl, const PreparedCurves& curves,
-                           glm::ivec2 primAndInstance, int32_t material) {
+void StrandGeometry::write(size_t first, size_t firstControl, const PreparedCurves& curves, uint32_t slot) {
     const size_t count = curves.segmentCount();
     if (count == 0) return;
     glNamedBufferSubData(controlPoints_.get(), GLintptr(firstControl * kControlPointBytes),
@@ -59,23 +60,26 @@ void StrandGeometry::write(size_t first, size_t firstControl, const PreparedCurv
     std::vector<int32_t> curveIndices(curves.segmentCurve.begin(), curves.segmentCurve.end());
     glNamedBufferSubData(segmentCurves_.get(), GLintptr(first * kCurveBytes), GLsizeiptr(count * kCurveBytes),
                          curveIndices.data());
-    std::vector<glm::ivec2> prims(count, primAndInstance);
-    glNamedBufferSubData(segmentPrims_.get(), GLintptr(first * kPrimBytes), GLsizeiptr(count * kPrimBytes),
-                         prims.data());
-    writeMaterial(first, count, material);
+    std::vector<int32_t> slots(count, int32_t(slot));
+    glNamedBufferSubData(segmentSlots_.get(), GLintptr(first * kSlotBytes), GLsizeiptr(count * kSlotBytes),
+                         slots.data());
 }
 
-void StrandGeometry::writeMaterial(size_t first, size_t count, int32_t material) {
-    std::vector<int32_t> materials(count, material);
-    glNamedBufferSubData(segmentMaterials_.get(), GLintptr(first * kMaterialBytes), GLsizeiptr(count * kMaterialBytes),
-                         materials.data());
+void StrandGeometry::writeDrawnPrims(const std::vector<glm::ivec4>& slots) {
+    if (slots.size() > drawnPrimCapacity_) {
+        drawnPrimCapacity_ = std::max(slots.size(), drawnPrimCapacity_ + drawnPrimCapacity_ / 2);
+        drawnPrims_ = createBuffer(nullptr, drawnPrimCapacity_ * kDrawnPrimBytes, GL_DYNAMIC_STORAGE_BIT,
+                                   "strandGeometry");
+    }
+    if (!slots.empty())
+        glNamedBufferSubData(drawnPrims_.get(), 0, GLsizeiptr(slots.size() * kDrawnPrimBytes), slots.data());
 }
 
 void StrandGeometry::bind() const {
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, controlPoints_.get());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, segmentCurves_.get());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, segmentPrims_.get());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 7, segmentMaterials_.get());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, segmentSlots_.get());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 7, drawnPrims_.get());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 15, segmentFirstControls_.get());
 }
 

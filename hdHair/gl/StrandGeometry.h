@@ -3,8 +3,9 @@
 // buffers so that their segments can be sorted against each other: control
 // points (each curve's, shared by its spans where PreparedCurves shares them,
 // read by strand.vert) and, per segment, where its four controls start, its
-// curve index, prim id and instance index, and hair material
-// (shaders/include/strandGeometry.glsl).
+// curve index and its prim's slot in a small table of the drawn prims' ids
+// and hair materials (shaders/include/strandGeometry.glsl): a prim's material
+// changes one table entry, not a value per segment.
 //
 // Each prim owns a range of segments and one of control points
 // (hdHair/render/StrandUploads.h decides which): a changed prim rewrites its
@@ -15,7 +16,7 @@
 #include <utility>
 #include <vector>
 
-#include <glm/vec2.hpp>
+#include <glm/vec4.hpp>
 
 #include "hdHair/gl/GlObjects.h"
 #include "hdHair/gl/PatchBatching.h"
@@ -35,12 +36,11 @@ public:
     size_t controlCapacity() const { return controlCapacity_; }
     // Makes room for at least `segments` and `controls`, keeping what is there.
     void reserve(size_t segments, size_t controls);
-    // Writes a prim's segments at [first, first + curves.segmentCount()) and
-    // its control points from `firstControl` on.
-    void write(size_t first, size_t firstControl, const PreparedCurves& curves, glm::ivec2 primAndInstance,
-               int32_t material);
-    // Changes the material of [first, first + count) only.
-    void writeMaterial(size_t first, size_t count, int32_t material);
+    // Writes a prim's segments at [first, first + curves.segmentCount()),
+    // its control points from `firstControl` on, and its table slot.
+    void write(size_t first, size_t firstControl, const PreparedCurves& curves, uint32_t slot);
+    // The drawn prims' table, by slot: (primId, instanceId, material, 0).
+    void writeDrawnPrims(const std::vector<glm::ivec4>& slots);
     // Binds the storage buffers at the bindings the shaders use (1 to 3, 7 and 15).
     void bind() const;
 
@@ -54,8 +54,8 @@ public:
     }
 
 private:
-    Buffer controlPoints_, segmentFirstControls_, segmentCurves_, segmentPrims_, segmentMaterials_;
-    size_t capacity_ = 0, controlCapacity_ = 0;
+    Buffer controlPoints_, segmentFirstControls_, segmentCurves_, segmentSlots_, drawnPrims_;
+    size_t capacity_ = 0, controlCapacity_ = 0, drawnPrimCapacity_ = 0;
     PatchBatching batching_;
 };
 

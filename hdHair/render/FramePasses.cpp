@@ -57,14 +57,16 @@ void upload(FrameContext& context) {
     gl::StrandGeometry& strands = context.resources.strands;
     strands.reserve(inputs.uploads.capacityNeeded, inputs.uploads.controlCapacityNeeded);
     for (const StrandWrite& write : inputs.uploads.writes) {
-        const DrawnPrim& prim = inputs.drawn[write.prim];
-        const gl::SegmentRange& range = inputs.uploads.ranges[write.prim];
-        if (write.materialOnly)
-            strands.writeMaterial(range.first, range.count, prim.material);
-        else
-            strands.write(range.first, inputs.uploads.firstControls[write.prim], *prim.curves, prim.primAndInstance,
-                          prim.material);
+        if (write.materialOnly) continue;  // the table below carries it
+        strands.write(inputs.uploads.ranges[write.prim].first, inputs.uploads.firstControls[write.prim],
+                      *inputs.drawn[write.prim].curves, inputs.uploads.slots[write.prim]);
     }
+    // The drawn prims' ids and materials: a few bytes a prim, sent whole.
+    std::vector<glm::ivec4> slots(std::max<size_t>(inputs.uploads.slotCount, 1), glm::ivec4(0));
+    for (size_t i = 0; i < inputs.drawn.size(); ++i)
+        slots[inputs.uploads.slots[i]] =
+            glm::ivec4(inputs.drawn[i].primAndInstance, inputs.drawn[i].material, 0);
+    strands.writeDrawnPrims(slots);
     if (inputs.materials)
         context.resources.materials.update(inputs.materials->materials, inputs.materials->parameterPoints,
                                            inputs.materials->tables, inputs.materials->tableWidth,

@@ -17,18 +17,27 @@ void StrandUploads::reset() {
     resident_.clear();
     end_ = 0;
     controlEnd_ = 0;
+    freeSlots_.clear();
+    slotEnd_ = 0;
 }
 
 StrandUploadPlan StrandUploads::update(const std::vector<DrawnPrim>& prims) {
     StrandUploadPlan plan;
     plan.ranges.resize(prims.size());
     plan.firstControls.resize(prims.size());
+    plan.slots.resize(prims.size());
 
     // Drop prims that are no longer drawn: their ranges become holes.
     std::set<std::string> drawn;
     for (const DrawnPrim& prim : prims) drawn.insert(prim.path);
-    for (auto it = resident_.begin(); it != resident_.end();)
-        it = drawn.count(it->first) ? std::next(it) : resident_.erase(it);
+    for (auto it = resident_.begin(); it != resident_.end();) {
+        if (drawn.count(it->first)) {
+            ++it;
+            continue;
+        }
+        freeSlots_.insert(it->second.slot);
+        it = resident_.erase(it);
+    }
 
     for (size_t i = 0; i < prims.size(); ++i) {
         const DrawnPrim& prim = prims[i];
@@ -43,7 +52,17 @@ StrandUploadPlan StrandUploads::update(const std::vector<DrawnPrim>& prims) {
             }
             plan.ranges[i] = resident.range;
             plan.firstControls[i] = resident.firstControl;
+            plan.slots[i] = resident.slot;
             continue;
+        }
+        if (found == resident_.end()) {
+            Resident& added = resident_[prim.path];
+            if (freeSlots_.empty()) {
+                added.slot = slotEnd_++;
+            } else {
+                added.slot = *freeSlots_.begin();
+                freeSlots_.erase(freeSlots_.begin());
+            }
         }
         Resident& resident = resident_[prim.path];
         if (found == resident_.end() || resident.range.count != count || resident.controlCount != controls) {
@@ -58,9 +77,11 @@ StrandUploadPlan StrandUploads::update(const std::vector<DrawnPrim>& prims) {
         resident.material = prim.material;
         plan.ranges[i] = resident.range;
         plan.firstControls[i] = resident.firstControl;
+        plan.slots[i] = resident.slot;
         plan.writes.push_back({i, false});
         plan.writtenSegments += count;
     }
+    plan.slotCount = slotEnd_;
 
     for (const auto& [path, resident] : resident_) plan.liveSegments += resident.range.count;
     if (end_ - plan.liveSegments > plan.liveSegments && end_ - plan.liveSegments > kHolesWorthPacking) {

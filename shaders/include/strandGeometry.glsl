@@ -8,19 +8,23 @@ layout(std430, binding = 1) readonly buffer ControlPoints {
 layout(std430, binding = 15) readonly buffer SegmentFirstControls {
     uint segmentFirstControl[];
 };
-// Per segment: the curve's index in its prim (Hydra's elementId), and the
-// prim's id and instance index (Hydra's primId and instanceId).
+// Per segment: the curve's index in its prim (Hydra's elementId), and its
+// prim's slot in the drawn prims' table.
 layout(std430, binding = 2) readonly buffer SegmentCurves {
     int segmentCurve[];
 };
-layout(std430, binding = 3) readonly buffer SegmentPrims {
-    ivec2 segmentPrim[];  // (primId, instanceId)
+layout(std430, binding = 3) readonly buffer SegmentSlots {
+    int segmentSlot[];
 };
 // Segments in drawing order, far to near (used when frame.orderedDraw is 1).
 layout(std430, binding = 4) readonly buffer DrawOrder {
     uint drawOrder[];
 };
-// Per segment: the index of its prim's hair material (hairMaterials.glsl).
-layout(std430, binding = 7) readonly buffer SegmentMaterials {
-    int segmentMaterial[];
+// Per drawn prim: (primId, instanceId, hair material index, 0): Hydra's
+// primId and instanceId, and the index into hairMaterials.glsl's materials.
+layout(std430, binding = 7) readonly buffer DrawnPrims {
+    ivec4 drawnPrims[];
 };
+
+ivec2 segmentPrimAndInstance(int segment) { return drawnPrims[segmentSlot[segment]].xy; }
+int segmentMaterial(int segment) { return drawnPrims[segmentSlot[segment]].z; }

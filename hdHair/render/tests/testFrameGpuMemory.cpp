@@ -20,10 +20,11 @@ using namespace hdhair;
 
 namespace {
 
-// A control point (32 bytes), and per segment where its controls start, its
-// curve, prim and instance, and material.
+// A control point (32 bytes); per segment where its controls start, its
+// curve and its prim's slot; per drawn prim its ids and material.
 constexpr uint64_t kControlPointBytes = 32;
-constexpr uint64_t kStrandBytesPerSegment = 4 + 4 + 8 + 4;
+constexpr uint64_t kStrandBytesPerSegment = 4 + 4 + 4;
+constexpr uint64_t kDrawnPrimBytes = 16;
 constexpr uint64_t kOrderBytesPerSegment = 4;
 
 // `curves` horizontal catmullRom strands of `spans` spans each (spans + 3
@@ -80,7 +81,7 @@ TEST(FrameGpuMemory, StrandAndOrderBytesFollowTheSegmentCount) {
         ASSERT_EQ(stats.transparency, "binSorted");
         // Catmull-Rom spans share their curve's controls: 6 a curve.
         EXPECT_EQ(bytesOf(stats, "strandGeometry"),
-                  kStrandBytesPerSegment * stats.segments + kControlPointBytes * uint64_t(curves) * 6)
+                  kStrandBytesPerSegment * stats.segments + kControlPointBytes * uint64_t(curves) * 6 + kDrawnPrimBytes)
             << curves << " curves";
         EXPECT_EQ(bytesOf(stats, "drawOrder"), kOrderBytesPerSegment * stats.segments) << curves << " curves";
         EXPECT_EQ(stats.authoredPoints, uint64_t(curves) * 6);
@@ -98,7 +99,8 @@ TEST(FrameGpuMemory, ACatmullRomGroomTakesAtMost64BytesAnAuthoredPoint) {
         ASSERT_EQ(stats.authoredPoints, 50u * uint64_t(points));
         const uint64_t bytes = bytesOf(stats, "strandGeometry") + bytesOf(stats, "drawOrder");
         EXPECT_EQ(bytes, 50u * (kControlPointBytes * uint64_t(points) +
-                                (kStrandBytesPerSegment + kOrderBytesPerSegment) * uint64_t(points - 3)));
+                                (kStrandBytesPerSegment + kOrderBytesPerSegment) * uint64_t(points - 3)) +
+                             kDrawnPrimBytes);
         EXPECT_LE(bytes, 64u * stats.authoredPoints) << points << " points a strand";
     }
 }
@@ -145,11 +147,12 @@ TEST(FrameGpuMemory, GrowthReservesHalfAgainAndResizingFreesTheOldTarget) {
     Renderer renderer(gl::GlBackend::Egl);
     Diagnostics diagnostics;
     RenderStats first = renderer.render(scene, squareCamera(64), RenderSettings{}, diagnostics).stats;
-    EXPECT_EQ(bytesOf(first, "strandGeometry"), kStrandBytesPerSegment * 20 + kControlPointBytes * 50);
-    // 22 segments: grows to max(22, 20 * 1.5) = 30; 55 controls: to max(55, 50 * 1.5) = 75.
+    EXPECT_EQ(bytesOf(first, "strandGeometry"), kStrandBytesPerSegment * 20 + kControlPointBytes * 50 + kDrawnPrimBytes);
+    // 22 segments: grows to max(22, 20 * 1.5) = 30; 55 controls: to max(55, 50 * 1.5) = 75; 2 prims.
     scene.setCurves(strands("/b", 1, 2, 0.5f));
     RenderStats grown = renderer.render(scene, squareCamera(32), RenderSettings{}, diagnostics).stats;
     EXPECT_EQ(grown.segments, 22u);
-    EXPECT_EQ(bytesOf(grown, "strandGeometry"), kStrandBytesPerSegment * 30 + kControlPointBytes * 75);
+    EXPECT_EQ(bytesOf(grown, "strandGeometry"),
+              kStrandBytesPerSegment * 30 + kControlPointBytes * 75 + kDrawnPrimBytes * 2);
     EXPECT_EQ(bytesOf(grown, "frameTarget"), 32u * 32u * (16 + 4 + 4));  // the 64 x 64 one is gone
 }

@@ -136,3 +136,21 @@ TEST(StrandUploads, ControlPointsMoveWithTheirPrimWhenTheirCountChanges) {
     EXPECT_EQ(third.firstControls, second.firstControls);
     EXPECT_EQ(third.controlCapacityNeeded, 76u);
 }
+
+// Each resident prim keeps one slot in the drawn prims' table; a removed
+// prim's slot goes to the next new one, so the table stays as small as the
+// most prims drawn at once.
+TEST(StrandUploads, SlotsAreKeptAndReused) {
+    StrandUploads uploads;
+    auto a = curvesOf(4), b = curvesOf(5), c = curvesOf(6);
+    StrandUploadPlan first = uploads.update({drawn("/a", a), drawn("/b", b)});
+    EXPECT_EQ(first.slots, (std::vector<uint32_t>{0, 1}));
+    EXPECT_EQ(first.slotCount, 2u);
+    StrandUploadPlan recoloured = uploads.update({drawn("/b", b, 3), drawn("/a", a)});
+    EXPECT_EQ(recoloured.slots, (std::vector<uint32_t>{1, 0}));  // drawn order changed, slots did not
+    ASSERT_EQ(recoloured.writes.size(), 1u);
+    EXPECT_TRUE(recoloured.writes[0].materialOnly);
+    StrandUploadPlan replaced = uploads.update({drawn("/c", c), drawn("/b", b, 3)});
+    EXPECT_EQ(replaced.slots, (std::vector<uint32_t>{0, 1}));  // /c takes /a's slot
+    EXPECT_EQ(replaced.slotCount, 2u);
+}
