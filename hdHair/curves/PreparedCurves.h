@@ -89,6 +89,13 @@ struct PreparedCurves {
     }
     size_t segmentCount() const { return segmentCurve.size(); }
     bool empty() const { return segmentCurve.empty(); }
+    // The bytes these arrays hold (for --stats' cpuMemory).
+    size_t heldBytes() const {
+        size_t bytes = controlPoints.capacity() * sizeof(StrandControlPoint) +
+                       (segmentFirstControl.capacity() + segmentCurve.capacity()) * sizeof(uint32_t);
+        for (const PreparedShadingPrimvar& primvar : shadingPrimvars) bytes += primvar.values.capacity() * sizeof(float);
+        return bytes;
+    }
 };
 
 // The primvar a strand's opacity comes from: displayOpacity, or, when a

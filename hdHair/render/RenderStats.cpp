@@ -38,14 +38,18 @@ nlohmann::json RenderStats::toJson() const {
     json["shadowMapsKept"] = shadowMapsKept;
     json["shadowMaps"] = shadowMaps;
     // Each use, and their total: what the frame's memory is made of.
-    nlohmann::json gpuMemory = nlohmann::json::object();
-    uint64_t total = 0;
-    for (const auto& [use, bytes] : gpuBytes) {
-        gpuMemory[use] = bytes;
-        total += bytes;
-    }
-    gpuMemory["total"] = total;
-    json["gpuMemory"] = gpuMemory;
+    auto byUse = [](const std::map<std::string, uint64_t>& uses) {
+        nlohmann::json memory = nlohmann::json::object();
+        uint64_t total = 0;
+        for (const auto& [use, bytes] : uses) {
+            memory[use] = bytes;
+            total += bytes;
+        }
+        memory["total"] = total;
+        return memory;
+    };
+    json["gpuMemory"] = byUse(gpuBytes);
+    json["cpuMemory"] = byUse(cpuBytes);
     if (fragments > 0) json["fragments"] = fragments;
     if (!fallback.empty()) json["fallback"] = fallback;
     return json;

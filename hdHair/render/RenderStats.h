@@ -52,6 +52,10 @@ struct RenderStats {
     // Bytes of GL storage the renderer holds after the frame, by use
     // (hdHair/gl/GpuMemory.h): strandGeometry, drawOrder, frameTarget, ...
     std::map<std::string, uint64_t> gpuBytes;
+    // Bytes of CPU memory the renderer holds for the strands beyond the parsed
+    // stage, by use: preparedCurves and sortHashes (kept between frames),
+    // hairParameterPoints, and the frame's drawOrder.
+    std::map<std::string, uint64_t> cpuBytes;
 
     nlohmann::json toJson() const;
 };

@@ -499,6 +499,11 @@ RenderResult Renderer::render(const Scene& scene, const CameraView& camera, cons
     const gl::PatchBatching batching =
         gl::PatchBatching::choose(settings.getToken("drawBatching"), glThread_->contextDescription());
     stats.drawBatching = batching.describe();
+    for (const auto& [path, cached] : curves_) {
+        stats.cpuBytes["preparedCurves"] += cached.prepared ? cached.prepared->heldBytes() : 0;
+        stats.cpuBytes["sortHashes"] += cached.sortHashes.capacity() * sizeof(uint16_t);
+        stats.cpuBytes["hairParameterPoints"] += cached.parameterPoints.capacity() * sizeof(glm::vec4);
+    }
     const bool stopped = glThread_->run([&] {
         resources_->strands.setBatching(batching);
         inputs.samples = std::min(plan.msaaSamples, resources_->maxSamples);
@@ -508,6 +513,7 @@ RenderResult Renderer::render(const Scene& scene, const CameraView& camera, cons
         runFrameGraph(context, timing);
         stats.strandTriangles = resources_->strandPass.takeTriangles();
         stats.gpuBytes = gl::gpuBytesByUse();
+        stats.cpuBytes["drawOrder"] = context.drawOrder.capacity() * sizeof(uint32_t);
         // A shadow that could not be built, or whose passes a stopped frame
         // skipped, is built again next frame.
         for (const std::string& key : context.unbuiltShadowMaps) shadowMaps_.forget(key);
