@@ -153,15 +153,6 @@ void writeFrameImage(Image linear, const Image* gpuDisplayed, const DisplayTrans
     frameStats["color"] = colorStats;
 }
 
-void writeTextAtomically(const std::string& path, const std::string& text) {
-    writeFileAtomically(path, [&](const std::string& temporary) {
-        std::ofstream out(temporary);
-        out << text;
-        out.close();
-        return out.good() ? std::string() : std::string("the file system refused the bytes");
-    });
-}
-
 // Where the images and --stats go must be writable before anything is
 // rendered: a farm job should fail in its first second, not after its frames.
 void checkOutputTargets(const Options& options) {
@@ -299,7 +290,7 @@ int runThroughUsdImaging(const Options& options, const usda::SceneReadOptions& p
         nlohmann::json stats;
         stats["stage"] = options.usdFile;
         stats["frames"] = allStats;
-        writeTextAtomically(options.statsFile, stats.dump(2) + "\n");
+        writeTextFileAtomically(options.statsFile, stats.dump(2) + "\n");
     }
     return 0;
 #else
@@ -445,7 +436,7 @@ int run(const Options& options) {
         stats["warnings"] = nlohmann::json::array();
         for (const Diagnostic& warning : diagnostics.warnings())
             stats["warnings"].push_back({{"where", warning.where}, {"message", warning.message}});
-        writeTextAtomically(options.statsFile, stats.dump(2) + "\n");
+        writeTextFileAtomically(options.statsFile, stats.dump(2) + "\n");
     }
     return 0;
 }
