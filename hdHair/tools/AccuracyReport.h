@@ -15,7 +15,8 @@ namespace hdhair::accuracy {
 constexpr double kPresetFrontAllowance = 0.10;
 
 // Marks every row "pareto": true when no other row of its stage is at least
-// as fast and at least as exact (median frame time, RMSE) and better in one,
+// as fast and at least as exact (median frame time, RMSE) and better in one
+// (rows over a base, measured against another reference, are never on it),
 // and adds "presets": per stage and preset, "onFront", and "timeGap" and
 // "errorGap": how much faster, or more exact, the best front row that is
 // also at least as good in the other measure is, relative to the preset
@@ -27,8 +28,9 @@ void markParetoFront(nlohmann::json& report);
 void writeAccuracyReport(const nlohmann::json& report, const std::string& folder);
 
 // The Markdown tables: per stage, a row per measurement (approximation,
-// step, frame time as median and spread and relative to the default, RMSE,
-// max, display share, Pareto), then the presets against the front.
+// step, frame time as median and half its range and relative to the
+// default, RMSE, max, own RMSE, display share, Pareto), then the presets
+// against the front.
 std::string accuracyMarkdown(const nlohmann::json& report);
 
 }  // namespace hdhair::accuracy

@@ -3,6 +3,7 @@
 //   hdhair-bench [--stage FILE]... [--imageWidth N]
 //                [--table complexity|transparency|shading|shadows|tessellation|all] [Google Benchmark flags]
 //   hdhair-bench --accuracy [--quick] [--out DIR] [--repetitions N] [--stage FILE]... [--imageWidth N]
+//   hdhair-bench --report accuracy.json [--out DIR]   (an earlier report's front and tables again)
 //
 // --accuracy: the error-versus-time matrix of every approximation and quality
 // preset against each stage's reference (AccuracyBench.h), written to DIR
@@ -51,6 +52,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "hdHair/base/Diagnostics.h"
+#include "hdHair/base/RegularFile.h"
 #include "hdHair/curves/PreparedCurves.h"
 #include "hdHair/image/BoxDownsample.h"
 #include "hdHair/image/ImageComparison.h"
@@ -439,7 +441,7 @@ int main(int argc, char** argv) {
     std::string table = "all";
     bool accuracyRun = false, quick = false;
     int repetitions = 3;
-    std::string out = "accuracy", command;
+    std::string out = "accuracy", command, report;
     std::vector<char*> benchmarkArguments;
     for (int i = 0; i < argc; ++i) {
         command += (i ? " " : "") + std::string(argv[i]);
@@ -447,10 +449,28 @@ int main(int argc, char** argv) {
         else if (i + 1 < argc && std::strcmp(argv[i], "--imageWidth") == 0) imageWidth = std::atoi(argv[++i]);
         else if (i + 1 < argc && std::strcmp(argv[i], "--table") == 0) table = argv[++i];
         else if (i + 1 < argc && std::strcmp(argv[i], "--out") == 0) out = argv[++i];
+        else if (i + 1 < argc && std::strcmp(argv[i], "--report") == 0) report = argv[++i];
         else if (i + 1 < argc && std::strcmp(argv[i], "--repetitions") == 0) repetitions = std::atoi(argv[++i]);
         else if (std::strcmp(argv[i], "--accuracy") == 0) accuracyRun = true;
         else if (std::strcmp(argv[i], "--quick") == 0) quick = true;
         else benchmarkArguments.push_back(argv[i]);
+    }
+    // --report FILE: the report of an earlier --accuracy run marked and
+    // written again (after a change to the report's tables or front).
+    if (!report.empty()) {
+        try {
+            std::string text;
+            if (std::string why = readRegularFile(report, text); !why.empty()) throw std::runtime_error(why);
+            nlohmann::json earlier = nlohmann::json::parse(text);
+            accuracy::markParetoFront(earlier);
+            earlier["checks"] = accuracy::checkAccuracyReport(earlier);
+            accuracy::writeAccuracyReport(earlier, out);
+            std::printf("%s", accuracy::accuracyMarkdown(earlier).c_str());
+            return 0;
+        } catch (const std::exception& error) {
+            std::fprintf(stderr, "hdhair-bench: error: %s: %s\n", report.c_str(), error.what());
+            return 1;
+        }
     }
     if (quick && !accuracyRun) {
         std::fprintf(stderr, "hdhair-bench: error: --quick needs --accuracy\n");

@@ -13,14 +13,19 @@ using namespace hdhair;
 
 namespace {
 
+// An empty frame with ids: transparent, depth 1, ids -1.
+RenderResult emptyFrame(int width, int height) {
+    RenderResult frame;
+    frame.color = Image(width, height, 4);
+    frame.depth = Image(width, height, 1, 1.0f);
+    frame.primIds.assign(size_t(width * height), -1);
+    frame.instanceIds = frame.elementIds = frame.primIds;
+    return frame;
+}
+
 // A 4x2 sample frame (two pixels of 2x2 samples) with ids.
 RenderResult sampleFrame() {
-    RenderResult frame;
-    frame.color = Image(4, 2, 4);
-    frame.depth = Image(4, 2, 1, 1.0f);
-    frame.primIds.assign(8, -1);
-    frame.instanceIds.assign(8, -1);
-    frame.elementIds.assign(8, -1);
+    RenderResult frame = emptyFrame(4, 2);
     // Left pixel: one covered sample, the last one (not the first, so a
     // resolve that took the first sample, or the centre-nearest upper-left
     // one, would be caught).
@@ -63,12 +68,7 @@ TEST(SupersampleResolve, EmptyPixelsStayEmptyAndFactorOneChangesNothing) {
     resolveSupersampling(frame, 1);
     EXPECT_EQ(frame.color.pixels, same.color.pixels);
     EXPECT_EQ(frame.primIds, same.primIds);
-    RenderResult empty;
-    empty.color = Image(4, 4, 4);
-    empty.depth = Image(4, 4, 1, 1.0f);
-    empty.primIds.assign(16, -1);
-    empty.instanceIds.assign(16, -1);
-    empty.elementIds.assign(16, -1);
+    RenderResult empty = emptyFrame(4, 4);
     resolveSupersampling(empty, 2);
     EXPECT_EQ(empty.depth.pixels, std::vector<float>(4, 1.0f));
     EXPECT_EQ(empty.primIds, std::vector<int32_t>(4, -1));
