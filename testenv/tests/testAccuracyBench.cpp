@@ -64,6 +64,32 @@ TEST(AccuracyBench, QuickRunWritesAWellFormedReportWhoseErrorsFallTowardTheRefer
     EXPECT_NE(markdown.find("### wavy_strands"), std::string::npos) << markdown;
     EXPECT_NE(markdown.find("| preset | quality=reference |"), std::string::npos) << markdown;
     EXPECT_NE(markdown.find("| preset | on the front | time gap | error gap | within 10 % |"), std::string::npos);
+
+    // --report writes the same tables again from the JSON.
+    output.clear();
+    const fs::path again = out / "again";
+    ASSERT_EQ(testenv::runCommand(std::string(HDHAIR_BENCH) + " --report " +
+                                      testenv::shellQuoted((out / "accuracy.json").string()) + " --out " +
+                                      testenv::shellQuoted(again.string()),
+                                  &output),
+              0)
+        << output;
+    EXPECT_EQ(readText(again / "accuracy.md"), markdown);
+    EXPECT_EQ(readText(again / "accuracy.csv"), csv);
+
+    // The plots, where Debian's matplotlib is installed (scripts/debian-packages.txt).
+    output.clear();
+    if (testenv::runCommand("/usr/bin/python3 -c 'import matplotlib'", &output) == 0) {
+        output.clear();
+        ASSERT_EQ(testenv::runCommand("/usr/bin/python3 " HDHAIR_SOURCE_DIR "/scripts/accuracy-plots.py " +
+                                          testenv::shellQuoted((out / "accuracy.json").string()) + " " +
+                                          testenv::shellQuoted(out.string()),
+                                      &output),
+                  0)
+            << output;
+        EXPECT_GT(fs::file_size(out / "accuracy.png"), 10000u);
+        EXPECT_GT(fs::file_size(out / "accuracy-wavy_strands.png"), 10000u);
+    }
     fs::remove_all(out);
 }
 
