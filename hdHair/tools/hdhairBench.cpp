@@ -526,16 +526,16 @@ int main(int argc, char** argv) {
             std::vector<accuracy::AccuracyStage> accuracyStages;
             for (const auto& stage : stages)
                 accuracyStages.push_back({stage->name, stage->path, &stage->scene, stage->camera});
-            nlohmann::json report =
+            nlohmann::json results =
                 accuracy::runAccuracyBench(*renderer(), accuracyStages, {quick, repetitions, command});
-            accuracy::markParetoFront(report);
-            const std::vector<std::string> problems = accuracy::checkAccuracyReport(report);
-            report["checks"] = problems;
-            accuracy::writeAccuracyReport(report, out);
-            std::printf("%s", accuracy::accuracyMarkdown(report).c_str());
+            accuracy::markParetoFront(results);
+            const std::vector<std::string> problems = accuracy::checkAccuracyReport(results);
+            results["checks"] = problems;
+            accuracy::writeAccuracyReport(results, out);
+            std::printf("%s", accuracy::accuracyMarkdown(results).c_str());
             for (const std::string& problem : problems) std::printf("hdhair-bench: check failed: %s\n", problem.c_str());
             std::printf("hdhair-bench: accuracy matrix in %.0f s, %zu checks failed; wrote %s/accuracy.{json,csv,md}\n",
-                        report["seconds"].get<double>(), problems.size(), out.c_str());
+                        results["seconds"].get<double>(), problems.size(), out.c_str());
             renderer().reset();
             return quick && !problems.empty() ? 1 : 0;
         } catch (const std::exception& error) {
