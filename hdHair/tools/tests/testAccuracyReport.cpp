@@ -91,7 +91,9 @@ TEST(AccuracyReport, MarksTheParetoFrontAndHowFarEachPresetIsFromIt) {
     rowOf(report, "quality=default")["error"]["rmse"] = 0.02;
     markParetoFront(report);
     for (const auto& preset : report["presets"])
-        if (preset["preset"] == "quality=default") EXPECT_TRUE(preset["nearFront"]);
+        if (preset["preset"] == "quality=default") {
+            EXPECT_TRUE(preset["nearFront"]);
+        }
     rowOf(report, "quality=default")["error"]["rmse"] = 0.025;
     markParetoFront(report);
     const std::string markdown = accuracyMarkdown(report);
