@@ -4,6 +4,7 @@
 
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <random>
 #include <stdexcept>
 
@@ -52,6 +53,15 @@ std::string whyNotWritable(const std::string& path) {
     if (status.type() != fs::file_type::directory) return "'" + folder.string() + "' is not a folder";
     if (::access(folder.c_str(), W_OK) != 0) return "folder '" + folder.string() + "' is not writable";
     return std::string();
+}
+
+void writeTextFileAtomically(const std::string& path, const std::string& text) {
+    writeFileAtomically(path, [&](const std::string& temporary) {
+        std::ofstream out(temporary);
+        out << text;
+        out.close();
+        return out.good() ? std::string() : std::string("the file system refused the bytes");
+    });
 }
 
 }  // namespace hdhair

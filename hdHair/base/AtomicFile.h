@@ -16,6 +16,9 @@ namespace hdhair {
 // having removed the temporary file.
 void writeFileAtomically(const std::string& path, const std::function<std::string(const std::string&)>& write);
 
+// writeFileAtomically for text: `text` is the whole file.
+void writeTextFileAtomically(const std::string& path, const std::string& text);
+
 // Why `path` could not be written (its folder is missing, not a folder, or
 // not writable), or "" when it can: checked before work whose result goes there.
 std::string whyNotWritable(const std::string& path);

@@ -183,10 +183,18 @@ void drawStrands(FrameContext& context, gl::RenderTarget& target, size_t batch) 
         context.result.stats.fragments = fragments;
         if (fragments <= inputs.fragmentListCapacity) return;
         const int memoryMB = inputs.settings->getInt("exactMemoryMB");
-        context.diagnostics.warn("render", fmt::format("exact transparency needs {} MB for {} fragments, more than "
-                                                       "exactMemoryMB={}; rendered with binSorted (1024 bins) instead",
-                                                       (fragments * gl::kFragmentNodeBytes + (1 << 20) - 1) >> 20,
-                                                       fragments, memoryMB));
+        const std::string needed = fmt::format("exact transparency needs {} MB for {} fragments, more than "
+                                               "exactMemoryMB={}",
+                                               (fragments * gl::kFragmentNodeBytes + (1 << 20) - 1) >> 20,
+                                               fragments, memoryMB);
+        // A reference that quietly became an approximation would be measured
+        // against as if it were exact: exactOverflow=fail stops the frame.
+        if (inputs.settings->getToken("exactOverflow") == "fail") {
+            context.failure = needed + " (exactOverflow=fail: raise exactMemoryMB or lower supersampling)";
+            context.stopped = true;
+            return;
+        }
+        context.diagnostics.warn("render", needed + "; rendered with binSorted (1024 bins) instead");
         plan.fallBackToBinSorted(1024, inputs.idsRequested);
         context.result.stats.fallback = "exact -> binSorted (1024 bins): fragment lists over exactMemoryMB";
         sortAndSend(context);

@@ -87,6 +87,10 @@ struct FrameContext {
     const FrameCancellation* cancellation = nullptr;
     size_t strandPieceSegments = 0;  // segments per piece when cancellable
     bool stopped = false;            // the cancellation was seen: the rest of the frame is skipped
+    // Why the frame cannot be rendered as asked (exact transparency over its
+    // memory under exactOverflow=fail); the frame stops as a cancelled one
+    // does, and the renderer throws this instead of FrameCancelled.
+    std::string failure = {};
 };
 
 // Runs one pass of the plan. Throws std::logic_error for a pass it does not know.

@@ -20,6 +20,7 @@ RenderSettings previewSettings(const RenderSettings& full) {
     preview.set("shadowMode", "off");
     preview.set("lightsPerPass", "16");
     preview.set("msaaSamples", "0");
+    preview.set("supersampling", "1");
     if (full.getToken("marschner:azimuthal") == "analytic") preview.set("marschner:azimuthal", "tables");
     preview.set("passTimings", "false");
     return preview;

@@ -10,7 +10,8 @@
 //    the opaque path stay as they are);
 //  - no shadows (shadowMode=off): the full frames' shadow maps are left as
 //    they are (FrameControl::preview);
-//  - every light in one pass (lightsPerPass=16), no multisampling,
+//  - every light in one pass (lightsPerPass=16), no multisampling or
+//    supersampling,
 //    Marschner from its tables, no pass timings;
 //  - and, when that alone is over the budget (PreviewBudget), fewer pixels,
 //    1/2, 1/4 or 1/8 of them across, enlarged to the host's size by

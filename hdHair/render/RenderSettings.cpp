@@ -8,6 +8,8 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "hdHair/render/QualityPresets.h"
+
 namespace hdhair {
 
 bool parseComplexity(const std::string& name, Complexity* out) {
@@ -31,6 +33,12 @@ const char* toString(Complexity complexity) {
 
 const std::vector<SettingDescriptor>& RenderSettings::descriptors() {
     static const std::vector<SettingDescriptor> table = {
+        {"quality", SettingType::Token, "default",
+         "A named set of the settings below, from cheap to exact: preview, default (today's defaults), high or "
+         "reference (the yardstick: exact transparency that fails rather than fall back, reference shadows, "
+         "analytic Marschner, the tightest tessellation, 4 x 4 supersampling); settings set explicitly, and a "
+         "complexity above low, win over it (README, Quality presets)",
+         0, 0, {"preview", "default", "high", "reference"}},
         {"tessellation", SettingType::Token, "screenError",
          "How finely each curve span is cut: screenError (as few segments as keep the polyline within "
          "tessellationTolerance pixels of the curve, from the span's curvature and projected size) or "
@@ -67,6 +75,14 @@ const std::vector<SettingDescriptor>& RenderSettings::descriptors() {
         {"exactMemoryMB", SettingType::Int, "512",
          "Memory for exact transparency's fragment lists; a frame needing more falls back to binSorted", 16,
          65536, {}},
+        {"exactOverflow", SettingType::Token, "fallBack",
+         "When exact transparency's fragments do not fit exactMemoryMB: fallBack (warn and render binSorted with "
+         "1024 bins) or fail (the frame fails with the memory it needed: a reference must never be approximate)",
+         0, 0, {"fallBack", "fail"}},
+        {"supersampling", SettingType::Int, "1",
+         "N x N samples per pixel: the frame is rendered N times as wide and high and box-filtered in linear "
+         "pre-multiplied RGBA; depth and ids are those of the nearest of a pixel's samples (README, Quality presets)",
+         1, 8, {}},
         {"lightsPerPass", SettingType::Int, "4",
          "Most lights shaded in one pass; more lights take more passes over the same sorted strands, "
          "their colours summed and alpha counted once",
@@ -219,20 +235,57 @@ RenderSettings RenderSettings::fromAssignments(Complexity complexity, const std:
     return settings;
 }
 
-std::string RenderSettings::effectiveText(const std::string& name) const {
-    auto it = values_.find(name);
-    if (it != values_.end()) return it->second;
-    // Complexity scales tessellation density the way usdrecord's levels scale
-    // Storm's refinement: each level doubles the segments a span may get.
-    int level = static_cast<int>(complexity_);
+namespace {
+
+// The settings complexity scales, as usdrecord's levels scale Storm's
+// refinement: each level doubles the segments a span may get. usdview's and
+// usdrecord's complexities are Storm's refine levels 0-3 (meshRefineLevel).
+bool complexityScales(const std::string& name) {
+    return name == "pixelsPerSegment" || name == "tessellationTolerance" || name == "maxSegmentsPerSpan" ||
+           name == "meshRefineLevel";
+}
+
+std::string complexityValue(const std::string& name, Complexity complexity) {
+    int level = static_cast<int>(complexity);
     if (name == "pixelsPerSegment") return std::to_string(8 >> level);
     if (name == "tessellationTolerance") return fmt::format("{}", 0.12 / double(1 << level));
     if (name == "maxSegmentsPerSpan") return std::to_string(8 << level);
-    // usdview's and usdrecord's complexities are Storm's refine levels 0-3.
-    if (name == "meshRefineLevel") return std::to_string(level);
-    const SettingDescriptor* descriptor = find(name);
-    if (!descriptor) throw std::invalid_argument(fmt::format("unknown setting '{}'", name));
-    return descriptor->defaultValue;
+    return std::to_string(level);  // meshRefineLevel
+}
+
+}  // namespace
+
+Quality RenderSettings::quality() const {
+    Quality quality = Quality::Default;
+    auto it = values_.find("quality");
+    if (it != values_.end()) parseQuality(it->second, &quality);
+    return quality;
+}
+
+SettingOrigin RenderSettings::origin(const std::string& name) const {
+    if (!find(name)) throw std::invalid_argument(fmt::format("unknown setting '{}'", name));
+    const std::string* preset = name == "quality" ? nullptr : presetValue(quality(), name);
+    SettingOrigin origin;
+    if (values_.count(name)) origin.source = SettingSource::Explicit;
+    // Low is every host's complexity when the user chose none (usdview's
+    // 1.0, usdrecord's default), so only a higher one is a choice that can
+    // win over a preset; hdhair-record follows the same rule so that both
+    // readers render alike.
+    else if (complexityScales(name) && (complexity_ != Complexity::Low || !preset)) origin.source = SettingSource::Complexity;
+    else if (preset) origin.source = SettingSource::Preset;
+    else origin.source = SettingSource::Default;
+    if (preset && origin.source != SettingSource::Preset) origin.overriddenPreset = *preset;
+    return origin;
+}
+
+std::string RenderSettings::effectiveText(const std::string& name) const {
+    switch (origin(name).source) {
+    case SettingSource::Explicit: return values_.at(name);
+    case SettingSource::Complexity: return complexityValue(name, complexity_);
+    case SettingSource::Preset: return *presetValue(quality(), name);
+    case SettingSource::Default: break;
+    }
+    return find(name)->defaultValue;
 }
 
 double RenderSettings::getFloat(const std::string& name) const {

@@ -11,6 +11,7 @@
 #include <nlohmann/json_fwd.hpp>
 
 #include "hdHair/image/ColorSpaces.h"
+#include "hdHair/render/QualityPresets.h"
 
 namespace hdhair {
 
@@ -31,6 +32,18 @@ enum class Complexity { Low, Medium, High, VeryHigh };
 bool parseComplexity(const std::string& name, Complexity* out);
 const char* toString(Complexity complexity);
 
+// What chose a setting's effective value, strongest first: set explicitly
+// (--setting, a Hydra render setting), the complexity level (the settings it
+// scales; above low it wins over a preset), the quality preset, or the
+// descriptor's default.
+enum class SettingSource { Explicit, Complexity, Preset, Default };
+
+struct SettingOrigin {
+    SettingSource source = SettingSource::Default;
+    // The value the quality preset would have given, when something stronger won.
+    std::string overriddenPreset;
+};
+
 class RenderSettings {
 public:
     static const std::vector<SettingDescriptor>& descriptors();
@@ -48,6 +61,12 @@ public:
     // Parses "NAME=VALUE".
     void setFromAssignment(const std::string& assignment);
     bool isExplicitlySet(const std::string& name) const { return values_.count(name) > 0; }
+
+    // The `quality` preset in effect (QualityPresets.h).
+    Quality quality() const;
+    // What chose `name`'s effective value (--explain prints it); throws
+    // std::invalid_argument for an unknown name.
+    SettingOrigin origin(const std::string& name) const;
 
     // Tessellation defaults for a complexity level; settings set explicitly win.
     void setComplexity(Complexity complexity) { complexity_ = complexity; }

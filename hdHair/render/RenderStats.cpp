@@ -7,6 +7,7 @@ namespace hdhair {
 nlohmann::json RenderStats::toJson() const {
     nlohmann::json json;
     json["image"] = {{"width", imageWidth}, {"height", imageHeight}};
+    json["supersampling"] = supersampling;
     json["camera"] = camera;
     // UsdTimeCode's special times have no JSON number: name them.
     json["time"] = std::isnan(time) ? nlohmann::json("default")
@@ -25,6 +26,7 @@ nlohmann::json RenderStats::toJson() const {
     json["gl"] = glRenderer;
     json["glDevice"] = glDevice;
     json["settings"] = settings;
+    json["settingOrigins"] = settingOrigins;
     json["plan"] = plan;
     json["warnings"] = warnings;
     json["transparency"] = transparency;

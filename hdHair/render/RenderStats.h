@@ -17,7 +17,8 @@ struct PassTiming {
 };
 
 struct RenderStats {
-    int imageWidth = 0, imageHeight = 0;
+    int imageWidth = 0, imageHeight = 0;  // the output's size (with supersampling, not the samples')
+    int supersampling = 1;                 // N: N x N samples per pixel (SupersampleResolve.h)
     std::string camera;           // prim path, or "framing camera"
     double time = 0.0;            // time code; NaN: UsdTimeCode::Default(), -inf: EarliestTime()
     size_t curvesPrims = 0, meshPrims = 0, lights = 0;
@@ -34,6 +35,7 @@ struct RenderStats {
     std::string glRenderer;
     std::string glDevice;         // where the context was made: "EGL surfaceless (Mesa)", "EGL device 0 (...)"
     nlohmann::json settings;
+    nlohmann::json settingOrigins;  // what chose each setting (SettingOrigins.h)
     nlohmann::json plan;
     size_t warnings = 0;
     std::string transparency;     // the path taken: opaque, binSorted, exact or unsorted

@@ -21,6 +21,8 @@
 #include "hdHair/render/FrameScheduler.h"
 #include "hdHair/render/InteractivePreview.h"
 #include "hdHair/render/NearestStrandRule.h"
+#include "hdHair/render/SettingOrigins.h"
+#include "hdHair/render/SupersampleResolve.h"
 #include "hdHair/scene/Scene.h"
 #include "hdHair/scene/MeshPrim.h"
 #include "hdHair/scene/SceneValidation.h"
@@ -384,6 +386,33 @@ std::optional<MaterialUpload> Renderer::materialUpload(const std::vector<HairMat
 
 RenderResult Renderer::render(const Scene& scene, const CameraView& camera, const RenderSettings& settings,
                               Diagnostics& diagnostics, const RenderOutputs& outputs, const FrameControl& control) {
+    const int factor = settings.getInt("supersampling");
+    if (factor == 1) return renderSamples(scene, camera, settings, diagnostics, outputs, control);
+    // The display transform must see the resolved linear pixels: a display
+    // image of the samples, averaged, would filter in display space.
+    if (outputs.gpuDisplay)
+        throw std::invalid_argument(fmt::format("supersampling={} needs the display transform on the CPU "
+                                                "(--displayTransformOn cpu): it must follow the box filter",
+                                                factor));
+    Clock::time_point start = Clock::now();
+    RenderOutputs sampleOutputs = outputs;
+    sampleOutputs.depth = outputs.depth || outputs.ids;  // the nearest sample chooses the ids
+    RenderResult result =
+        renderSamples(scene, supersampledCamera(camera, factor), settings, diagnostics, sampleOutputs, control);
+    Clock::time_point resolveStart = Clock::now();
+    resolveSupersampling(result, factor);
+    if (!outputs.depth) result.depth = Image();
+    result.stats.passes.push_back({"supersampleResolve", millisecondsSince(resolveStart)});
+    result.stats.supersampling = factor;
+    result.stats.imageWidth = camera.imageWidth;
+    result.stats.imageHeight = camera.imageHeight;
+    result.stats.totalMilliseconds = millisecondsSince(start);
+    return result;
+}
+
+RenderResult Renderer::renderSamples(const Scene& scene, const CameraView& camera, const RenderSettings& settings,
+                                     Diagnostics& diagnostics, const RenderOutputs& outputs,
+                                     const FrameControl& control) {
     Clock::time_point frameStart = Clock::now();
     if (!isFiniteTransform(camera.view) || !isFiniteTransform(camera.projection))
         throw std::invalid_argument("the camera's view or projection is not finite (a NaN or infinite transform, "
@@ -504,6 +533,7 @@ RenderResult Renderer::render(const Scene& scene, const CameraView& camera, cons
         stats.cpuBytes["sortHashes"] += cached.sortHashes.capacity() * sizeof(uint16_t);
         stats.cpuBytes["hairParameterPoints"] += cached.parameterPoints.capacity() * sizeof(glm::vec4);
     }
+    std::string failure;
     const bool stopped = glThread_->run([&] {
         resources_->strands.setBatching(batching);
         inputs.samples = std::min(plan.msaaSamples, resources_->maxSamples);
@@ -517,8 +547,10 @@ RenderResult Renderer::render(const Scene& scene, const CameraView& camera, cons
         // A shadow that could not be built, or whose passes a stopped frame
         // skipped, is built again next frame.
         for (const std::string& key : context.unbuiltShadowMaps) shadowMaps_.forget(key);
+        failure = context.failure;
         return context.stopped;
     });
+    if (!failure.empty()) throw std::runtime_error(failure);
     if (stopped) throw FrameCancelled();
     if (plan.lightsOverCap > 0)
         diagnostics.warn("render", fmt::format("the stage has {} lights, more than the {} a frame shades; the last {} "
@@ -544,6 +576,7 @@ RenderResult Renderer::render(const Scene& scene, const CameraView& camera, cons
     stats.glRenderer = glDescription();
     stats.glDevice = glDevice();
     stats.settings = settings.toJson();
+    stats.settingOrigins = settingOriginsJson(settings);
     stats.plan = plan.toJson();
     stats.warnings = diagnostics.warningCount() - warningsBefore;
     stats.totalMilliseconds = millisecondsSince(frameStart);

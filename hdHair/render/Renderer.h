@@ -117,9 +117,13 @@ public:
     // when rendered, at the refine level the settings give).
     SceneBounds prepare(const Scene& scene, const RenderSettings& settings, Diagnostics& diagnostics);
 
-    // Throws FrameCancelled when control.cancellation stops the frame, and
+    // Throws FrameCancelled when control.cancellation stops the frame,
     // std::invalid_argument for a camera that is not finite, a preview that
-    // would cast shadows, or curves left out of a frame that is no preview.
+    // would cast shadows, curves left out of a frame that is no preview, or
+    // supersampling with the display transform on the GPU or beyond GL's
+    // largest target; std::runtime_error when exact transparency does not fit
+    // exactMemoryMB under exactOverflow=fail. With supersampling=N the frame
+    // is rendered N x N times over and resolved (SupersampleResolve.h).
     RenderResult render(const Scene& scene, const CameraView& camera, const RenderSettings& settings,
                         Diagnostics& diagnostics, const RenderOutputs& outputs = {}, const FrameControl& control = {});
 
@@ -129,6 +133,10 @@ public:
     const std::string& glDevice() const;
 
 private:
+    // A frame at the camera's own size: what render() does without supersampling.
+    RenderResult renderSamples(const Scene& scene, const CameraView& camera, const RenderSettings& settings,
+                               Diagnostics& diagnostics, const RenderOutputs& outputs, const FrameControl& control);
+
     // Prepares the curves prims that changed since they were last prepared
     // (or were prepared for another rendering space).
     void prepareChangedCurves(const Scene& scene, const RenderSettings& settings, Diagnostics& diagnostics);

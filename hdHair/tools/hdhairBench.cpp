@@ -2,6 +2,16 @@
 //
 //   hdhair-bench [--stage FILE]... [--imageWidth N]
 //                [--table complexity|transparency|shading|shadows|tessellation|all] [Google Benchmark flags]
+//   hdhair-bench --accuracy [--quick] [--out DIR] [--repetitions N] [--stage FILE]... [--imageWidth N]
+//   hdhair-bench --report accuracy.json [--out DIR]   (an earlier report's front and tables again)
+//
+// --accuracy: the error-versus-time matrix of every approximation and quality
+// preset against each stage's reference (AccuracyBench.h), written to DIR
+// (default accuracy/) as accuracy.json, .csv and .md with the Pareto front
+// marked (AccuracyReport.h); its checks (AccuracyChecks.h) are printed, and
+// with --quick (the CI run: short ladders, one repetition, 64 pixels wide)
+// a failed check is exit status 1. scripts/accuracy-bench.sh runs the full
+// matrix and draws the plots.
 //
 // For each stage (examples/dense_clump.usda when none is given), rendered
 // through its first camera (or a framing camera):
@@ -36,15 +46,21 @@
 #include <sys/resource.h>
 
 #include <benchmark/benchmark.h>
+#include <nlohmann/json.hpp>
 #include <fmt/format.h>
 #include <glm/geometric.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "hdHair/base/Diagnostics.h"
+#include "hdHair/base/RegularFile.h"
 #include "hdHair/curves/PreparedCurves.h"
 #include "hdHair/image/BoxDownsample.h"
 #include "hdHair/image/ImageComparison.h"
 #include "hdHair/shading/MarschnerTables.h"
+#include "hdHair/tools/AccuracyBench.h"
+#include "hdHair/tools/AccuracyChecks.h"
+#include "hdHair/tools/AccuracyReport.h"
+#include "hdHair/tools/BenchLights.h"
 #include "hdHair/render/BinSort.h"
 #include "hdHair/render/CameraView.h"
 #include "hdHair/render/Renderer.h"
@@ -199,15 +215,7 @@ std::vector<Configuration> shadowConfigurations() {
 
 // Turns every light of the stage by +-1 microradian about Y: each light's
 // view changes, so a frame rebuilds every shadow, as after a light moved.
-void nudgeLights(BenchStage& stage, bool forth) {
-    std::vector<LightPrim> lights;
-    for (const auto& [path, entry] : stage.scene.lights()) lights.push_back(*entry.prim);
-    for (LightPrim& light : lights) {
-        light.worldTransform = glm::rotate(glm::dmat4(1.0), forth ? 1e-6 : -1e-6, glm::dvec3(0, 1, 0)) *
-                               light.worldTransform;
-        stage.scene.setLight(light);
-    }
-}
+void nudgeLights(BenchStage& stage, bool forth) { turnLightsAboutY(stage.scene, forth ? 1e-6 : -1e-6); }
 
 std::string shadowFrameName(const BenchStage& stage, const Configuration& configuration) {
     return "ShadowFrame/" + stage.name + "/" + configuration.label;
@@ -433,14 +441,56 @@ void registerReaderBenchmarks() {
 
 int main(int argc, char** argv) {
     std::vector<std::string> stagePaths;
-    int imageWidth = 512;
+    int imageWidth = 0;
     std::string table = "all";
+    bool accuracyRun = false, quick = false;
+    int repetitions = 3;
+    std::string out = "accuracy", command, report;
     std::vector<char*> benchmarkArguments;
     for (int i = 0; i < argc; ++i) {
+        command += (i ? " " : "") + std::string(argv[i]);
         if (i + 1 < argc && std::strcmp(argv[i], "--stage") == 0) stagePaths.push_back(argv[++i]);
         else if (i + 1 < argc && std::strcmp(argv[i], "--imageWidth") == 0) imageWidth = std::atoi(argv[++i]);
         else if (i + 1 < argc && std::strcmp(argv[i], "--table") == 0) table = argv[++i];
+        else if (i + 1 < argc && std::strcmp(argv[i], "--out") == 0) out = argv[++i];
+        else if (i + 1 < argc && std::strcmp(argv[i], "--report") == 0) report = argv[++i];
+        else if (i + 1 < argc && std::strcmp(argv[i], "--repetitions") == 0) repetitions = std::atoi(argv[++i]);
+        else if (std::strcmp(argv[i], "--accuracy") == 0) accuracyRun = true;
+        else if (std::strcmp(argv[i], "--quick") == 0) quick = true;
         else benchmarkArguments.push_back(argv[i]);
+    }
+    // --report FILE: the report of an earlier --accuracy run marked and
+    // written again (after a change to the report's tables or front).
+    if (!report.empty()) {
+        try {
+            std::string text;
+            if (std::string why = readRegularFile(report, text); !why.empty()) throw std::runtime_error(why);
+            nlohmann::json earlier = nlohmann::json::parse(text);
+            accuracy::markParetoFront(earlier);
+            earlier["checks"] = accuracy::checkAccuracyReport(earlier);
+            accuracy::writeAccuracyReport(earlier, out);
+            std::printf("%s", accuracy::accuracyMarkdown(earlier).c_str());
+            return 0;
+        } catch (const std::exception& error) {
+            std::fprintf(stderr, "hdhair-bench: error: %s: %s\n", report.c_str(), error.what());
+            return 1;
+        }
+    }
+    if (quick && !accuracyRun) {
+        std::fprintf(stderr, "hdhair-bench: error: --quick needs --accuracy\n");
+        return 2;
+    }
+    if (quick) repetitions = 1;
+    if (repetitions < 1) {
+        std::fprintf(stderr, "hdhair-bench: error: --repetitions must be at least 1\n");
+        return 2;
+    }
+    // Accuracy frames are many (about 50 configurations a stage, the
+    // reference 16 samples a pixel): small images keep the matrix to minutes.
+    if (imageWidth == 0) imageWidth = !accuracyRun ? 512 : quick ? 64 : 128;
+    if (imageWidth < 1 || imageWidth > 16384) {
+        std::fprintf(stderr, "hdhair-bench: error: --imageWidth must be between 1 and 16384\n");
+        return 2;
     }
     if (stagePaths.empty()) stagePaths.push_back(HDHAIR_SOURCE_DIR "/examples/dense_clump.usda");
     int benchmarkArgc = int(benchmarkArguments.size());
@@ -480,6 +530,28 @@ int main(int argc, char** argv) {
     } catch (const std::exception& error) {
         std::fprintf(stderr, "hdhair-bench: error: %s\n", error.what());
         return 1;
+    }
+    if (accuracyRun) {
+        try {
+            std::vector<accuracy::AccuracyStage> accuracyStages;
+            for (const auto& stage : stages)
+                accuracyStages.push_back({stage->name, stage->path, &stage->scene, stage->camera});
+            nlohmann::json results =
+                accuracy::runAccuracyBench(*renderer(), accuracyStages, {quick, repetitions, command});
+            accuracy::markParetoFront(results);
+            const std::vector<std::string> problems = accuracy::checkAccuracyReport(results);
+            results["checks"] = problems;
+            accuracy::writeAccuracyReport(results, out);
+            std::printf("%s", accuracy::accuracyMarkdown(results).c_str());
+            for (const std::string& problem : problems) std::printf("hdhair-bench: check failed: %s\n", problem.c_str());
+            std::printf("hdhair-bench: accuracy matrix in %.0f s, %zu checks failed; wrote %s/accuracy.{json,csv,md}\n",
+                        results["seconds"].get<double>(), problems.size(), out.c_str());
+            renderer().reset();
+            return quick && !problems.empty() ? 1 : 0;
+        } catch (const std::exception& error) {
+            std::fprintf(stderr, "hdhair-bench: error: %s\n", error.what());
+            return 1;
+        }
     }
 
     std::vector<Configuration> complexities = complexityConfigurations();

@@ -29,6 +29,7 @@
 #include "hdHair/render/CameraView.h"
 #include "hdHair/render/EmptyFrame.h"
 #include "hdHair/render/Renderer.h"
+#include "hdHair/render/SettingOrigins.h"
 #include "hdHair/scene/Scene.h"
 #include "hdHair/scene/SceneValidation.h"
 #include "hdHair/tools/FrameSpec.h"
@@ -53,6 +54,7 @@ constexpr const char* kDefaultReader = "embedded";
 
 struct Options {
     std::string usdFile, outputPath, camera, frames, complexity = "low", gl, statsFile, purposes = "proxy";
+    std::string quality;  // --quality: the quality setting, before any --setting
     std::string reader = kDefaultReader;
     int imageWidth = 960;
     bool defaultTime = false, verbose = false, explain = false;
@@ -151,15 +153,6 @@ void writeFrameImage(Image linear, const Image* gpuDisplayed, const DisplayTrans
     frameStats["color"] = colorStats;
 }
 
-void writeTextAtomically(const std::string& path, const std::string& text) {
-    writeFileAtomically(path, [&](const std::string& temporary) {
-        std::ofstream out(temporary);
-        out << text;
-        out.close();
-        return out.good() ? std::string() : std::string("the file system refused the bytes");
-    });
-}
-
 // Where the images and --stats go must be writable before anything is
 // rendered: a farm job should fail in its first second, not after its frames.
 void checkOutputTargets(const Options& options) {
@@ -200,16 +193,25 @@ usda::SceneReadOptions purposesFrom(const std::string& purposes) {
 }
 
 // The --setting assignments, after passTimings=true when the run reports
-// what it did (--verbose, --explain, --stats): an explicit setting wins.
+// what it did (--verbose, --explain, --stats) and --quality's preset: an
+// explicit setting wins.
 // Then interactiveBudgetMs=0 whatever was asked: a recorder writes full
 // frames only, and through OpenUSD a preview would only delay them (run()
 // warns when --setting asks for previews).
 std::vector<std::string> settingAssignments(const Options& options) {
     std::vector<std::string> assignments;
     if (options.verbose || options.explain || !options.statsFile.empty()) assignments.push_back("passTimings=true");
+    if (!options.quality.empty()) assignments.push_back("quality=" + options.quality);
     assignments.insert(assignments.end(), options.settings.begin(), options.settings.end());
     assignments.push_back("interactiveBudgetMs=0");
     return assignments;
+}
+
+// --explain: which of the --setting values, the complexity and the quality
+// preset chose each setting.
+void printSettingOrigins(const RenderSettings& settings) {
+    std::printf("hdhair-record: settings (what chose each; the rest are defaults):\n%s",
+                describeSettingOrigins(settings).c_str());
 }
 
 // The OpenUSD path: UsdStage, UsdImagingGL and the hdHair plugin, as
@@ -235,8 +237,7 @@ int runThroughUsdImaging(const Options& options, const usda::SceneReadOptions& p
         request.renderPurpose = purposes.renderPurpose;
         request.proxyPurpose = purposes.proxyPurpose;
         request.guidePurpose = purposes.guidePurpose;
-        RenderSettings settings;
-        for (const std::string& assignment : request.settings) settings.setFromAssignment(assignment);
+        const RenderSettings settings = RenderSettings::fromAssignments(complexity, request.settings);
         request.framing = settings.getToken("framing");
         request.pluginPath = hydraPluginResources();
         Clock::time_point start = Clock::now();
@@ -262,6 +263,7 @@ int runThroughUsdImaging(const Options& options, const usda::SceneReadOptions& p
                         writeDiagnostics, writing, frameStats);
         for (const PassTiming& pass : writing)
             frameStats["passes"].push_back({{"name", pass.name}, {"milliseconds", pass.milliseconds}});
+        if (options.explain) printSettingOrigins(settings);
         if (options.explain && !result.plan.empty())
             std::printf("hdhair-record: plan (%s):\n%s", describeTime(time).c_str(), result.plan.c_str());
         if (options.verbose && frameStats.contains("gl"))
@@ -288,7 +290,7 @@ int runThroughUsdImaging(const Options& options, const usda::SceneReadOptions& p
         nlohmann::json stats;
         stats["stage"] = options.usdFile;
         stats["frames"] = allStats;
-        writeTextAtomically(options.statsFile, stats.dump(2) + "\n");
+        writeTextFileAtomically(options.statsFile, stats.dump(2) + "\n");
     }
     return 0;
 #else
@@ -305,6 +307,9 @@ int run(const Options& options) {
     Complexity complexity;
     if (!parseComplexity(options.complexity, &complexity))
         throw std::invalid_argument("--complexity must be low, medium, high or veryhigh");
+    if (Quality quality; !options.quality.empty() && !parseQuality(options.quality, &quality))
+        throw std::invalid_argument("--quality must be preview, default, high or reference, not '" + options.quality +
+                                    "'");
     RenderSettings settings = RenderSettings::fromAssignments(complexity, settingAssignments(options));
     const RenderSettings asked = RenderSettings::fromAssignments(complexity, options.settings);
     if (asked.getInt("interactiveBudgetMs") != 0 && asked.isExplicitlySet("interactiveBudgetMs"))
@@ -398,6 +403,7 @@ int run(const Options& options) {
         writeFrameImage(std::move(result.color), gpuDisplay ? &result.display : nullptr, display, space, outputPath,
                         options.exrFloat32, diagnostics, result.stats.passes, frameColor);
 
+        if (options.explain) printSettingOrigins(settings);
         if (options.explain)
             std::printf("hdhair-record: plan (%s):\n%s", describeTime(time).c_str(),
                         result.plan.describe().c_str());
@@ -430,7 +436,7 @@ int run(const Options& options) {
         stats["warnings"] = nlohmann::json::array();
         for (const Diagnostic& warning : diagnostics.warnings())
             stats["warnings"].push_back({{"where", warning.where}, {"message", warning.message}});
-        writeTextAtomically(options.statsFile, stats.dump(2) + "\n");
+        writeTextFileAtomically(options.statsFile, stats.dump(2) + "\n");
     }
     return 0;
 }
@@ -459,6 +465,9 @@ int main(int argc, char** argv) {
         ->excludes(frames);
     app.add_option("--complexity,-c", options.complexity, "Tessellation density: low, medium, high, veryhigh")
         ->capture_default_str();
+    app.add_option("--quality,-q", options.quality,
+                   "Quality preset: preview, default, high or reference (README, Quality presets); --setting and "
+                   "a complexity above low win over it");
     app.add_option("--setting,-s", options.settings,
                    "A renderer setting NAME=VALUE (repeatable); --help-settings lists them");
     app.add_option("--purposes", options.purposes,

@@ -336,6 +336,40 @@ TEST_F(HdhairRecord, ExplainPrintsThePlanAndVerbosePrintsPassTimes) {
     EXPECT_NE(run.output.find("readback"), std::string::npos) << run.output;
 }
 
+// --quality picks a preset, --setting wins over it, --explain says which
+// chose each setting and --stats keeps it; a preset with supersampling still
+// writes an image of the asked width.
+TEST_F(HdhairRecord, QualityPresetIsExplainedAndExplicitSettingsWin) {
+    RecordRun run = record("--quality high --setting sortBins=64 --explain --imageWidth 64 --stats " +
+                           file("stats.json") + " " + example("straight_strands.usda") + " " + file("o.png"));
+    ASSERT_EQ(run.exitCode, 0) << run.output;
+    EXPECT_NE(run.output.find("  quality=high, complexity low\n"), std::string::npos) << run.output;
+    EXPECT_NE(run.output.find("  sortBins               64           explicit (wins over quality=high's 1024)\n"),
+              std::string::npos)
+        << run.output;
+    EXPECT_NE(run.output.find("  supersampling          2            quality=high\n"), std::string::npos) << run.output;
+    EXPECT_NE(run.output.find("supersampleResolve"), std::string::npos) << run.output;
+    const nlohmann::json frame = nlohmann::json::parse(std::ifstream(file("stats.json")))["frames"][0];
+    EXPECT_EQ(frame["settings"]["quality"], "high");
+    EXPECT_EQ(frame["settings"]["sortBins"], 64);
+    EXPECT_EQ(frame["settings"]["shadowLayers"], 7);
+    EXPECT_EQ(frame["supersampling"], 2);
+    EXPECT_EQ(frame["image"]["width"], 64);
+    EXPECT_EQ(frame["settingOrigins"]["shadowLayers"]["source"], "quality=high");
+    EXPECT_EQ(frame["settingOrigins"]["sortBins"]["overriddenPreset"], "1024");
+    const Image written = readImage(file("o.png"));
+    EXPECT_EQ(written.width, 64);
+
+    RecordRun bad = record("--quality ultra " + example("straight_strands.usda") + " " + file("o.png"));
+    EXPECT_EQ(bad.exitCode, 1);
+    EXPECT_EQ(bad.output, "hdhair-record: error: --quality must be preview, default, high or reference, not 'ultra'\n");
+    RecordRun gpu = record("--quality high --displayTransformOn gpu " + example("straight_strands.usda") + " " +
+                           file("o.png"));
+    EXPECT_EQ(gpu.exitCode, 1);
+    EXPECT_EQ(gpu.output, "hdhair-record: error: supersampling=2 needs the display transform on the CPU "
+                          "(--displayTransformOn cpu): it must follow the box filter\n");
+}
+
 TEST_F(HdhairRecord, MissingStageIsAOneLineError) {
     RecordRun run = record(file("missing.usda") + " " + file("out.png"));
     EXPECT_EQ(run.exitCode, 1);
@@ -448,6 +482,21 @@ TEST_F(HdhairRecord, UsdReaderReportsThePluginsPassesAndPlan) {
     for (const auto& pass : frame["passes"])
         strandsTimed = strandsTimed || (pass["name"] == "strands" && pass["milliseconds"] > 0.0);
     EXPECT_TRUE(strandsTimed) << frame.dump(2);
+}
+
+// The preset reaches the Hydra plugin as a render setting: its frame has the
+// preset's settings, names the preset as their origin, and is supersampled.
+TEST_F(HdhairRecord, UsdReaderRendersTheQualityPresetThroughThePlugin) {
+    RecordRun run = record("--reader usd --quality high --explain --camera /World/main_cam --imageWidth 64 --stats " +
+                           file("stats.json") + " " + example("straight_strands.usda") + " " + file("out.png"));
+    ASSERT_EQ(run.exitCode, 0) << run.output;
+    EXPECT_NE(run.output.find("  supersampling          2            quality=high\n"), std::string::npos) << run.output;
+    const nlohmann::json frame = nlohmann::json::parse(std::ifstream(file("stats.json")))["frames"][0];
+    EXPECT_EQ(frame["settings"]["quality"], "high");
+    EXPECT_EQ(frame["settings"]["sortBins"], 1024);
+    EXPECT_EQ(frame["settingOrigins"]["sortBins"]["source"], "quality=high");
+    EXPECT_EQ(frame["supersampling"], 2);
+    EXPECT_EQ(frame["image"]["width"], 64);
 }
 #else
 TEST_F(HdhairRecord, UsdReaderWithoutOpenUsdIsAOneLineError) {

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include "pxr/base/gf/rect2i.h"
 #include "pxr/base/plug/registry.h"
@@ -93,6 +94,7 @@ struct Frame {
     std::vector<float> depth;  // bottom row first, like every AOV below
     std::vector<int> primIds, instanceIds, elementIds;
     VtDictionary syncCounts;
+    std::string frameStats;  // the plugin's last full frame (RenderStats.h), JSON
 
     float alpha(int x, int y) const { return color[4 * size_t(y * width + x) + 3]; }
     int instanceId(int x, int y) const { return instanceIds[size_t(y * width + x)]; }
@@ -157,6 +159,7 @@ public:
         frame.elementIds = readIds(_engine.GetAovRenderBuffer(HdAovTokens->elementId));
         VtDictionary stats = _engine.GetRenderStats();
         if (stats.count("hdHairSyncCounts")) frame.syncCounts = stats["hdHairSyncCounts"].Get<VtDictionary>();
+        if (stats.count("hdHairFrameStats")) frame.frameStats = stats["hdHairFrameStats"].Get<std::string>();
         return frame;
     }
 
@@ -228,6 +231,42 @@ TEST_F(HdHairPlugin, LoadsThroughTheRegistryWithoutBecomingTheDefault) {
         found = found || d.key == TfToken("maxSegmentsPerSpan");
     EXPECT_TRUE(found);
     plugin->DeleteRenderDelegate(delegate);
+}
+
+// quality is a Hydra render setting like every other (usdview lists it), its
+// preset reaches the engine, and usdview's complexity above low wins over the
+// preset's tessellation while low (every host's default) does not.
+TEST_F(HdHairPlugin, TheQualityPresetIsARenderSettingAndAComplexityAboveLowWinsOverIt) {
+    HdRendererPluginHandle plugin = HdRendererPluginRegistry::GetInstance().GetOrCreateRendererPlugin(kPluginId);
+    ASSERT_TRUE(plugin);
+    HdRenderDelegate* delegate = plugin->CreateRenderDelegate();
+    std::set<std::string> keys;
+    for (HdRenderSettingDescriptor const& d : delegate->GetRenderSettingDescriptors()) keys.insert(d.key.GetString());
+    EXPECT_EQ(keys.count("quality"), 1u);
+    EXPECT_EQ(keys.count("supersampling"), 1u);
+    EXPECT_EQ(keys.count("exactOverflow"), 1u);
+    plugin->DeleteRenderDelegate(delegate);
+
+    UsdStageRefPtr stage = cameraAndLightStage();
+    defineStrand(stage, "/Strand", GfVec3f(-1.5f, 0.0f, 0.0f), GfVec3f(1.5f, 0.2f, 0.0f), 0.05f);
+    Recorder recorder(stage);
+    recorder.setSetting("quality", "reference");
+    const Frame low = recorder.render();
+    EXPECT_EQ(low.width, 64);
+    const nlohmann::json lowStats = nlohmann::json::parse(low.frameStats);
+    EXPECT_EQ(lowStats["settings"]["quality"], "reference");
+    EXPECT_EQ(lowStats["settings"]["transparency"], "exact");  // (an opaque, wide strand takes the opaque path)
+    EXPECT_EQ(lowStats["supersampling"], 4);
+    EXPECT_EQ(lowStats["image"]["width"], 64);
+    EXPECT_DOUBLE_EQ(lowStats["settings"]["tessellationTolerance"].get<double>(), 0.001);
+    EXPECT_EQ(lowStats["settingOrigins"]["tessellationTolerance"]["source"], "quality=reference");
+    EXPECT_GT(coverage(low), 0.0);
+    recorder.setComplexity(1.2f);  // high
+    const nlohmann::json highStats = nlohmann::json::parse(recorder.render().frameStats);
+    EXPECT_DOUBLE_EQ(highStats["settings"]["tessellationTolerance"].get<double>(), 0.03);
+    EXPECT_EQ(highStats["settingOrigins"]["tessellationTolerance"]["source"], "complexity high");
+    EXPECT_EQ(highStats["settingOrigins"]["tessellationTolerance"]["overriddenPreset"], "0.001");
+    EXPECT_EQ(highStats["settingOrigins"]["transparency"]["source"], "quality=reference");
 }
 
 TEST_F(HdHairPlugin, EveryAovHoldsTheNearestQualifyingStrandInEveryTransparencyMode) {

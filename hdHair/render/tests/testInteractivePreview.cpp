@@ -33,6 +33,14 @@ TEST(InteractivePreview, SettingsAreCoarseWithFewBinsAndNoShadows) {
     EXPECT_EQ(preview.getInt("msaaSamples"), 0);
     EXPECT_EQ(preview.getToken("marschner:azimuthal"), "tables");
     EXPECT_FALSE(preview.getBool("passTimings"));
+    // A preview of the reference preset is as cheap: one sample a pixel,
+    // binSorted, tables, no shadows, whatever the preset asked for.
+    const RenderSettings reference = previewSettings(RenderSettings::fromAssignments(Complexity::Low, {"quality=reference"}));
+    EXPECT_EQ(reference.getInt("supersampling"), 1);
+    EXPECT_EQ(reference.getToken("transparency"), "binSorted");
+    EXPECT_EQ(reference.getToken("shadowMode"), "off");
+    EXPECT_EQ(reference.getToken("marschner:azimuthal"), "tables");
+    EXPECT_EQ(reference.getFloat("tessellationTolerance"), 1.0);
     // What it looks like stays: shading, the space, the mesh refinement.
     EXPECT_EQ(preview.getFloat("kajiyaKay:specular"), 0.5);
     EXPECT_EQ(preview.getInt("meshRefineLevel"), full.getInt("meshRefineLevel"));

@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include "hdHair/render/RenderSettings.h"
+#include "hdHair/render/SettingOrigins.h"
 
 using namespace hdhair;
 
@@ -62,11 +63,143 @@ TEST(RenderSettings, BadAssignmentsGiveOneLineReasons) {
     EXPECT_EQ(errorOf(settings, "kajiyaKay:specular=shiny"), "setting 'kajiyaKay:specular' expects a number, got 'shiny'");
     EXPECT_EQ(errorOf(settings, "cameraLight=maybe"), "setting 'cameraLight' expects one of auto, on, off, got 'maybe'");
     EXPECT_EQ(errorOf(settings, "noEquals"), "setting 'noEquals' is not of the form NAME=VALUE");
-    EXPECT_EQ(errorOf(settings, "bogus=1").rfind("unknown setting 'bogus' (known settings: tessellation,", 0), 0u)
+    EXPECT_EQ(errorOf(settings, "bogus=1").rfind("unknown setting 'bogus' (known settings: quality, tessellation,", 0), 0u)
         << errorOf(settings, "bogus=1");
     EXPECT_EQ(errorOf(settings, "pixelsPerSegment=nan"), "setting 'pixelsPerSegment' expects a number, got 'nan'");
     EXPECT_EQ(errorOf(settings, "msaaSamples=3"), "setting 'msaaSamples' expects one of 0, 2, 4, 8, got '3'");
     EXPECT_EQ(errorOf(settings, "msaaSamples=4"), "");
     EXPECT_EQ(errorOf(settings, "transparency=sorted"),
               "setting 'transparency' expects one of binSorted, exact, unsorted, opaque, got 'sorted'");
+}
+
+// quality=default must be today's defaults exactly, at every complexity: the
+// baselines and every user who never names a preset depend on it.
+TEST(QualityPresets, DefaultIsTheDefaultsExactly) {
+    EXPECT_TRUE(presetSettings(Quality::Default).empty());
+    for (Complexity complexity : {Complexity::Low, Complexity::Medium, Complexity::High, Complexity::VeryHigh}) {
+        const RenderSettings none = RenderSettings::fromAssignments(complexity, {});
+        const RenderSettings named = RenderSettings::fromAssignments(complexity, {"quality=default"});
+        nlohmann::json a = none.toJson(), b = named.toJson();
+        a.erase("quality");
+        b.erase("quality");
+        EXPECT_EQ(a, b) << toString(complexity);
+    }
+    EXPECT_EQ(RenderSettings().getToken("quality"), "default");
+    EXPECT_EQ(RenderSettings().getInt("supersampling"), 1);
+    EXPECT_EQ(RenderSettings().getToken("exactOverflow"), "fallBack");
+}
+
+// Every preset names real settings with valid values, and each one other
+// than default changes something.
+TEST(QualityPresets, EveryPresetIsValidSettings) {
+    for (Quality quality : {Quality::Preview, Quality::High, Quality::Reference}) {
+        RenderSettings settings;
+        for (const auto& [name, value] : presetSettings(quality)) {
+            EXPECT_NO_THROW(settings.set(name, value)) << toString(quality) << " " << name << "=" << value;
+            EXPECT_NE(name, "quality");
+        }
+        const RenderSettings preset = RenderSettings::fromAssignments(Complexity::Low, {std::string("quality=") + toString(quality)});
+        for (const auto& [name, value] : presetSettings(quality)) {
+            EXPECT_EQ(preset.getToken(name), value) << toString(quality) << " " << name;
+            EXPECT_EQ(preset.origin(name).source, SettingSource::Preset) << name;
+        }
+        EXPECT_NE(preset.toJson(), RenderSettings().toJson()) << toString(quality);
+    }
+}
+
+// reference is the most exact hdHair can be: exact transparency that fails
+// instead of falling back, reference shadows, analytic Marschner, the
+// tightest tolerance the setting allows, the most segments a span may get,
+// and supersampling.
+TEST(QualityPresets, ReferenceIsTheMostExactSettings) {
+    const RenderSettings reference = RenderSettings::fromAssignments(Complexity::Low, {"quality=reference"});
+    EXPECT_EQ(reference.getToken("transparency"), "exact");
+    EXPECT_EQ(reference.getToken("exactOverflow"), "fail");
+    EXPECT_EQ(reference.getToken("shadowMode"), "reference");
+    EXPECT_EQ(reference.getToken("marschner:azimuthal"), "analytic");
+    EXPECT_EQ(reference.getToken("tessellation"), "screenError");
+    EXPECT_DOUBLE_EQ(reference.getFloat("tessellationTolerance"), RenderSettings::find("tessellationTolerance")->minimum);
+    EXPECT_EQ(reference.getInt("maxSegmentsPerSpan"), int(RenderSettings::find("maxSegmentsPerSpan")->maximum));
+    EXPECT_GT(reference.getInt("supersampling"), 1);
+    // Each preset is at least as exact as the one below it where they share a setting.
+    const RenderSettings preview = RenderSettings::fromAssignments(Complexity::Low, {"quality=preview"});
+    const RenderSettings high = RenderSettings::fromAssignments(Complexity::Low, {"quality=high"});
+    const RenderSettings defaults;
+    for (const char* name : {"tessellationTolerance"}) {
+        EXPECT_GT(preview.getFloat(name), defaults.getFloat(name));
+        EXPECT_LT(high.getFloat(name), defaults.getFloat(name));
+        EXPECT_LT(reference.getFloat(name), high.getFloat(name));
+    }
+    for (const char* name : {"maxSegmentsPerSpan", "supersampling"}) {
+        EXPECT_LE(preview.getInt(name), defaults.getInt(name)) << name;
+        EXPECT_GE(high.getInt(name), defaults.getInt(name)) << name;
+        EXPECT_GE(reference.getInt(name), high.getInt(name)) << name;
+    }
+    EXPECT_LT(preview.getInt("sortBins"), defaults.getInt("sortBins"));
+    EXPECT_GT(high.getInt("sortBins"), defaults.getInt("sortBins"));
+}
+
+// An explicit setting wins over the preset wherever it comes from, and a
+// complexity above low wins over it for the settings complexity scales;
+// low, every host's default, does not.
+TEST(QualityPresets, ExplicitSettingsAndAComplexityAboveLowWin) {
+    RenderSettings settings = RenderSettings::fromAssignments(Complexity::Low, {"sortBins=64", "quality=high"});
+    EXPECT_EQ(settings.getInt("sortBins"), 64);
+    EXPECT_EQ(settings.origin("sortBins").source, SettingSource::Explicit);
+    EXPECT_EQ(settings.origin("sortBins").overriddenPreset, "1024");
+    EXPECT_EQ(settings.getInt("shadowLayers"), 7);
+    EXPECT_DOUBLE_EQ(settings.getFloat("tessellationTolerance"), 0.03);
+    EXPECT_EQ(settings.origin("tessellationTolerance").source, SettingSource::Preset);
+
+    settings.setComplexity(Complexity::VeryHigh);
+    EXPECT_DOUBLE_EQ(settings.getFloat("tessellationTolerance"), 0.015);
+    EXPECT_EQ(settings.getInt("maxSegmentsPerSpan"), 64);
+    EXPECT_EQ(settings.origin("tessellationTolerance").source, SettingSource::Complexity);
+    EXPECT_EQ(settings.origin("tessellationTolerance").overriddenPreset, "0.03");
+    EXPECT_EQ(settings.getInt("shadowLayers"), 7);  // complexity does not scale it: the preset's
+
+    settings.setComplexity(Complexity::Medium);
+    EXPECT_DOUBLE_EQ(settings.getFloat("tessellationTolerance"), 0.06);  // coarser than the preset, but chosen
+
+    // Settings no preset touches keep their complexity values at low.
+    const RenderSettings low = RenderSettings::fromAssignments(Complexity::Low, {"quality=reference"});
+    EXPECT_EQ(low.getInt("meshRefineLevel"), 0);
+    EXPECT_EQ(low.origin("meshRefineLevel").source, SettingSource::Complexity);
+    EXPECT_EQ(low.origin("kajiyaKay:specular").source, SettingSource::Default);
+    EXPECT_EQ(low.origin("quality").source, SettingSource::Explicit);
+}
+
+TEST(QualityPresets, UnknownPresetsGiveOneLineReasons) {
+    RenderSettings settings;
+    EXPECT_EQ(errorOf(settings, "quality=ultra"),
+              "setting 'quality' expects one of preview, default, high, reference, got 'ultra'");
+    EXPECT_EQ(errorOf(settings, "supersampling=9"), "setting 'supersampling' must be in [1, 8], got 9");
+    EXPECT_EQ(errorOf(settings, "exactOverflow=ignore"),
+              "setting 'exactOverflow' expects one of fallBack, fail, got 'ignore'");
+    Quality quality;
+    EXPECT_FALSE(parseQuality("Reference", &quality));
+    EXPECT_TRUE(parseQuality("reference", &quality));
+    EXPECT_EQ(quality, Quality::Reference);
+}
+
+// --explain's lines: every setting a preset, an explicit value or a complexity
+// above low chose, with what chose it and the preset value that lost.
+TEST(SettingOrigins, ExplainNamesWhatChoseEachSetting) {
+    RenderSettings settings = RenderSettings::fromAssignments(Complexity::High, {"quality=reference", "sortBins=64"});
+    const std::string text = describeSettingOrigins(settings);
+    EXPECT_NE(text.find("quality=reference, complexity high"), std::string::npos) << text;
+    EXPECT_NE(text.find("transparency           exact        quality=reference"), std::string::npos) << text;
+    EXPECT_NE(text.find("sortBins               64           explicit\n"), std::string::npos) << text;
+    EXPECT_NE(text.find("tessellationTolerance  0.03         complexity high (wins over quality=reference's 0.001)"),
+              std::string::npos)
+        << text;
+    EXPECT_EQ(text.find("kajiyaKay:specular"), std::string::npos) << text;  // a default
+    const nlohmann::json json = settingOriginsJson(settings);
+    EXPECT_EQ(json["supersampling"]["source"], "quality=reference");
+    EXPECT_EQ(json["kajiyaKay:specular"]["source"], "default");
+    EXPECT_EQ(json["tessellationTolerance"]["overriddenPreset"], "0.001");
+    EXPECT_EQ(json.size(), RenderSettings::descriptors().size());
+    // With no preset and complexity low, nothing but the header is printed.
+    const std::string plain = describeSettingOrigins(RenderSettings());
+    EXPECT_EQ(plain, "  quality=default, complexity low\n");
 }

@@ -9,9 +9,11 @@
 #include "hdHair/base/Diagnostics.h"
 #include "hdHair/gl/SoftwareRenderer.h"
 #include "hdHair/gl/tests/MachineGpu.h"
+#include "hdHair/image/BoxDownsample.h"
 #include "hdHair/image/DisplayTransform.h"
 #include "hdHair/image/ImageWriter.h"
 #include "hdHair/render/Renderer.h"
+#include "hdHair/render/SupersampleResolve.h"
 #include "hdHair/scene/Scene.h"
 
 using namespace hdhair;
@@ -408,6 +410,162 @@ TEST(Renderer, GpuDisplayTransformMatchesTheCpuOne) {
     RenderResult plain = renderer.render(scene, camera, settings, diagnostics);
     EXPECT_FALSE(plain.plan.isEnabled("displayTransform"));
     EXPECT_TRUE(plain.display.pixels.empty());
+}
+
+// supersampling=N is the frame rendered N times as wide and high and
+// box-filtered (bit for bit what a caller doing that by hand gets), at the
+// output's size, and it changes the picture: thin strands' edges are
+// antialiased rather than snapped to pixels.
+TEST(Renderer, SupersamplingBoxFiltersAFrameNTimesAsLarge) {
+    Scene scene;
+    // 0.07 units is 1.4 px at 48 px: strand edges fall inside pixels.
+    CurvesPrim strands = horizontalStrands("/a", 3, {-0.53f, 0.11f, 0.62f});
+    strands.primvars["widths"].values = {0.07f};
+    scene.setCurves(strands);
+    Renderer renderer(gl::defaultGlBackend());
+    Diagnostics diagnostics;
+    RenderSettings plain;
+    plain.set("shadingModel", "flat");
+    RenderSettings supersampled = plain;
+    supersampled.set("supersampling", "2");
+    const CameraView camera = squareCamera(48);
+    CameraView fine = camera;
+    fine.imageWidth = fine.imageHeight = 96;
+
+    const RenderResult resolved = renderer.render(scene, camera, supersampled, diagnostics);
+    const RenderResult byHand = renderer.render(scene, fine, plain, diagnostics);
+    const RenderResult single = renderer.render(scene, camera, plain, diagnostics);
+    EXPECT_EQ(resolved.color.width, 48);
+    EXPECT_EQ(resolved.color.height, 48);
+    EXPECT_EQ(resolved.color.pixels, boxDownsample(byHand.color, 2).pixels);
+    EXPECT_NE(resolved.color.pixels, single.color.pixels);
+    EXPECT_EQ(resolved.stats.imageWidth, 48);
+    EXPECT_EQ(resolved.stats.supersampling, 2);
+    EXPECT_EQ(resolved.stats.toJson()["supersampling"], 2);
+    EXPECT_EQ(resolved.stats.settingOrigins["supersampling"]["source"], "explicit");
+    EXPECT_TRUE(diagnostics.warnings().empty());
+}
+
+// Depth and ids of a supersampled frame are those of each pixel's nearest
+// sample (SupersampleResolve.h): real values some fragment had, the same
+// fragment for depth and ids, and a strand covering any sample of a pixel
+// names it.
+TEST(Renderer, SupersampledDepthAndIdsAreThoseOfThePixelsNearestSample) {
+    Scene scene;
+    CurvesPrim near = horizontalStrands("/near", 5, {0.3f});
+    for (glm::vec3& point : near.points) point.z = 0.5f;  // nearer the camera at z = 5
+    near.primvars["widths"].values = {0.03f};               // 0.6 px at 48 px: under half a pixel
+    scene.setCurves(near);
+    scene.setCurves(horizontalStrands("/far", 8, {0.28f}));  // wide, behind it
+    Renderer renderer(gl::defaultGlBackend());
+    Diagnostics diagnostics;
+    RenderSettings settings;
+    settings.set("transparency", "opaque");
+    settings.set("supersampling", "4");
+    const CameraView camera = squareCamera(48);
+    RenderOutputs outputs;
+    outputs.ids = true;
+    const RenderResult result = renderer.render(scene, camera, settings, diagnostics, outputs);
+    settings.set("supersampling", "1");
+    const RenderResult fine = renderer.render(scene, supersampledCamera(camera, 4), settings, diagnostics, outputs);
+    ASSERT_EQ(result.depth.width, 48);
+    ASSERT_EQ(result.primIds.size(), size_t(48 * 48));
+    int nearPixels = 0;
+    for (int y = 0; y < 48; ++y)
+        for (int x = 0; x < 48; ++x) {
+            float nearest = 1.0f;
+            int32_t prim = -1;
+            for (int sy = 4 * y; sy < 4 * y + 4; ++sy)
+                for (int sx = 4 * x; sx < 4 * x + 4; ++sx)
+                    if (fine.depth.at(sx, sy, 0) < nearest) {
+                        nearest = fine.depth.at(sx, sy, 0);
+                        prim = fine.primIds[size_t(sy) * 192 + size_t(sx)];
+                    }
+            ASSERT_EQ(result.depth.at(x, y, 0), nearest) << x << "," << y;
+            ASSERT_EQ(result.primIds[size_t(y) * 48 + size_t(x)], prim) << x << "," << y;
+            nearPixels += prim == 5 ? 1 : 0;
+        }
+    // The thin near strand is named along its whole row though it covers
+    // under half of each pixel, in front of the far one.
+    const int row = pixelRow(camera, 0.3f);
+    EXPECT_EQ(result.primIds[size_t(row) * 48 + 24], 5);
+    EXPECT_GE(nearPixels, 36);
+    // Without depth asked for, there is none, and the ids are the same.
+    outputs.depth = false;
+    settings.set("supersampling", "4");
+    const RenderResult noDepth = renderer.render(scene, camera, settings, diagnostics, outputs);
+    EXPECT_TRUE(noDepth.depth.pixels.empty());
+    EXPECT_EQ(noDepth.primIds, result.primIds);
+}
+
+TEST(Renderer, SupersamplingRefusesTheGpuDisplayTransformAndOversizedFrames) {
+    Scene scene;
+    scene.setCurves(horizontalStrands("/a", 1, {0.0f}));
+    Renderer renderer(gl::defaultGlBackend());
+    Diagnostics diagnostics;
+    RenderSettings settings;
+    settings.set("supersampling", "2");
+    const DisplayShader shader = DisplayTransform::create({}).shader();
+    RenderOutputs outputs;
+    outputs.gpuDisplay = &shader;
+    try {
+        renderer.render(scene, squareCamera(16), settings, diagnostics, outputs);
+        ADD_FAILURE() << "no error";
+    } catch (const std::invalid_argument& error) {
+        EXPECT_STREQ(error.what(), "supersampling=2 needs the display transform on the CPU (--displayTransformOn cpu): "
+                                   "it must follow the box filter");
+    }
+    settings.set("supersampling", "8");
+    try {
+        renderer.render(scene, squareCamera(4000), settings, diagnostics);
+        ADD_FAILURE() << "no error";
+    } catch (const std::invalid_argument& error) {
+        EXPECT_STREQ(error.what(), "supersampling=8 needs a 32000x32000 frame, larger than 16384 pixels across");
+    }
+}
+
+// exactOverflow=fail: a frame whose fragments do not fit exactMemoryMB fails
+// with the memory it needed instead of quietly becoming binSorted, and the
+// renderer draws the next frame as if it had not happened.
+TEST(Renderer, ExactTransparencyFailsInsteadOfFallingBackWhenAsked) {
+    Scene scene;
+    // 64 strands over one another, 0.3 opaque: about 1.1 million fragments
+    // at 512 px, over the 524,288 nodes of 16 MB.
+    CurvesPrim strands = horizontalStrands("/a", 1, std::vector<float>(64, 0.0f));
+    Primvar opacity;
+    opacity.name = "displayOpacity";
+    opacity.values = {0.3f};
+    strands.primvars["displayOpacity"] = opacity;
+    scene.setCurves(strands);
+    Renderer renderer(gl::defaultGlBackend());
+    Diagnostics diagnostics;
+    RenderSettings settings;
+    settings.set("transparency", "exact");
+    settings.set("exactMemoryMB", "16");
+    const CameraView camera = squareCamera(512);
+    renderer.render(scene, squareCamera(8), RenderSettings{}, diagnostics);  // the machine's warnings, if any
+    const size_t before = diagnostics.warningCount();
+    const RenderResult fellBack = renderer.render(scene, camera, settings, diagnostics);
+    EXPECT_FALSE(fellBack.stats.fallback.empty());
+    ASSERT_EQ(diagnostics.warningCount(), before + 1);
+    settings.set("exactOverflow", "fail");
+    try {
+        renderer.render(scene, camera, settings, diagnostics);
+        ADD_FAILURE() << "no error";
+    } catch (const std::runtime_error& error) {
+        const std::string what = error.what();
+        EXPECT_EQ(what.rfind("exact transparency needs ", 0), 0u) << what;
+        EXPECT_NE(what.find("more than exactMemoryMB=16 (exactOverflow=fail: raise exactMemoryMB or lower "
+                            "supersampling)"),
+                  std::string::npos)
+            << what;
+    }
+    EXPECT_EQ(diagnostics.warningCount(), before + 1);  // failing is not also a fallback warning
+    settings.set("exactOverflow", "fallBack");
+    EXPECT_EQ(renderer.render(scene, camera, settings, diagnostics).color.pixels, fellBack.color.pixels);
+    settings.set("exactMemoryMB", "512");
+    settings.set("exactOverflow", "fail");
+    EXPECT_TRUE(renderer.render(scene, camera, settings, diagnostics).stats.fallback.empty());
 }
 
 // The software-renderer warning (hdHair/gl/SoftwareRenderer.h) reaches the

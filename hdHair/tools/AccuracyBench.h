@@ -1,0 +1,53 @@
+#pragma once
+// hdhair-bench --accuracy: every approximation of the matrix
+// (AccuracyMatrix.h) and every quality preset rendered on each stage, timed
+// over repetitions (median and spread, per pass and per frame), and compared
+// with the stage's reference image (quality=reference over the
+// approximation's base settings):
+//  - RMSE and largest difference on pre-multiplied scene-linear RGBA over
+//    covered pixels (ImageComparison.h, the image tests' rule);
+//  - the share of covered pixels whose display code values (through the
+//    shipped OCIO config's default view) differ by more than
+//    kDisplayThreshold: what a viewer could see;
+//  - "own" RMSE and largest difference: the step rendered once more with the
+//    reference's samples per pixel, so the approximation's own error shows
+//    above the aliasing of one sample a pixel (the trend checks read it).
+// Every timed frame rebuilds its shadow maps (the lights are turned by a
+// microradian first, BenchLights.h), so shadow settings cost what they cost
+// after a light moved. The result is the report's JSON (AccuracyReport.h).
+
+#include <string>
+#include <vector>
+
+#include <nlohmann/json_fwd.hpp>
+
+#include "hdHair/render/CameraView.h"
+
+namespace hdhair {
+
+class Renderer;
+class Scene;
+
+namespace accuracy {
+
+// Two 8-bit steps: beyond what rounding moves, the least a viewer could see.
+constexpr double kDisplayThreshold = 2.0 / 255.0;
+
+struct AccuracyStage {
+    std::string name, path;
+    Scene* scene = nullptr;
+    CameraView camera;
+};
+
+struct AccuracyRun {
+    bool quick = false;
+    int repetitions = 3;   // timed frames per configuration, after one untimed frame
+    std::string command;   // as run, for the report
+};
+
+// Throws std::runtime_error when a reference cannot be rendered (exact
+// transparency over its memory: the reference never falls back).
+nlohmann::json runAccuracyBench(Renderer& renderer, std::vector<AccuracyStage>& stages, const AccuracyRun& run);
+
+}  // namespace accuracy
+}  // namespace hdhair

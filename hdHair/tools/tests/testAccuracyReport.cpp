@@ -1,0 +1,186 @@
+// The accuracy report's Pareto front and the checks CI runs on it
+// (AccuracyReport.h, AccuracyChecks.h), on reports made by hand: each check
+// must catch the defect it exists for.
+
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "hdHair/tools/AccuracyChecks.h"
+#include "hdHair/tools/AccuracyReport.h"
+
+using namespace hdhair::accuracy;
+
+namespace {
+
+nlohmann::json row(const std::string& approximation, const std::string& label, double milliseconds, double rmse,
+                   bool isDefault = false) {
+    return {{"stage", "s"},
+            {"approximation", approximation},
+            {"label", label},
+            {"settings", nlohmann::json::array({label})},
+            {"isDefault", isDefault},
+            {"frame", {{"medianMs", milliseconds}, {"spread", 0.05}}},
+            {"passes", {{"strands", {{"medianMs", milliseconds / 2}, {"spread", 0.1}}}}},
+            {"error",
+             {{"rmse", rmse}, {"max", 2 * rmse}, {"displayShare", 0.5}, {"coveredPixels", 100}, {"ownRmse", rmse},
+              {"ownMax", 2 * rmse}}},
+            {"path", "binSorted"}};
+}
+
+// One stage: sortBins falling 0.03 -> 0.02 -> 0.01, lightsPerPass flat, and
+// the presets (reference exact, default on sortBins' default).
+nlohmann::json goodReport() {
+    nlohmann::json report;
+    report["stages"] = {{{"name", "s"}, {"width", 64}, {"height", 64}}};
+    report["approximations"] = {
+        {{"name", "sortBins"}, {"trend", "falls"}, {"checkedBeyondDefault", true}, {"base", nlohmann::json::array()},
+         {"steps", {"1 bins", "256 bins", "1024 bins"}}},
+        {{"name", "lightsPerPass"}, {"trend", "flat"}, {"checkedBeyondDefault", true}, {"base", nlohmann::json::array()},
+         {"steps", {"1 lights", "4 lights"}}}};
+    report["rows"] = {row("sortBins", "1 bins", 10, 0.03), row("sortBins", "256 bins", 20, 0.02, true),
+                      row("sortBins", "1024 bins", 40, 0.01), row("lightsPerPass", "1 lights", 25, 0.02),
+                      row("lightsPerPass", "4 lights", 20, 0.0201, true), row("preset", "quality=preview", 9, 0.04),
+                      row("preset", "quality=default", 20, 0.02, true), row("preset", "quality=high", 60, 0.008),
+                      row("preset", "quality=reference", 400, 0.0)};
+    markParetoFront(report);
+    return report;
+}
+
+nlohmann::json& rowOf(nlohmann::json& report, const std::string& label) {
+    for (auto& r : report["rows"])
+        if (r["label"] == label) return r;
+    throw std::logic_error("no row " + label);
+}
+
+}  // namespace
+
+TEST(AccuracyReport, MarksTheParetoFrontAndHowFarEachPresetIsFromIt) {
+    nlohmann::json report = goodReport();
+    EXPECT_TRUE(rowOf(report, "1 bins")["pareto"]);
+    EXPECT_TRUE(rowOf(report, "1024 bins")["pareto"]);
+    EXPECT_FALSE(rowOf(report, "1 lights")["pareto"]);  // slower than 256 bins at the same error
+    EXPECT_TRUE(rowOf(report, "quality=preview")["pareto"]);
+    // high (60 ms, 0.008) is dominated by nothing: 1024 bins is faster but less exact.
+    EXPECT_TRUE(rowOf(report, "quality=high")["pareto"]);
+    ASSERT_EQ(report["presets"].size(), 4u);
+    for (const auto& preset : report["presets"]) {
+        EXPECT_TRUE(preset["nearFront"]) << preset.dump();
+        if (preset["preset"] == "quality=default") {
+            // 256 bins is the same point: equal rows do not dominate each other.
+            EXPECT_TRUE(preset["onFront"]);
+            EXPECT_DOUBLE_EQ(preset["timeGap"].get<double>(), 0.0);
+        }
+    }
+    // A default at 30 ms and RMSE 0.025: 256 bins (20 ms, 0.02) is 1/3
+    // faster and 1/5 more exact; on the front's staircase it would need to be
+    // within 10 % in one of them.
+    rowOf(report, "quality=default")["frame"]["medianMs"] = 30.0;
+    rowOf(report, "quality=default")["error"]["rmse"] = 0.025;
+    markParetoFront(report);
+    for (const auto& preset : report["presets"])
+        if (preset["preset"] == "quality=default") {
+            EXPECT_FALSE(preset["onFront"]);
+            EXPECT_NEAR(preset["timeGap"].get<double>(), 1.0 / 3.0, 1e-12);
+            EXPECT_NEAR(preset["errorGap"].get<double>(), 0.2, 1e-12);
+            EXPECT_FALSE(preset["nearFront"]);
+        }
+    // At the front's error (slower only) it lies on the staircase: 0 % in error.
+    rowOf(report, "quality=default")["error"]["rmse"] = 0.02;
+    markParetoFront(report);
+    for (const auto& preset : report["presets"])
+        if (preset["preset"] == "quality=default") {
+            EXPECT_TRUE(preset["nearFront"]);
+        }
+    rowOf(report, "quality=default")["error"]["rmse"] = 0.025;
+    markParetoFront(report);
+    const std::string markdown = accuracyMarkdown(report);
+    EXPECT_NE(markdown.find("### s (64x64)"), std::string::npos) << markdown;
+    EXPECT_NE(markdown.find("| sortBins | **256 bins** | 20.0 ms ± 2 % | 0.67x | 0.02000 | 0.0400 | 0.02000 | 50.00 % | * |"),
+              std::string::npos)
+        << markdown;
+    EXPECT_NE(markdown.find("| quality=default | no | 33 % | 20 % | no |"), std::string::npos) << markdown;
+}
+
+// A row over a base (say Marschner shading) is measured against another
+// reference: however good it looks, it is not on this front.
+TEST(AccuracyReport, RowsAgainstAnotherReferenceAreNotOnTheFront) {
+    nlohmann::json report = goodReport();
+    report["approximations"].push_back({{"name", "msaaSamples"}, {"trend", "falls"}, {"checkedBeyondDefault", true},
+                                        {"base", {"transparency=opaque"}}, {"steps", {"4 samples"}}});
+    report["rows"].push_back(row("msaaSamples", "4 samples", 1, 0.001));
+    markParetoFront(report);
+    EXPECT_FALSE(rowOf(report, "4 samples")["pareto"]);
+    EXPECT_TRUE(rowOf(report, "1 bins")["pareto"]);
+    EXPECT_TRUE(rowOf(report, "quality=preview")["pareto"]);
+}
+
+TEST(AccuracyChecks, AGoodReportPasses) {
+    const std::vector<std::string> problems = checkAccuracyReport(goodReport());
+    EXPECT_TRUE(problems.empty()) << problems.front();
+}
+
+TEST(AccuracyChecks, AnErrorThatRisesTowardTheReferenceFails) {
+    nlohmann::json report = goodReport();
+    rowOf(report, "1024 bins")["error"]["ownRmse"] = 0.0225;  // over 0.02 x 1.1 + 2e-4
+    const std::vector<std::string> problems = checkAccuracyReport(report);
+    ASSERT_EQ(problems.size(), 1u);
+    EXPECT_EQ(problems[0], "s: sortBins's error rises from 0.02000 at 256 bins to 0.02250 at 1024 bins, more than the "
+                           "noise allowance");
+    // Within the allowance it passes.
+    rowOf(report, "1024 bins")["error"]["ownRmse"] = 0.0219;
+    EXPECT_TRUE(checkAccuracyReport(report).empty());
+}
+
+TEST(AccuracyChecks, AFallingLadderThatDoesNotFallFails) {
+    nlohmann::json report = goodReport();
+    for (const char* label : {"1 bins", "256 bins", "1024 bins"}) rowOf(report, label)["error"]["ownRmse"] = 0.02;
+    const std::vector<std::string> problems = checkAccuracyReport(report);
+    ASSERT_EQ(problems.size(), 1u);
+    EXPECT_EQ(problems[0], "s: sortBins's error does not fall from 1 bins (0.02000) to 1024 bins (0.02000)");
+}
+
+TEST(AccuracyChecks, AFlatLadderThatMovesFails) {
+    nlohmann::json report = goodReport();
+    rowOf(report, "4 lights")["error"]["ownRmse"] = 0.03;
+    const std::vector<std::string> problems = checkAccuracyReport(report);
+    ASSERT_EQ(problems.size(), 1u);
+    EXPECT_EQ(problems[0].rfind("s: lightsPerPass should not change the error, but 4 lights gives RMSE 0.03000", 0), 0u)
+        << problems[0];
+}
+
+TEST(AccuracyChecks, ChecksStopAtTheDefaultWhereTheLadderSaysSo) {
+    nlohmann::json report = goodReport();
+    rowOf(report, "1024 bins")["error"]["ownRmse"] = 0.05;
+    EXPECT_FALSE(checkAccuracyReport(report).empty());
+    report["approximations"][0]["checkedBeyondDefault"] = false;
+    EXPECT_TRUE(checkAccuracyReport(report).empty());
+}
+
+TEST(AccuracyChecks, MalformedReportsFail) {
+    nlohmann::json report = goodReport();
+    report["rows"].erase(2);  // 1024 bins
+    std::vector<std::string> problems = checkAccuracyReport(report);
+    ASSERT_EQ(problems.size(), 1u);
+    EXPECT_EQ(problems[0], "s: no row for sortBins 1024 bins");
+
+    report = goodReport();
+    rowOf(report, "1 bins").erase("passes");
+    EXPECT_EQ(checkAccuracyReport(report).size(), 1u);
+    report = goodReport();
+    rowOf(report, "1 bins")["frame"]["medianMs"] = 0.0;
+    EXPECT_EQ(checkAccuracyReport(report).size(), 1u);
+    report = goodReport();
+    rowOf(report, "1 bins")["error"]["displayShare"] = 1.5;
+    EXPECT_EQ(checkAccuracyReport(report).size(), 1u);
+    report = goodReport();
+    rowOf(report, "quality=reference")["error"]["rmse"] = 0.001;
+    problems = checkAccuracyReport(report);
+    ASSERT_EQ(problems.size(), 1u);
+    EXPECT_EQ(problems[0].rfind("s: quality=reference differs from its own reference", 0), 0u) << problems[0];
+    report = goodReport();
+    report.erase("presets");
+    EXPECT_EQ(checkAccuracyReport(report), std::vector<std::string>{"the report has no 'presets' list"});
+}

@@ -1,0 +1,67 @@
+#!/usr/bin/env bash
+# What accuracy costs (docs/accuracy.md): hdhair-bench --accuracy on the
+# examples and converted TressFX assets, then the plots. Writes, under the
+# output folder, accuracy.json, accuracy.csv, accuracy.md (the tables),
+# accuracy-<stage>.png and accuracy.png (the headline plot), and machine.txt.
+#   scripts/accuracy-bench.sh [--build DIR] [--out DIR] [--data DIR] [--imageWidth N] [--repetitions N] [--quick]
+# --build: a build folder with bin/hdhair-bench and bin/hdhair-convert (default build/).
+# --data: the TressFX samples (default ../shared/data/tressfx beside the repository).
+# --quick: the CI matrix on the wavy example only (what the testAccuracyBench ctest runs).
+# The full matrix took 16 minutes on the shared 2-core machine docs/accuracy.md names.
+set -euo pipefail
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+build="$root/build" out="" data="$root/../shared/data/tressfx" width=128 repetitions=3 quick=()
+fail() { echo "accuracy-bench: $*" >&2; exit 1; }
+while [[ $# -gt 0 ]]; do
+  case "$1" in
+    --build) build="$2"; shift 2 ;;
+    --out) out="$2"; shift 2 ;;
+    --data) data="$2"; shift 2 ;;
+    --imageWidth) width="$2"; shift 2 ;;
+    --repetitions) repetitions="$2"; shift 2 ;;
+    --quick) quick=(--quick); shift ;;
+    *) fail "unknown argument '$1'" ;;
+  esac
+done
+out="${out:-$build/accuracy}"
+bench="$build/bin/hdhair-bench" convert="$build/bin/hdhair-convert"
+[[ -x "$bench" && -x "$convert" ]] || fail "$build has no bin/hdhair-bench or bin/hdhair-convert (scripts/build.sh --target hdhair-bench hdhair-convert)"
+[[ "$width" =~ ^[0-9]+$ ]] || fail "--imageWidth must be a number of pixels, not '$width'"
+[[ "$repetitions" =~ ^[1-9][0-9]*$ ]] || fail "--repetitions must be a positive number, not '$repetitions'"
+mkdir -p "$out/assets"
+
+stages=(--stage "$root/examples/wavy_strands.usda")
+if [[ ${#quick[@]} -eq 0 ]]; then
+  stages+=(--stage "$root/examples/straight_strands.usda" --stage "$root/examples/dense_clump.usda")
+  # TressFX samples through hdhair-convert, as scripts/storm-comparison.sh converts them:
+  # Sintel's guide strands with her head (a mesh occluding hair), and Ratboy's mohawk.
+  sintel="$out/assets/sintel.usda" ratboy="$out/assets/ratboy.usda"
+  for tfx in "$data/sintel/sintel_hair.tfx" "$data/sintel/sintel.obj" "$data/ratboy/Ratboy_mohawk.tfx"; do
+    [[ -f "$tfx" ]] || fail "missing $tfx (--data names the TressFX folder)"
+  done
+  [[ "$sintel" -nt "$data/sintel/sintel_hair.tfx" ]] ||
+    "$convert" "$data/sintel/sintel_hair.tfx" "$data/sintel/sintel.obj" "$sintel" >/dev/null
+  [[ "$ratboy" -nt "$data/ratboy/Ratboy_mohawk.tfx" ]] ||
+    "$convert" "$data/ratboy/Ratboy_mohawk.tfx" "$ratboy" >/dev/null
+  stages+=(--stage "$sintel" --stage "$ratboy")
+fi
+
+{
+  echo "date: $(date -u '+%Y-%m-%d %H:%M UTC')"
+  echo "commit: $(git -C "$root" rev-parse --short HEAD 2>/dev/null || echo unknown)"
+  echo "cpu: $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //'), $(nproc) cores"
+  echo "load average before: $(cut -d' ' -f1-3 /proc/loadavg)"
+} > "$out/machine.txt"
+start=$(date +%s)
+status=0
+"$bench" --accuracy "${quick[@]}" --imageWidth "$width" --repetitions "$repetitions" --out "$out" "${stages[@]}" \
+  > "$out/bench.log" 2>&1 || status=$?
+{
+  echo "load average after: $(cut -d' ' -f1-3 /proc/loadavg)"
+  echo "wall time: $(( $(date +%s) - start )) s"
+} >> "$out/machine.txt"
+[[ -f "$out/accuracy.json" ]] || fail "hdhair-bench wrote no report (see $out/bench.log)"
+/usr/bin/python3 "$root/scripts/accuracy-plots.py" "$out/accuracy.json" "$out"
+cat "$out/machine.txt"
+grep "check failed\|accuracy matrix in" "$out/bench.log" || true
+exit "$status"

@@ -1,0 +1,107 @@
+// hdhair-bench --accuracy --quick as CI runs it (under a minute on the 2-core
+// machine): it exits 0 only when its own checks pass (AccuracyChecks.h), and
+// its files are read back here and checked again: every approximation and
+// preset has its rows, the CSV and Markdown hold them, and each
+// approximation's error falls toward the reference within the allowance.
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "Commands.h"
+
+#include "hdHair/tools/AccuracyChecks.h"
+#include "hdHair/tools/AccuracyMatrix.h"
+
+using namespace hdhair;
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string readText(const fs::path& path) {
+    std::ifstream in(path);
+    std::stringstream text;
+    text << in.rdbuf();
+    return text.str();
+}
+
+}  // namespace
+
+TEST(AccuracyBench, QuickRunWritesAWellFormedReportWhoseErrorsFallTowardTheReference) {
+    const fs::path out = fs::temp_directory_path() / "hdhair-accuracy-quick";
+    fs::remove_all(out);
+    std::string output;
+    const int status = testenv::runCommand(std::string(HDHAIR_BENCH) + " --accuracy --quick --out " +
+                                               testenv::shellQuoted(out.string()) + " --stage " +
+                                               testenv::shellQuoted(HDHAIR_SOURCE_DIR "/examples/wavy_strands.usda"),
+                                           &output);
+    ASSERT_EQ(status, 0) << output;
+    const nlohmann::json report = nlohmann::json::parse(readText(out / "accuracy.json"));
+    const std::vector<std::string> problems = accuracy::checkAccuracyReport(report);
+    EXPECT_TRUE(problems.empty()) << problems.front();
+    EXPECT_TRUE(report["checks"].empty());
+    EXPECT_TRUE(report["quick"].get<bool>());
+
+    size_t expectedRows = accuracy::presetSteps().size();
+    for (const accuracy::Approximation& approximation : accuracy::accuracyMatrix(true))
+        expectedRows += approximation.steps.size();
+    EXPECT_EQ(report["rows"].size(), expectedRows);
+    EXPECT_EQ(report["approximations"].size(), accuracy::accuracyMatrix(true).size());
+    for (const auto& row : report["rows"]) {
+        EXPECT_TRUE(row["passes"].contains("strands")) << row.dump();
+        EXPECT_EQ(row["fallback"], "") << row.dump();  // nothing quietly replaced what was asked
+    }
+    EXPECT_FALSE(report["machine"]["gl"].get<std::string>().empty());
+
+    const std::string csv = readText(out / "accuracy.csv");
+    EXPECT_EQ(csv.rfind("stage,approximation,step,settings,default,frame_median_ms,", 0), 0u) << csv;
+    EXPECT_EQ(size_t(std::count(csv.begin(), csv.end(), '\n')), expectedRows + 1);
+    const std::string markdown = readText(out / "accuracy.md");
+    EXPECT_NE(markdown.find("### wavy_strands"), std::string::npos) << markdown;
+    EXPECT_NE(markdown.find("| preset | quality=reference |"), std::string::npos) << markdown;
+    EXPECT_NE(markdown.find("| preset | on the front | time gap | error gap | within 10 % |"), std::string::npos);
+
+    // --report writes the same tables again from the JSON.
+    output.clear();
+    const fs::path again = out / "again";
+    ASSERT_EQ(testenv::runCommand(std::string(HDHAIR_BENCH) + " --report " +
+                                      testenv::shellQuoted((out / "accuracy.json").string()) + " --out " +
+                                      testenv::shellQuoted(again.string()),
+                                  &output),
+              0)
+        << output;
+    EXPECT_EQ(readText(again / "accuracy.md"), markdown);
+    EXPECT_EQ(readText(again / "accuracy.csv"), csv);
+
+    // The plots, where Debian's matplotlib is installed (scripts/debian-packages.txt).
+    output.clear();
+    if (testenv::runCommand("/usr/bin/python3 -c 'import matplotlib'", &output) == 0) {
+        output.clear();
+        ASSERT_EQ(testenv::runCommand("/usr/bin/python3 " HDHAIR_SOURCE_DIR "/scripts/accuracy-plots.py " +
+                                          testenv::shellQuoted((out / "accuracy.json").string()) + " " +
+                                          testenv::shellQuoted(out.string()),
+                                      &output),
+                  0)
+            << output;
+        EXPECT_GT(fs::file_size(out / "accuracy.png"), 10000u);
+        EXPECT_GT(fs::file_size(out / "accuracy-wavy_strands.png"), 10000u);
+    }
+    fs::remove_all(out);
+}
+
+TEST(AccuracyBench, BadArgumentsAreOneLineErrors) {
+    std::string output;
+    EXPECT_EQ(testenv::runCommand(std::string(HDHAIR_BENCH) + " --quick", &output), 2);
+    EXPECT_EQ(output, "hdhair-bench: error: --quick needs --accuracy\n");
+    output.clear();
+    EXPECT_EQ(testenv::runCommand(std::string(HDHAIR_BENCH) + " --accuracy --repetitions 0", &output), 2);
+    EXPECT_EQ(output, "hdhair-bench: error: --repetitions must be at least 1\n");
+    output.clear();
+    EXPECT_EQ(testenv::runCommand(std::string(HDHAIR_BENCH) + " --accuracy --quick --stage /nonexistent.usda", &output), 1);
+    EXPECT_EQ(output.rfind("hdhair-bench: error: ", 0), 0u) << output;
+    EXPECT_EQ(std::count(output.begin(), output.end(), '\n'), 1) << output;
+}
