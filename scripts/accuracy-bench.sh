@@ -7,7 +7,7 @@
 # --build: a build folder with bin/hdhair-bench and bin/hdhair-convert (default build/).
 # --data: the TressFX samples (default ../shared/data/tressfx beside the repository).
 # --quick: the CI matrix on the wavy example only (what the testAccuracyBench ctest runs).
-# The full matrix took 16 minutes on the shared 2-core machine docs/accuracy.md names.
+# The full matrix took 10 minutes on the quiet 2-core machine docs/accuracy.md names.
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 build="$root/build" out="" data="$root/../shared/data/tressfx" width=128 repetitions=3 quick=()
