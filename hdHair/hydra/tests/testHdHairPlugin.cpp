@@ -36,6 +36,8 @@
 #include "pxr/usd/usdShade/shader.h"
 #include "pxr/usdImaging/usdImagingGL/engine.h"
 
+#include "CpuEngineParameters.h"
+
 PXR_NAMESPACE_USING_DIRECTIVE
 
 namespace {
@@ -126,7 +128,7 @@ std::vector<float> readDepth(HdRenderBuffer* buffer) {
 
 class Recorder {
 public:
-    explicit Recorder(UsdStageRefPtr stage) : _stage(stage), _engine(parameters()) {
+    explicit Recorder(UsdStageRefPtr stage) : _stage(stage), _engine(cpuEngineParameters()) {
         EXPECT_TRUE(_engine.SetRendererPlugin(kPluginId));
         _engine.SetCameraPath(SdfPath("/Camera"));
         _engine.SetRenderBufferSize(GfVec2i(64, 48));
@@ -177,11 +179,6 @@ public:
     }
 
 private:
-    static UsdImagingGLEngine::Parameters parameters() {
-        UsdImagingGLEngine::Parameters p;
-        p.gpuEnabled = false;
-        return p;
-    }
     UsdStageRefPtr _stage;
     UsdImagingGLEngine _engine;
     float _complexity = 1.0f;

@@ -27,6 +27,8 @@
 #include "pxr/usd/usdLux/distantLight.h"
 #include "pxr/usdImaging/usdImagingGL/engine.h"
 
+#include "CpuEngineParameters.h"
+
 PXR_NAMESPACE_USING_DIRECTIVE
 
 namespace {
@@ -86,7 +88,7 @@ struct Images {
 // stage's /Camera with the interactiveBudgetMs setting given.
 class Host {
 public:
-    Host(UsdStageRefPtr stage, int budgetMs, GfVec2i size) : _stage(stage), _engine(parameters()) {
+    Host(UsdStageRefPtr stage, int budgetMs, GfVec2i size) : _stage(stage), _engine(cpuEngineParameters()) {
         EXPECT_TRUE(_engine.SetRendererPlugin(kPluginId));
         _engine.SetRendererSetting(TfToken("interactiveBudgetMs"), VtValue(budgetMs));
         _engine.SetCameraPath(SdfPath("/Camera"));
@@ -135,11 +137,6 @@ public:
     int count(char const* name) { return stat(name).GetWithDefault<int>(-1); }
 
 private:
-    static UsdImagingGLEngine::Parameters parameters() {
-        UsdImagingGLEngine::Parameters p;
-        p.gpuEnabled = false;
-        return p;
-    }
     UsdStageRefPtr _stage;
     UsdImagingGLEngine _engine;
     UsdImagingGLRenderParams _params;

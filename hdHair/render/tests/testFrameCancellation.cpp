@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 
 #include "HairTuft.h"
+#include "SynchronousReference.h"
 #include "hdHair/base/Diagnostics.h"
 #include "hdHair/render/FrameCancellation.h"
 #include "hdHair/render/Renderer.h"
@@ -84,12 +85,7 @@ TEST(FrameCancellation, AFrameStoppedAtAnyPointLeavesTheRendererAsIfItNeverRan) 
     const CameraView a = tuftCamera(0.0, 64), b = tuftCamera(35.0, 64);
     const RenderSettings settings = tuftSettings("binSorted");
     Diagnostics diagnostics;
-    RenderResult expected;
-    {
-        Renderer fresh(gl::defaultGlBackend());
-        fresh.render(before, a, settings, diagnostics, RenderOutputs{true});
-        expected = fresh.render(after, b, settings, diagnostics, RenderOutputs{true});
-    }
+    const RenderResult expected = synchronousSecondFrame(before, a, after, b, settings, diagnostics);
 
     Renderer renderer(gl::defaultGlBackend());
     auto stoppable = [](const FrameCancellation& cancellation) {

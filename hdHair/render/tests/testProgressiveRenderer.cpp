@@ -14,6 +14,7 @@
 #include <gtest/gtest.h>
 
 #include "HairTuft.h"
+#include "SynchronousReference.h"
 #include "hdHair/base/Diagnostics.h"
 #include "hdHair/render/ProgressiveRenderer.h"
 
@@ -59,12 +60,7 @@ TEST(ProgressiveRenderer, APreviewPrecedesASlowFullFrameWhichIsTheSynchronousIma
     // so once one is in, every new view gets a preview first.
     const RenderSettings settings = withBudget(1);
     Diagnostics diagnostics;
-    RenderResult expected;
-    {
-        Renderer synchronous(gl::defaultGlBackend());
-        synchronous.render(scene, first, settings, diagnostics, RenderOutputs{true});
-        expected = synchronous.render(scene, second, settings, diagnostics, RenderOutputs{true});
-    }
+    const RenderResult expected = synchronousSecondFrame(scene, first, scene, second, settings, diagnostics);
 
     Renderer renderer(gl::defaultGlBackend());
     std::mutex rendererMutex;
