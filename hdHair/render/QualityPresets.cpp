@@ -22,21 +22,27 @@ const char* toString(Quality quality) {
 }
 
 const std::vector<std::pair<std::string, std::string>>& presetSettings(Quality quality) {
-    // preview: the cheap end of each approximation that still looks like the
-    // frame (coarse tessellation, 16 bins as the interactive previews use,
-    // smaller shadow maps, every light in one pass, Marschner from tables).
+    // preview: what the interactive previews draw (InteractivePreview.h),
+    // at full size: coarse tessellation, 16 bins, no self-shadowing, every
+    // light in one pass, Marschner from tables. Shadows are off because on a
+    // groom of many spans their light-view passes are half the frame
+    // (docs/accuracy.md: Ratboy 119 ms without them, 279 ms with), while the
+    // other cheap steps save little at small sizes.
     static const std::vector<std::pair<std::string, std::string>> preview = {
         {"tessellationTolerance", "0.5"}, {"maxSegmentsPerSpan", "4"}, {"sortBins", "16"},
-        {"shadowMapResolution", "256"},   {"lightsPerPass", "16"},     {"marschner:azimuthal", "tables"},
+        {"shadowMode", "off"},            {"lightsPerPass", "16"},     {"marschner:azimuthal", "tables"},
     };
     // default: nothing, so `quality=default` renders exactly what no preset does.
     static const std::vector<std::pair<std::string, std::string>> none;
-    // high: complexity high's tessellation, the finest bin sort, 7 shadow
-    // layers at 1024 texels (on the shadow benchmark's Pareto front, README)
-    // and 2 x 2 supersampling, which removes most of the sampling error left.
+    // high: what lowered the error for its time in docs/accuracy.md: 2 x 2
+    // supersampling (the largest term at one sample a pixel on every stage),
+    // 7 shadow layers (the layer ladder stops falling there) and complexity
+    // medium's tolerance (curls). Finer bins and shadow maps are left at the
+    // defaults: 1024 bins matched 256 bins' error, and maps finer than 512
+    // texels raised it with the layers' depth resolution the limit.
     static const std::vector<std::pair<std::string, std::string>> high = {
-        {"tessellationTolerance", "0.03"}, {"maxSegmentsPerSpan", "32"},   {"sortBins", "1024"},
-        {"shadowLayers", "7"},             {"shadowMapResolution", "1024"}, {"supersampling", "2"},
+        {"tessellationTolerance", "0.06"}, {"maxSegmentsPerSpan", "16"}, {"shadowLayers", "7"},
+        {"supersampling", "2"},
     };
     // reference: the most exact hdHair can be, the yardstick of
     // hdhair-bench --accuracy: exact transparency that fails rather than fall

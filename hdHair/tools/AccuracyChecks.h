@@ -9,9 +9,13 @@
 // deterministic, but a finer setting can move a strand edge across a pixel
 // centre the reference does not agree on either: a little aliasing noise on
 // top of the trend (measured on the quick stage: under 5 %). Along a Falls
-// ladder the last checked step must also be below the first, so a flat
-// ladder fails; along a Flat one every step stays within the allowance of
-// the first.
+// ladder the last checked step must also be below the first. A Falls ladder
+// that stays within the allowance of its first step on a stage does not act
+// there (bins on strands that never overlap): that is a note, not a failure,
+// as long as the ladder falls on some other stage of the run; one that falls
+// on no stage fails (so the one-stage quick run fails any ladder that does
+// not fall). Along a Flat ladder every step stays within the allowance of the
+// first.
 
 #include <string>
 #include <vector>
@@ -26,7 +30,8 @@ constexpr double kAbsoluteNoise = 2e-4;
 // microradian light turn of every timed frame moves it by about 2e-5.
 constexpr double kSameImage = 1e-4;
 
-// One line per problem found; empty when the report passes.
-std::vector<std::string> checkAccuracyReport(const nlohmann::json& report);
+// One line per problem found; empty when the report passes. `notes`, when
+// given, receives the ladders that do not act on a stage.
+std::vector<std::string> checkAccuracyReport(const nlohmann::json& report, std::vector<std::string>* notes = nullptr);
 
 }  // namespace hdhair::accuracy

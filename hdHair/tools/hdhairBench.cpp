@@ -467,7 +467,9 @@ int main(int argc, char** argv) {
             if (std::string why = readRegularFile(report, text); !why.empty()) throw std::runtime_error(why);
             nlohmann::json earlier = nlohmann::json::parse(text);
             accuracy::markParetoFront(earlier);
-            earlier["checks"] = accuracy::checkAccuracyReport(earlier);
+            std::vector<std::string> notes;
+            earlier["checks"] = accuracy::checkAccuracyReport(earlier, &notes);
+            earlier["checkNotes"] = notes;
             accuracy::writeAccuracyReport(earlier, out);
             std::printf("%s", accuracy::accuracyMarkdown(earlier).c_str());
             return 0;
@@ -539,10 +541,13 @@ int main(int argc, char** argv) {
             nlohmann::json results =
                 accuracy::runAccuracyBench(*renderer(), accuracyStages, {quick, repetitions, command});
             accuracy::markParetoFront(results);
-            const std::vector<std::string> problems = accuracy::checkAccuracyReport(results);
+            std::vector<std::string> notes;
+            const std::vector<std::string> problems = accuracy::checkAccuracyReport(results, &notes);
             results["checks"] = problems;
+            results["checkNotes"] = notes;
             accuracy::writeAccuracyReport(results, out);
             std::printf("%s", accuracy::accuracyMarkdown(results).c_str());
+            for (const std::string& note : notes) std::printf("hdhair-bench: note: %s\n", note.c_str());
             for (const std::string& problem : problems) std::printf("hdhair-bench: check failed: %s\n", problem.c_str());
             std::printf("hdhair-bench: accuracy matrix in %.0f s, %zu checks failed; wrote %s/accuracy.{json,csv,md}\n",
                         results["seconds"].get<double>(), problems.size(), out.c_str());

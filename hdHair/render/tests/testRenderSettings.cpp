@@ -136,30 +136,32 @@ TEST(QualityPresets, ReferenceIsTheMostExactSettings) {
         EXPECT_GE(reference.getInt(name), high.getInt(name)) << name;
     }
     EXPECT_LT(preview.getInt("sortBins"), defaults.getInt("sortBins"));
-    EXPECT_GT(high.getInt("sortBins"), defaults.getInt("sortBins"));
+    EXPECT_EQ(preview.getToken("shadowMode"), "off");  // as the interactive previews draw
+    EXPECT_GT(high.getInt("shadowLayers"), defaults.getInt("shadowLayers"));
 }
 
 // An explicit setting wins over the preset wherever it comes from, and a
 // complexity above low wins over it for the settings complexity scales;
 // low, every host's default, does not.
 TEST(QualityPresets, ExplicitSettingsAndAComplexityAboveLowWin) {
-    RenderSettings settings = RenderSettings::fromAssignments(Complexity::Low, {"sortBins=64", "quality=high"});
-    EXPECT_EQ(settings.getInt("sortBins"), 64);
-    EXPECT_EQ(settings.origin("sortBins").source, SettingSource::Explicit);
-    EXPECT_EQ(settings.origin("sortBins").overriddenPreset, "1024");
-    EXPECT_EQ(settings.getInt("shadowLayers"), 7);
-    EXPECT_DOUBLE_EQ(settings.getFloat("tessellationTolerance"), 0.03);
+    RenderSettings settings = RenderSettings::fromAssignments(Complexity::Low, {"shadowLayers=15", "quality=high"});
+    EXPECT_EQ(settings.getInt("shadowLayers"), 15);
+    EXPECT_EQ(settings.origin("shadowLayers").source, SettingSource::Explicit);
+    EXPECT_EQ(settings.origin("shadowLayers").overriddenPreset, "7");
+    EXPECT_EQ(settings.getInt("supersampling"), 2);
+    EXPECT_DOUBLE_EQ(settings.getFloat("tessellationTolerance"), 0.06);
     EXPECT_EQ(settings.origin("tessellationTolerance").source, SettingSource::Preset);
 
     settings.setComplexity(Complexity::VeryHigh);
     EXPECT_DOUBLE_EQ(settings.getFloat("tessellationTolerance"), 0.015);
     EXPECT_EQ(settings.getInt("maxSegmentsPerSpan"), 64);
     EXPECT_EQ(settings.origin("tessellationTolerance").source, SettingSource::Complexity);
-    EXPECT_EQ(settings.origin("tessellationTolerance").overriddenPreset, "0.03");
-    EXPECT_EQ(settings.getInt("shadowLayers"), 7);  // complexity does not scale it: the preset's
+    EXPECT_EQ(settings.origin("tessellationTolerance").overriddenPreset, "0.06");
+    EXPECT_EQ(settings.getInt("supersampling"), 2);  // complexity does not scale it: the preset's
 
     settings.setComplexity(Complexity::Medium);
-    EXPECT_DOUBLE_EQ(settings.getFloat("tessellationTolerance"), 0.06);  // coarser than the preset, but chosen
+    EXPECT_DOUBLE_EQ(settings.getFloat("tessellationTolerance"), 0.06);  // the preset's value, but chosen
+    EXPECT_EQ(settings.origin("tessellationTolerance").source, SettingSource::Complexity);
 
     // Settings no preset touches keep their complexity values at low.
     const RenderSettings low = RenderSettings::fromAssignments(Complexity::Low, {"quality=reference"});

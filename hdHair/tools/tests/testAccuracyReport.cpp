@@ -139,7 +139,34 @@ TEST(AccuracyChecks, AFallingLadderThatDoesNotFallFails) {
     for (const char* label : {"1 bins", "256 bins", "1024 bins"}) rowOf(report, label)["error"]["ownRmse"] = 0.02;
     const std::vector<std::string> problems = checkAccuracyReport(report);
     ASSERT_EQ(problems.size(), 1u);
-    EXPECT_EQ(problems[0], "s: sortBins's error does not fall from 1 bins (0.02000) to 1024 bins (0.02000)");
+    EXPECT_EQ(problems[0], "sortBins's error falls on no stage (s: 1 bins (0.02000) to 1024 bins (0.02000))");
+    // Beyond the allowance of the first step it fails on its stage, wherever else it falls.
+    rowOf(report, "1 bins")["error"]["ownRmse"] = 0.019;
+    rowOf(report, "256 bins")["error"]["ownRmse"] = 0.0205;
+    rowOf(report, "1024 bins")["error"]["ownRmse"] = 0.0222;
+    const std::vector<std::string> rising = checkAccuracyReport(report);
+    ASSERT_EQ(rising.size(), 1u);
+    EXPECT_EQ(rising[0], "s: sortBins's error does not fall from 1 bins (0.01900) to 1024 bins (0.02220)");
+}
+
+// A ladder that does not move on one stage (strands that never overlap do
+// not care about bins) passes with a note when it falls on another stage.
+TEST(AccuracyChecks, ALadderThatActsOnlyOnSomeStagesPassesWithANote) {
+    nlohmann::json report = goodReport();
+    nlohmann::json second = report;
+    for (auto& row : second["rows"]) {
+        row["stage"] = "t";
+        if (row["approximation"] == "sortBins") row["error"]["ownRmse"] = 0.02;
+    }
+    for (const auto& row : second["rows"]) report["rows"].push_back(row);
+    nlohmann::json stage = report["stages"][0];
+    stage["name"] = "t";
+    report["stages"].push_back(stage);
+    std::vector<std::string> notes;
+    const std::vector<std::string> problems = checkAccuracyReport(report, &notes);
+    EXPECT_TRUE(problems.empty()) << problems.front();
+    ASSERT_EQ(notes.size(), 1u);
+    EXPECT_EQ(notes[0], "sortBins does not change the error on t: 1 bins (0.02000) to 1024 bins (0.02000)");
 }
 
 TEST(AccuracyChecks, AFlatLadderThatMovesFails) {
