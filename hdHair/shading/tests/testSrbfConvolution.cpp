@@ -24,7 +24,6 @@ using namespace hdhair;
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
-constexpr float kDeg = kMarschnerDegrees;
 
 // Table against reference, as a fraction of the peak (README): the largest
 // difference measured at the default resolution and half precision was
