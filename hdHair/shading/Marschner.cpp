@@ -306,6 +306,12 @@ glm::vec3 marschnerAzimuthal(int p, float phi, float cosTheta, const MarschnerPa
     return glm::vec3(0.0f);
 }
 
+glm::vec3 marschnerAttenuation(int p, float h, float cosTheta, const MarschnerParameters& parameters) {
+    if (p < 0 || p > 2) return glm::vec3(0.0f);
+    double offset = std::isfinite(h) ? std::clamp(double(h), -1.0, 1.0) : 0.0;
+    return toFiniteVec3(attenuation(p, offset, azimuthalSetup(cosTheta, parameters)));
+}
+
 MarschnerLobes combineMarschnerLobes(const MarschnerAngles& angles, const glm::vec3& nR, const glm::vec3& nTT,
                                      const glm::vec3& nTRT, const MarschnerParameters& parameters) {
     MarschnerLobes lobes;

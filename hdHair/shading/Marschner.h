@@ -165,6 +165,11 @@ float marschnerLongitudinal(float sinThetaI, float cosThetaI, float sinThetaR, f
 // cosTheta = cos θ_r ∈ [0, 1]. Finite, >= 0.
 glm::vec3 marschnerAzimuthal(int p, float phi, float cosTheta, const MarschnerParameters& parameters);
 
+// A(p, h) of eqs. (5), (6), (9): the attenuation of path p at offset h ∈ [−1, 1]
+// with the N_p setup at inclination cos θ (σ_a' = σ_a / cos θ_t, η', F at
+// cos ξ = cos θ cos γ_i). Finite, in [0, 1].
+glm::vec3 marschnerAttenuation(int p, float h, float cosTheta, const MarschnerParameters& parameters);
+
 struct MarschnerLobes {
     // f_p = S_p · cos θ_i = M_dEon_p · N_p: the radiance towards ωo per unit
     // irradiance from ωi (multiply by the light's irradiance, as with

@@ -17,6 +17,8 @@
 // through its first camera (or a framing camera):
 //   ParseLayer/5 MB                     the embedded reader on a 5 MB layer of curves
 //   ComposeStage/<n> prims              composing n small sibling prims (counts: testUsdaReader)
+//   SrbfTables/Build/<kind>             building one SRBF-convolution table at the default
+//                                       resolution (hdHair/shading/SrbfConvolutionTables.h)
 //   PrepareCurves/<stage>               CPU curve preparation
 //   BinSort/<stage>                     the CPU bin sort of the frame's segments
 //   RenderFrame/<stage>/<complexity>    a frame per --complexity level
@@ -57,6 +59,7 @@
 #include "hdHair/image/BoxDownsample.h"
 #include "hdHair/image/ImageComparison.h"
 #include "hdHair/shading/MarschnerTables.h"
+#include "hdHair/shading/SrbfConvolutionTables.h"
 #include "hdHair/tools/AccuracyBench.h"
 #include "hdHair/tools/AccuracyChecks.h"
 #include "hdHair/tools/AccuracyReport.h"
@@ -437,6 +440,22 @@ void registerReaderBenchmarks() {
     }
 }
 
+// The dome light's SRBF-convolution tables: what a material's first frame
+// waits for when the disk cache has no table for it (README, hdHair/shading).
+void registerSrbfTableBenchmarks() {
+    benchmark::RegisterBenchmark("SrbfTables/Build/marschner", [](benchmark::State& state) {
+        for (auto _ : state) benchmark::DoNotOptimize(buildSrbfMarschnerTable(MarschnerParameters()).texels.data());
+    })->Unit(benchmark::kMillisecond);
+    benchmark::RegisterBenchmark("SrbfTables/Build/marschner-lobes", [](benchmark::State& state) {
+        for (auto _ : state)
+            benchmark::DoNotOptimize(buildSrbfMarschnerLobeTable(MarschnerParameters()).texels.data());
+    })->Unit(benchmark::kMillisecond);
+    benchmark::RegisterBenchmark("SrbfTables/Build/kajiya-kay", [](benchmark::State& state) {
+        for (auto _ : state)
+            benchmark::DoNotOptimize(buildSrbfKajiyaKayTable(KajiyaKayParameters().shininess).texels.data());
+    })->Unit(benchmark::kMillisecond);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -569,6 +588,7 @@ int main(int argc, char** argv) {
     std::vector<Configuration> shadows = shadowConfigurations();
     std::vector<ShadingConfiguration> shadings = shadingConfigurations();
     registerReaderBenchmarks();
+    registerSrbfTableBenchmarks();
     for (const auto& stagePointer : stages) {
         BenchStage* stage = stagePointer.get();
         benchmark::RegisterBenchmark(("PrepareCurves/" + stage->name).c_str(), [stage](benchmark::State& state) {
