@@ -30,8 +30,9 @@
 namespace hdhair {
 
 struct DomeFitSettings {
-    // The grid the texture is averaged onto before fitting (RadianceGrid.h);
-    // 64 × 32 cells are 5.6° wide, narrower than the narrowest lobe.
+    // The grid the texture is averaged onto before fitting (RadianceGrid.h),
+    // 1 × 1 to 1024 × 512 cells (latlongFit throws std::invalid_argument
+    // beyond); 64 × 32 cells are 5.6° wide, narrower than the narrowest lobe.
     int gridWidth = 64;
     int gridHeight = 32;
     SrbfFitSettings srbf;
