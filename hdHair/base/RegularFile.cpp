@@ -25,11 +25,16 @@ const char* kindOf(fs::file_type type) {
 
 }  // namespace
 
-std::string readRegularFile(const std::string& path, std::string& contents) {
+std::string regularFileProblem(const std::string& path) {
     std::error_code error;
     const fs::file_status status = fs::status(path, error);  // follows symbolic links
     if (error) return error.message();
     if (status.type() != fs::file_type::regular) return std::string(kindOf(status.type())) + ", not a regular file";
+    return std::string();
+}
+
+std::string readRegularFile(const std::string& path, std::string& contents) {
+    if (std::string problem = regularFileProblem(path); !problem.empty()) return problem;
     std::FILE* file = std::fopen(path.c_str(), "rb");
     if (!file) return errno ? std::strerror(errno) : "cannot be opened";
     contents.clear();

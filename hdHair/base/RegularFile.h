@@ -13,4 +13,8 @@ namespace hdhair {
 // a regular file"); never the C library's "Success".
 std::string readRegularFile(const std::string& path, std::string& contents);
 
+// Why `path` cannot be read as a regular file, in the same words, or "" when
+// it can (for readers that open the file themselves, such as OpenImageIO).
+std::string regularFileProblem(const std::string& path);
+
 }  // namespace hdhair

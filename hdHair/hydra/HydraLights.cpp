@@ -11,7 +11,8 @@ float number(const LightParameterLookup& parameter, const char* name, float fall
 }  // namespace
 
 LightPrim lightFromHydra(const std::string& path, LightType type, bool hostCameraLight,
-                         const LightParameterLookup& parameter, const glm::dmat4& lightToWorld) {
+                         const LightParameterLookup& parameter, const glm::dmat4& lightToWorld,
+                         const HydraDomeTexture& texture) {
     LightPrim light;
     light.path = path;
     light.type = type;
@@ -32,6 +33,10 @@ LightPrim lightFromHydra(const std::string& path, LightType type, bool hostCamer
     light.coneAngle = number(parameter, "shaping:cone:angle", light.coneAngle);
     light.coneSoftness = number(parameter, "shaping:cone:softness", light.coneSoftness);
     light.shadowEnable = number(parameter, "shadow:enable", 1.0f) != 0.0f;
+    if (type == LightType::Dome) {
+        light.textureFile = texture.file;
+        if (!texture.format.empty()) light.textureFormat = texture.format;
+    }
     return light;
 }
 

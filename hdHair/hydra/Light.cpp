@@ -2,6 +2,7 @@
 
 #include "pxr/base/gf/vec3d.h"
 #include "pxr/base/gf/vec3f.h"
+#include "pxr/usd/sdf/assetPath.h"
 #include "pxr/imaging/hd/sceneDelegate.h"
 #include "pxr/imaging/hd/tokens.h"
 
@@ -13,6 +14,19 @@
 PXR_NAMESPACE_OPEN_SCOPE
 
 namespace {
+
+// HdLightTokens->textureFile and textureFormat, for a dome light.
+hdhair::hydra::HydraDomeTexture domeTexture(HdSceneDelegate* sceneDelegate, SdfPath const& id) {
+    hdhair::hydra::HydraDomeTexture texture;
+    VtValue file = sceneDelegate->GetLightParamValue(id, HdLightTokens->textureFile);
+    if (file.IsHolding<SdfAssetPath>()) {
+        SdfAssetPath const& asset = file.UncheckedGet<SdfAssetPath>();
+        texture.file = asset.GetResolvedPath().empty() ? asset.GetAssetPath() : asset.GetResolvedPath();
+    }
+    VtValue format = sceneDelegate->GetLightParamValue(id, HdLightTokens->textureFormat);
+    if (format.IsHolding<TfToken>()) texture.format = format.UncheckedGet<TfToken>().GetString();
+    return texture;
+}
 
 hdhair::LightType engineLightType(TfToken const& lightType) {
     if (lightType == HdPrimTypeTokens->sphereLight) return hdhair::LightType::Sphere;
@@ -45,9 +59,18 @@ void HdHairLight::Sync(HdSceneDelegate* sceneDelegate, HdRenderParam* renderPara
             return std::vector<double>(floats.values.begin(), floats.values.end());
         };
         GfMatrix4d toWorld = sceneDelegate->GetTransform(id);
+        // DomeLight_1's poleAxis turns only the dome: UsdImaging hands the
+        // turn over as domeOffset, applied before the prim's transform as
+        // Storm applies it (HdStLight::Sync).
+        if (_lightType == HdPrimTypeTokens->domeLight) {
+            VtValue domeOffset = sceneDelegate->GetLightParamValue(id, HdLightTokens->domeOffset);
+            if (domeOffset.IsHolding<GfMatrix4d>()) toWorld = domeOffset.UncheckedGet<GfMatrix4d>() * toWorld;
+        }
         hdhair::LightPrim light = hdhair::hydra::lightFromHydra(
             id.GetString(), engineLightType(_lightType), hostCameraLight, lookup,
-            hdhair::hydra::matrixFromGf(toWorld.data()));
+            hdhair::hydra::matrixFromGf(toWorld.data()),
+            _lightType == HdPrimTypeTokens->domeLight ? domeTexture(sceneDelegate, id)
+                                                      : hdhair::hydra::HydraDomeTexture());
         light.visible = sceneDelegate->GetVisible(id);
         static_cast<HdHairRenderParam*>(renderParam)->SetLight(std::move(light));
     }

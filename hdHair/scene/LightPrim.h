@@ -16,6 +16,15 @@ const char* toString(LightType type);
 
 struct LightPrim {
     std::string path;
+    // DomeLight inputs:texture:file, resolved: the embedded reader resolves
+    // the asset path against the directory of the layer that authored it, the
+    // Hydra plugin takes the host's resolved path (the authored one when the
+    // resolver found none). "" for an untextured dome.
+    std::string textureFile;
+    // DomeLight inputs:texture:format as authored ("automatic", "latlong",
+    // "mirroredBall", ...). Kept as a token so that hdHair/environment checks
+    // it for every front end alike (DomeEnvironment.h says which it reads).
+    std::string textureFormat = "automatic";
     LightType type = LightType::Distant;
     float intensity = 1.0f;                 // inputs:intensity
     float exposure = 0.0f;                  // inputs:exposure (stops)
@@ -43,13 +52,13 @@ struct LightPrim {
     // uploaded or shadowed again. A member added above must be added here;
     // the size check after the struct is there to say so.
     auto fields() const {
-        return std::tie(path, type, intensity, exposure, color, enableColorTemperature, colorTemperature, normalize, angle,
-                        radius, width, height, coneAngle, coneSoftness, shadowEnable, worldTransform, visible,
-                        hostCameraLight);
+        return std::tie(path, textureFile, textureFormat, type, intensity, exposure, color, enableColorTemperature,
+                        colorTemperature, normalize, angle, radius, width, height, coneAngle, coneSoftness, shadowEnable,
+                        worldTransform, visible, hostCameraLight);
     }
     bool operator==(const LightPrim& other) const { return fields() == other.fields(); }
     bool operator!=(const LightPrim& other) const { return !(*this == other); }
 };
-static_assert(sizeof(LightPrim) == 232, "a member was added to LightPrim: add it to fields() too (x86-64 size)");
+static_assert(sizeof(LightPrim) == 296, "a member was added to LightPrim: add it to fields() too (x86-64 size)");
 
 }  // namespace hdhair

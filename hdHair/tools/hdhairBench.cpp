@@ -16,6 +16,9 @@
 // For each stage (examples/dense_clump.usda when none is given), rendered
 // through its first camera (or a framing camera):
 //   ParseLayer/5 MB                     the embedded reader on a 5 MB layer of curves
+//   SrbfFit/1024x512                    a 1k latlong dome texture (a procedural sky, half EXR) read
+//                                       onto the 64 × 32 grid and fitted with 30 SRBF lights
+//                                       (hdHair/environment: the issue asks for well under a second)
 //   ComposeStage/<n> prims              composing n small sibling prims (counts: testUsdaReader)
 //   SrbfTables/Build/<kind>             building one SRBF-convolution table at the default
 //                                       resolution (hdHair/shading/SrbfConvolutionTables.h)
@@ -46,18 +49,24 @@
 #include <vector>
 
 #include <sys/resource.h>
+#include <unistd.h>
 
 #include <benchmark/benchmark.h>
 #include <nlohmann/json.hpp>
 #include <fmt/format.h>
+#include <glm/common.hpp>
 #include <glm/geometric.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "hdHair/base/Diagnostics.h"
 #include "hdHair/base/RegularFile.h"
 #include "hdHair/curves/PreparedCurves.h"
+#include "hdHair/environment/DomeTextureFitCache.h"
+#include "hdHair/environment/LatlongDirections.h"
+#include "hdHair/environment/LatlongTexture.h"
 #include "hdHair/image/BoxDownsample.h"
 #include "hdHair/image/ImageComparison.h"
+#include "hdHair/image/ImageWriter.h"
 #include "hdHair/shading/MarschnerTables.h"
 #include "hdHair/shading/SrbfConvolutionTables.h"
 #include "hdHair/tools/AccuracyBench.h"
@@ -456,6 +465,34 @@ void registerSrbfTableBenchmarks() {
     })->Unit(benchmark::kMillisecond);
 }
 
+// A dome texture's read and fit (hdHair/environment/SrbfFit.h), on a
+// 1024 × 512 sky written once to the temporary folder.
+void registerEnvironmentBenchmarks() {
+    benchmark::RegisterBenchmark("SrbfFit/1024x512", [](benchmark::State& state) {
+        const glm::vec3 sun = glm::normalize(glm::vec3(0.4f, 0.7f, -0.6f));
+        Image sky(1024, 512, 4, 1.0f);
+        for (int y = 0; y < sky.height; ++y) {
+            for (int x = 0; x < sky.width; ++x) {
+                const glm::vec3 d = latlongDirection((float(x) + 0.5f) / 1024.0f, (float(y) + 0.5f) / 512.0f);
+                const glm::vec3 radiance = glm::mix(glm::vec3(0.9f, 0.8f, 0.6f), glm::vec3(0.2f, 0.4f, 0.9f),
+                                                    std::max(d.y, 0.0f)) +
+                                           50.0f * std::pow(std::max(glm::dot(d, sun), 0.0f), 2000.0f);
+                for (int c = 0; c < 3; ++c) sky.at(x, y, c) = radiance[c];
+            }
+        }
+        const std::string path =
+            (std::filesystem::temp_directory_path() / ("hdhair-bench-sky-" + std::to_string(::getpid()) + ".exr"))
+                .string();
+        writeImage(sky, path);
+        const DomeFitSettings settings;
+        for (auto _ : state) {
+            const LatlongTextureRead read = readLatlongTexture(path, settings.gridWidth, settings.gridHeight);
+            benchmark::DoNotOptimize(fitSrbfs(read.grid, settings.srbf).srbfs.data());
+        }
+        std::filesystem::remove(path);
+    })->Unit(benchmark::kMillisecond);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -589,6 +626,7 @@ int main(int argc, char** argv) {
     std::vector<ShadingConfiguration> shadings = shadingConfigurations();
     registerReaderBenchmarks();
     registerSrbfTableBenchmarks();
+    registerEnvironmentBenchmarks();
     for (const auto& stagePointer : stages) {
         BenchStage* stage = stagePointer.get();
         benchmark::RegisterBenchmark(("PrepareCurves/" + stage->name).c_str(), [stage](benchmark::State& state) {

@@ -923,6 +923,7 @@ void Parser::parseProperty(PrimSpec& spec, const std::string& primPath) {
         attr.location = location(first);
     }
     attr.typeName = typeName;
+    if (scalar == "asset") attr.assetDirectory = directory_;
     attr.isCustom = attr.isCustom || isCustom;
     attr.isUniform = attr.isUniform || isUniform;
 

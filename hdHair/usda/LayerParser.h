@@ -109,6 +109,11 @@ struct AttributeSpec {
     std::map<std::string, Value> metadata;
     ListOp<std::string> connections;
     SourceLocation location;
+    // The directory of this spec's layer, for asset-valued attributes only
+    // (other attributes leave it empty and pay nothing): their relative asset
+    // paths resolve against it, as OpenUSD resolves them against the layer
+    // that authored the value.
+    std::string assetDirectory;
 };
 
 struct RelationshipSpec {

@@ -101,6 +101,11 @@ private:
     glm::vec3 readColor(const Prim& prim, std::initializer_list<const char*> names,
                         glm::vec3 fallback) const;
     std::optional<std::string> readToken(const Prim& prim, const std::string& name) const;
+    // The first of `names` with a value, an asset path resolved against the
+    // layer that authored it (resolveAssetPath); "" when none has one. A value
+    // of another type is a warning and reads as "": an unusable texture leaves
+    // a light untextured rather than skipping it.
+    std::string readAssetPath(const Prim& prim, std::initializer_list<const char*> names) const;
     std::vector<glm::vec3> readVec3Array(const Prim& prim, const std::string& name) const;
     std::vector<int> readIntArray(const Prim& prim, const std::string& name) const;
     std::vector<float> readFloatArray(const Prim& prim, const std::string& name) const;
@@ -209,6 +214,21 @@ std::optional<std::string> Reader::readToken(const Prim& prim, const std::string
     if (!value->isStringType() || value->isArray || value->strings.size() != 1)
         typeError(prim, name, "token", *value);
     return value->strings[0];
+}
+
+std::string Reader::readAssetPath(const Prim& prim, std::initializer_list<const char*> names) const {
+    for (const char* name : names) {
+        std::optional<Value> value = valueOf(prim, name);
+        if (!value) continue;
+        if (value->typeName != "asset" || value->strings.size() != 1) {
+            warn(prim, name, "expected an asset path (asset " + std::string(name) + " = @file@), found " +
+                                 value->typeName + "; ignored");
+            return std::string();
+        }
+        if (value->strings[0].empty()) return std::string();  // @@: authored as no file
+        return resolveAssetPath(value->strings[0], prim.attribute(name)->valueDirectoryAt(time_));
+    }
+    return std::string();
 }
 
 std::vector<glm::vec3> Reader::readVec3Array(const Prim& prim, const std::string& name) const {
@@ -495,6 +515,15 @@ void Reader::readLight(const Prim& prim, const Inherited& state, LightType type)
                                    light.coneSoftness);
     // UsdLuxShadowAPI, likewise.
     light.shadowEnable = readBool(prim, {"inputs:shadow:enable", "shadow:enable"}, light.shadowEnable);
+    if (type == LightType::Dome) {
+        light.textureFile = readAssetPath(prim, {"inputs:texture:file", "texture:file"});
+        for (const char* name : {"inputs:texture:format", "texture:format"}) {
+            if (std::optional<std::string> format = readToken(prim, name)) {
+                light.textureFormat = *format;
+                break;
+            }
+        }
+    }
     if (repairLight(light, prim.location.toString(), diagnostics_)) scene_.setLight(std::move(light));
 }
 

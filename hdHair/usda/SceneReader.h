@@ -59,7 +59,11 @@
 //    `inputs:shaping:cone:angle`, `inputs:shaping:cone:softness`) with the
 //    schema fallbacks; files written before USD 21.02 name them without
 //    "inputs:" (`intensity`, `shaping:cone:angle`), which is read when the
-//    `inputs:` name has no value.
+//    `inputs:` name has no value. DomeLight also `inputs:texture:file` (an
+//    asset path, resolved against the directory of the layer that authored
+//    the value: resolveAssetPath in Stage.h) and `inputs:texture:format`
+//    (token, kept as authored); a texture:file that is not an asset is a
+//    warning and leaves the dome untextured instead of skipping the light.
 //  - Stage metadata: upAxis, metersPerUnit, start/endTimeCode,
 //    timeCodesPerSecond (framesPerSecond when only that is authored, as USD
 //    does) into Scene::info().

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <iterator>
 
 #include "hdHair/usda/StageComposer.h"
@@ -71,6 +72,16 @@ std::optional<Value> Attribute::valueAt(double time) const {
     }
     if (!defaultValue || defaultValue->isBlocked) return std::nullopt;
     return defaultValue;
+}
+
+std::string resolveAssetPath(const std::string& assetPath, const std::string& directory) {
+    const std::filesystem::path asset(assetPath);
+    if (asset.is_absolute()) return asset.lexically_normal().string();
+    return (std::filesystem::path(directory) / asset).lexically_normal().string();
+}
+
+const std::string& Attribute::valueDirectoryAt(double time) const {
+    return !std::isnan(time) && !timeSamples.empty() ? timeSamplesDirectory : defaultValueDirectory;
 }
 
 const Attribute* Prim::attribute(const std::string& attributeName) const {

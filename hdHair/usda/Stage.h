@@ -40,6 +40,11 @@ struct Attribute {
     std::map<std::string, Value> metadata;         // "interpolation", "elementSize", ...
     std::vector<std::string> connections;          // ".connect = <...>" targets
     SourceLocation location;                       // where the strongest opinion was authored
+    // Asset-valued attributes: the directories of the layers whose opinions
+    // gave defaultValue and timeSamples; relative asset paths resolve against
+    // them (resolveAssetPath). Empty for other attributes.
+    std::string defaultValueDirectory;
+    std::string timeSamplesDirectory;
 
     // The value at a time code: time samples win over the default when present;
     // numeric values are linearly interpolated between samples (matrices and
@@ -51,7 +56,16 @@ struct Attribute {
     // A NaN time means UsdTimeCode::Default(): only the default value counts.
     std::optional<Value> valueAt(double time) const;
     bool isTimeVarying() const { return timeSamples.size() > 1; }
+    // The directory of the layer whose opinion valueAt(time) reads (time
+    // samples or the default, chosen as valueAt chooses).
+    const std::string& valueDirectoryAt(double time) const;
 };
+
+// An asset path as the embedded reader resolves it (there is no asset
+// resolver and no search path): absolute paths as they are, relative ones
+// against `directory`, the directory of the layer that authored them; both
+// lexically normalised.
+std::string resolveAssetPath(const std::string& assetPath, const std::string& directory);
 
 struct Relationship {
     std::string name;

@@ -39,12 +39,6 @@ std::string absoluteNormal(const fs::path& path) {
     return absolute.lexically_normal().string();
 }
 
-std::string resolveAsset(const std::string& assetPath, const std::string& baseDirectory) {
-    fs::path asset(assetPath);
-    if (asset.is_absolute()) return asset.lexically_normal().string();
-    return (fs::path(baseDirectory) / asset).lexically_normal().string();
-}
-
 // ---------------------------------------------------------------- paths
 
 // "/A" is a prefix of "/A", "/A/B" and "/A.attr", not of "/AB".
@@ -257,7 +251,7 @@ private:
         out.push_back(&layer);
         chain.push_back(&layer);
         for (const detail::SubLayer& sub : layer.subLayers) {
-            const std::string path = resolveAsset(sub.assetPath, layer.directory);
+            const std::string path = resolveAssetPath(sub.assetPath, layer.directory);
             const Layer& subLayer = loadLayer(path, sub.location, "sublayer");
             if (std::find(chain.begin(), chain.end(), &subLayer) != chain.end()) {
                 throw InputError(sub.location.toString() + ": sublayer cycle: '" + path +
@@ -324,7 +318,7 @@ private:
         const LayerStack* targetStack = node.stack;
         std::string layerName = node.stack->root->identifier;
         if (!reference.assetPath.empty()) {
-            const std::string path = resolveAsset(reference.assetPath, reference.baseDirectory);
+            const std::string path = resolveAssetPath(reference.assetPath, reference.baseDirectory);
             const Layer& layer = loadLayer(path, reference.location, what);
             targetStack = &stackFor(layer);
             layerName = path;
@@ -456,12 +450,16 @@ private:
                 attribute.isUniform = spec->isUniform;
                 attribute.isCustom = spec->isCustom;
             }
-            if (!attribute.defaultValue && spec->defaultValue) attribute.defaultValue = spec->defaultValue;
+            if (!attribute.defaultValue && spec->defaultValue) {
+                attribute.defaultValue = spec->defaultValue;
+                attribute.defaultValueDirectory = spec->assetDirectory;
+            }
             if (!valueSourceFound) {
                 // The strongest spec with any value decides: its time samples, or
                 // its default (which then hides weaker time samples).
                 if (spec->hasTimeSamples) {
                     attribute.timeSamples = spec->timeSamples;
+                    attribute.timeSamplesDirectory = spec->assetDirectory;
                     valueSourceFound = true;
                 } else if (spec->defaultValue) {
                     valueSourceFound = true;

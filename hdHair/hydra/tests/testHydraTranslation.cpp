@@ -148,6 +148,18 @@ TEST(HydraLights, HostCameraLightHasUnitIntensity) {
     EXPECT_EQ(light.intensity, 1.0f);
 }
 
+TEST(HydraLights, DomeTextureIsReadForDomesOnly) {
+    LightParameterLookup lookup = [](const std::string&) -> std::optional<std::vector<double>> { return std::nullopt; };
+    const HydraDomeTexture texture{"/maps/sky.exr", "latlong"};
+    LightPrim dome = lightFromHydra("/dome", LightType::Dome, false, lookup, glm::dmat4(1.0), texture);
+    EXPECT_EQ(dome.textureFile, "/maps/sky.exr");
+    EXPECT_EQ(dome.textureFormat, "latlong");
+    LightPrim unformatted = lightFromHydra("/dome", LightType::Dome, false, lookup, glm::dmat4(1.0), {"/a.hdr", ""});
+    EXPECT_EQ(unformatted.textureFormat, "automatic");  // UsdLux's fallback when the host gives none
+    LightPrim sphere = lightFromHydra("/sphere", LightType::Sphere, false, lookup, glm::dmat4(1.0), texture);
+    EXPECT_EQ(sphere.textureFile, "");
+}
+
 TEST(CompositeOver, EmptyPixelsShowTheBackgroundAndCoveredOnesKeepTheirColour) {
     Image image(3, 1, 4);
     image.pixels = {0, 0, 0, 0, 0.5f, 0, 0, 0.5f, 1, 1, 1, 1};

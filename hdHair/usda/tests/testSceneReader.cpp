@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <memory>
 #include <string>
 
@@ -351,6 +352,47 @@ def SphereLight "both"
     EXPECT_FALSE(old.shadowEnable);
     // The "inputs:" name wins when both are authored.
     EXPECT_FLOAT_EQ(light("/both").intensity, 4.0f);
+}
+
+TEST(SceneReader, DomeTextureFileAndFormat) {
+    auto r = read(R"(
+def DomeLight "sky"
+{
+    asset inputs:texture:file = @textures/../sky.exr@
+    token inputs:texture:format = "latlong"
+}
+def DomeLight "old"
+{
+    asset texture:file = @/maps/sky.hdr@
+    token texture:format = "angular"
+}
+def DomeLight "plain"
+{
+}
+def DomeLight "wrongType"
+{
+    string inputs:texture:file = "sky.exr"
+}
+def SphereLight "notADome"
+{
+    asset inputs:texture:file = @sky.exr@
+}
+)");
+    auto light = [&](const char* path) -> const LightPrim& { return *r->scene.lights().at(path).prim; };
+    // openFromString's layer lives in the current directory.
+    const std::string here = std::filesystem::current_path().lexically_normal().string();
+    EXPECT_EQ(light("/sky").textureFile, here + "/sky.exr");
+    EXPECT_EQ(light("/sky").textureFormat, "latlong");
+    EXPECT_EQ(light("/old").textureFile, "/maps/sky.hdr");
+    EXPECT_EQ(light("/old").textureFormat, "angular");  // kept as authored: hdHair/environment checks it
+    EXPECT_EQ(light("/plain").textureFile, "");
+    EXPECT_EQ(light("/plain").textureFormat, "automatic");
+    EXPECT_EQ(light("/notADome").textureFile, "");
+    // A texture of the wrong type leaves the dome untextured, with a word.
+    EXPECT_EQ(light("/wrongType").textureFile, "");
+    EXPECT_TRUE(hasWarning(r->diagnostics, {"/wrongType.inputs:texture:file", "expected an asset path", "string"}))
+        << allWarnings(r->diagnostics);
+    EXPECT_EQ(r->diagnostics.warningCount(), 1u) << allWarnings(r->diagnostics);
 }
 
 TEST(SceneReader, CameraFields) {

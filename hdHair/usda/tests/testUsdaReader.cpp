@@ -12,6 +12,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <random>
 #include <sstream>
 #include <tuple>
@@ -750,6 +751,39 @@ over "World"
     EXPECT_EQ(world->typeName, "Xform");
     EXPECT_EQ(world->location.file, root);
     EXPECT_EQ(paths(stage->traverse()), (std::vector<std::string>{"/World", "/World/fromWeak", "/World/fromMid"}));
+}
+
+// An asset path resolves against the layer whose opinion gave the value, as
+// OpenUSD resolves a path relative to its layer: a weaker sublayer's default
+// against its own folder, the root's time samples against the root's.
+TEST(UsdaComposition, AssetValuesResolveAgainstTheLayerThatAuthoredThem) {
+    TempDir dir;
+    dir.write("layers/lights.usda", R"(#usda 1.0
+def DomeLight "sky"
+{
+    asset inputs:texture:file = @textures/sky.exr@
+    asset other = @../up.exr@
+}
+)");
+    const std::string root = dir.write("root.usda", R"(#usda 1.0
+(
+    subLayers = [@layers/lights.usda@]
+)
+over "sky"
+{
+    asset other.timeSamples = { 1: @here.exr@ }
+}
+)");
+    auto stage = Stage::open(root);
+    const Attribute& texture = attr(*stage, "/sky", "inputs:texture:file");
+    EXPECT_EQ(resolveAssetPath(texture.valueAt(0.0)->strings[0], texture.valueDirectoryAt(0.0)),
+              dir.path("layers/textures/sky.exr"));
+    const Attribute& other = attr(*stage, "/sky", "other");
+    EXPECT_EQ(resolveAssetPath(other.valueAt(1.0)->strings[0], other.valueDirectoryAt(1.0)), dir.path("here.exr"));
+    const double defaultTime = std::numeric_limits<double>::quiet_NaN();
+    EXPECT_EQ(resolveAssetPath(other.valueAt(defaultTime)->strings[0], other.valueDirectoryAt(defaultTime)),
+              dir.path("up.exr"));
+    EXPECT_EQ(resolveAssetPath("/abs/../sky.hdr", "/anywhere"), "/sky.hdr");
 }
 
 TEST(UsdaComposition, ReferencesPayloadsAndLocalOpinions) {
