@@ -493,8 +493,8 @@ TEST_F(HdhairRecord, UsdReaderRendersTheQualityPresetThroughThePlugin) {
     EXPECT_NE(run.output.find("  supersampling          2            quality=high\n"), std::string::npos) << run.output;
     const nlohmann::json frame = nlohmann::json::parse(std::ifstream(file("stats.json")))["frames"][0];
     EXPECT_EQ(frame["settings"]["quality"], "high");
-    EXPECT_EQ(frame["settings"]["sortBins"], 1024);
-    EXPECT_EQ(frame["settingOrigins"]["sortBins"]["source"], "quality=high");
+    EXPECT_EQ(frame["settings"]["shadowLayers"], 7);
+    EXPECT_EQ(frame["settingOrigins"]["shadowLayers"]["source"], "quality=high");
     EXPECT_EQ(frame["supersampling"], 2);
     EXPECT_EQ(frame["image"]["width"], 64);
 }
