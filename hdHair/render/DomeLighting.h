@@ -15,11 +15,13 @@
 //   compare with.
 // Self-shadowing (T̃_j, Ren §5): the domeShadowLights strongest SRBFs of a
 // dome that casts shadows (amplitude summed over RGB × ∫G dω) get their own
-// deep opacity map, as distant lights from ξ_j (the ordinary shadow passes
-// and lookup, not the paper's convolution optical depth map); every other
-// SRBF of that dome reads the map of the shadowed SRBF nearest to it in
-// direction (ShadowPlan::sharedMaps). A dome with shadow:enable false and
-// the uniform term are unshadowed.
+// deep opacity map, as distant lights from ξ_j (the ordinary shadow
+// passes); every other SRBF of that dome reads the map of the shadowed SRBF
+// nearest to it in direction (ShadowPlan::sharedMaps). The lookup widens
+// with depth behind the first hair by the lobe's support angle
+// (srbfShadowTransmittance in shaders/include/shadows.glsl: nine taps, not
+// the paper's summed-area tables). A dome with shadow:enable false and the
+// uniform term are unshadowed.
 
 #include <cstddef>
 #include <map>

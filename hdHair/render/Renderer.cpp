@@ -354,6 +354,7 @@ std::optional<MaterialUpload> Renderer::materialUpload(const std::vector<HairMat
             const glm::ivec2 tables = upload.srbfTables.materialTables[upload.materials.size()];
             entry.segments.y = tables.x;  // srbfLighting.glsl: the table, and its uniform-dome row
             entry.segments.z = tables.y;
+            if (srbfAbsorbsPerFragment(material)) entry.modelAndLayer.z |= gl::kHairMaterialSrbfLobes;
         }
         if (material.usesTables()) {
             // Tables depend on eta, absorption and glints only: built once per

@@ -9,6 +9,10 @@
 
 namespace hdhair {
 
+bool srbfAbsorbsPerFragment(const HairMaterial& material) {
+    return material.model == ShadingModel::Marschner && (material.varies & kAbsorptionVaries) != 0;
+}
+
 SrbfMaterialTables::SrbfMaterialTables(std::string cacheDirectory) : cache_(std::move(cacheDirectory)) {}
 
 const SrbfMaterialTables::Entry& SrbfMaterialTables::entryFor(const SrbfTableRequest& request,
@@ -34,7 +38,10 @@ SrbfTableUpload SrbfMaterialTables::tablesFor(const std::vector<HairMaterial>& m
     for (const HairMaterial& material : materials) {
         glm::ivec2 tables(0);
         if (material.model == ShadingModel::Marschner) {
-            const Entry& entry = entryFor(srbfMarschnerTableRequest(material.marschner), diagnostics);
+            const Entry& entry = entryFor(srbfAbsorbsPerFragment(material)
+                                              ? srbfMarschnerLobeTableRequest(material.marschner)
+                                              : srbfMarschnerTableRequest(material.marschner),
+                                          diagnostics);
             auto at = std::find(marschner.begin(), marschner.end(), &entry);
             if (at == marschner.end() && marschner.size() == kMaxSrbfMarschnerTables) {
                 if (!overflowWarned)

@@ -7,9 +7,11 @@
 // else built, about a second for Marschner), and each table's uniform-dome
 // response (SrbfUniformDome.h). Materials with equal parameters share a
 // table. Built only for frames with a dome: a stage without one never pays.
-// Materials whose parameters vary per curve or vertex read the table of their
-// mean parameters (the material's own); SrbfVaryingAbsorption.h's per-lobe
-// fallback is not used yet.
+// Marschner materials whose absorption varies per curve or vertex read the
+// table of their lobes apart at σ_a = 0 (MarschnerLobes), and the shader
+// puts each fragment's absorption back per lobe (SrbfVaryingAbsorption.h);
+// other varying parameters (η, α, β, Kajiya-Kay's) take their mean, the
+// material's own.
 
 #include <map>
 #include <memory>
@@ -31,6 +33,9 @@ class Diagnostics;
 // guaranteed 3-D size, over 32 ψ nodes a table); more distinct Marschner
 // materials read the first one's table, with a warning.
 constexpr size_t kMaxSrbfMarschnerTables = 64;
+
+// Whether a material reads a MarschnerLobes table (above).
+bool srbfAbsorbsPerFragment(const HairMaterial& material);
 
 struct SrbfTableUpload {
     // Per material: x its table among its kind's, y its uniform-dome row.

@@ -20,13 +20,15 @@ vec3 strandRadiance(vec3 worldPosition, vec3 centre, vec3 worldTangent, vec3 hai
     if (shading.model == 0) return lights.lightCount.y == 0 ? hairColor : vec3(0.0);
     vec3 t = normalize(worldTangent);
     vec3 e = directionToEye(worldPosition);
-    vec3 radiance = lights.ambient.w > 0.5
-                        ? lights.ambient.rgb * srbfUniformDomeResponse(materialIndex, shading, t, e, hairColor)
-                        : lights.ambient.rgb * hairColor;
+    SrbfAbsorption absorption = srbfAbsorption(shading, t, e);
+    vec3 radiance =
+        lights.ambient.w > 0.5
+            ? lights.ambient.rgb * srbfUniformDomeResponse(materialIndex, shading, absorption, t, e, hairColor)
+            : lights.ambient.rgb * hairColor;
     bool analytic = (shading.flags & HAIR_MATERIAL_ANALYTIC) != 0;
     for (int i = 0; i < lights.lightCount.x; ++i) {
         if (isSrbfLight(i)) {
-            vec3 lobe = srbfLightRadiance(i, materialIndex, shading, t, e, hairColor);
+            vec3 lobe = srbfLightRadiance(i, materialIndex, shading, absorption, t, e, hairColor);
             if (any(greaterThan(lobe, vec3(0.0)))) radiance += lobe * srbfShadowTransmittance(i, centre);
             continue;
         }

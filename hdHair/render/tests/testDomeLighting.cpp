@@ -8,6 +8,7 @@
 #include <cstdlib>
 #include <iostream>
 #include <string>
+#include <utility>
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
@@ -15,12 +16,18 @@
 #include "hdHair/base/Diagnostics.h"
 #include "hdHair/environment/DomeEnvironment.h"
 #include "hdHair/environment/tests/LatlongTestTextures.h"
+#include "hdHair/curves/PreparedCurves.h"
+#include "hdHair/render/HairMaterial.h"
 #include "hdHair/render/Renderer.h"
+#include "hdHair/render/tests/SquareCamera.h"
+#include "hdHair/scene/tests/AuthoredPrimvar.h"
 #include "hdHair/scene/Scene.h"
 #include "hdHair/shading/SrbfTableCache.h"
 #include "hdHair/shading/SrbfUniformDome.h"
+#include "hdHair/shading/SrbfVaryingAbsorption.h"
 
 using namespace hdhair;
+using hdhair::test::squareCamera;
 
 namespace {
 
@@ -61,15 +68,6 @@ Scene twoStrands() {
     scene.setCurves(strand("/horizontal", {-1.0f, 0.5f, 0.0f}, {1.0f, 0.5f, 0.0f}));
     scene.setCurves(strand("/vertical", {0.5f, -1.0f, 0.0f}, {0.5f, 0.2f, 0.0f}));
     return scene;
-}
-
-// Orthographic down -Z over [-1.2, 1.2]²: every pixel sees ωo = +Z.
-CameraView squareCamera(int pixels) {
-    CameraPrim camera;
-    camera.projection = Projection::Orthographic;
-    camera.horizontalAperture = camera.verticalAperture = 24.0f;
-    camera.worldTransform = glm::translate(glm::dmat4(1.0), glm::dvec3(0.0, 0.0, 5.0));
-    return cameraViewFromPrim(camera, pixels);
 }
 
 LightPrim dome(const std::string& textureFile, glm::dmat4 transform = glm::dmat4(1.0)) {
@@ -183,6 +181,98 @@ TEST_F(DomeLighting, TheShaderLooksUpTheTablesAsTheCpuDoes) {
     EXPECT_GT(largestRelativeDifference(row, expectedKajiyaKay(environment.srbfs, table, t, wo, strongest)),
               tolerance);
     EXPECT_GT(largestRelativeDifference(row, expected * 1.05f), tolerance);
+}
+
+TEST_F(DomeLighting, MarschnerStrandsReadTheirMaterialsRgbTable) {
+    // As above for Marschner: the RGB table of the prim's own fibre
+    // parameters (absorption from its displayColor), 32 azimuths wide.
+    const std::string sky = writeSky(path("sky.exr"));
+    Scene scene = twoStrands();
+    scene.setLight(dome(sky));
+    RenderSettings settings;
+    settings.set("shadowMode", "off");
+    settings.set("shadingModel", "marschner");
+    Renderer renderer(gl::GlBackend::Egl);
+    Diagnostics diagnostics;
+    const CameraView camera = squareCamera(96);
+    RenderResult result = renderer.render(scene, camera, settings, diagnostics);
+    EXPECT_EQ(diagnostics.warningCount(), 0u);
+
+    const CurvesPrim& prim = *scene.curves().at("/horizontal").prim;
+    const HairMaterial material =
+        hairMaterialFor(prim, prepareCurves(prim, diagnostics, hairParameterPrimvars()), settings, diagnostics);
+    ASSERT_EQ(material.model, ShadingModel::Marschner);
+    DomeEnvironment environment = domeEnvironment(dome(sky), glm::vec3(1.0f), DomeFitSettings(), diagnostics);
+    SrbfTableCache cache(path("cache"));  // the file the renderer wrote
+    const SrbfConvolutionTable& table = *cache.table(srbfMarschnerTableRequest(material.marschner), diagnostics);
+    EXPECT_EQ(cache.counts().builds, 0);
+    const glm::vec3 t(1.0f, 0.0f, 0.0f), wo(0.0f, 0.0f, 1.0f);
+    auto expectedMarschner = [&](size_t skip) {
+        glm::vec3 sum(0.0f);
+        for (size_t j = 0; j < environment.srbfs.size(); ++j)
+            if (j != skip)
+                sum += environment.srbfs[j].amplitude * evaluateSrbfMarschnerTable(table, t, wo, environment.srbfs[j].lobe);
+        return sum;
+    };
+    const glm::vec3 expected = expectedMarschner(size_t(-1));
+    const RowPixels row = coveredRow(result, camera, 0.5f);
+    ASSERT_GT(row.colors.size(), 50u);
+    const float difference = largestRelativeDifference(row, expected);
+    std::cout << "Marschner: largest difference from the CPU lookup " << 100.0f * difference << " %\n";
+    EXPECT_LT(difference, 0.01f);
+    EXPECT_GT(largestRelativeDifference(row, expected * 1.05f), 0.01f);
+    EXPECT_GT(largestRelativeDifference(row, expectedMarschner(0)), 0.01f);  // the strongest lobe left out
+}
+
+TEST_F(DomeLighting, AbsorptionThatVariesPerCurveIsPutBackPerFragment) {
+    // Two curves of one prim, blonde and dark (hdHair:absorption per curve):
+    // no RGB table fits both, so the prim reads the lobes apart at σ_a = 0
+    // and each fragment weighs TT and TRT by its own absorption
+    // (SrbfVaryingAbsorption.h), which the CPU does the same way.
+    const std::string sky = writeSky(path("sky.exr"));
+    CurvesPrim prim;
+    prim.path = "/hair";
+    prim.type = CurveType::Linear;
+    prim.curveVertexCounts = {2, 2};
+    prim.points = {{-1.0f, 0.5f, 0.0f}, {1.0f, 0.5f, 0.0f}, {-1.0f, -0.5f, 0.0f}, {1.0f, -0.5f, 0.0f}};
+    prim.shadingModel = "marschner";
+    prim.primvars["widths"].name = "widths";
+    prim.primvars["widths"].values = {0.2f};
+    const glm::vec3 blonde(0.015f, 0.035f, 0.075f), dark(0.6f, 0.9f, 1.4f);
+    prim.primvars["hdHair:absorption"] = test::authoredPrimvar(
+        "hdHair:absorption", Interpolation::Uniform, 3, {blonde.r, blonde.g, blonde.b, dark.r, dark.g, dark.b});
+    Scene scene;
+    scene.setCurves(prim);
+    scene.setLight(dome(sky));
+    RenderSettings settings;
+    settings.set("shadowMode", "off");
+    Renderer renderer(gl::GlBackend::Egl);
+    Diagnostics diagnostics;
+    const CameraView camera = squareCamera(96);
+    RenderResult result = renderer.render(scene, camera, settings, diagnostics);
+    EXPECT_EQ(diagnostics.warningCount(), 0u);
+
+    const HairMaterial material =
+        hairMaterialFor(prim, prepareCurves(prim, diagnostics, hairParameterPrimvars()), settings, diagnostics);
+    ASSERT_TRUE(material.varies & kAbsorptionVaries);
+    DomeEnvironment environment = domeEnvironment(dome(sky), glm::vec3(1.0f), DomeFitSettings(), diagnostics);
+    SrbfTableCache cache(path("cache"));
+    const SrbfConvolutionTable& lobes = *cache.table(srbfMarschnerLobeTableRequest(material.marschner), diagnostics);
+    EXPECT_EQ(cache.counts().builds, 0);  // the renderer built and wrote this table
+    const glm::vec3 t(1.0f, 0.0f, 0.0f), wo(0.0f, 0.0f, 1.0f);
+    for (auto [y, sigmaA] : {std::pair{0.5f, blonde}, std::pair{-0.5f, dark}}) {
+        glm::vec3 expected(0.0f);
+        for (const Srbf& srbf : environment.srbfs)
+            expected += srbf.amplitude *
+                        evaluateSrbfMarschnerVaryingAbsorption(lobes, t, wo, srbf.lobe, sigmaA, material.marschner);
+        const RowPixels row = coveredRow(result, camera, y);
+        ASSERT_GT(row.colors.size(), 50u);
+        const float difference = largestRelativeDifference(row, expected);
+        std::cout << "absorption per curve, y = " << y << ": largest difference from the CPU " << 100.0f * difference
+                  << " %\n";
+        EXPECT_LT(difference, 0.01f) << y;
+        EXPECT_GT(largestRelativeDifference(row, expected * 1.05f), 0.01f) << y;
+    }
 }
 
 TEST_F(DomeLighting, TurningTheDomeMovesTheLitSide) {
