@@ -138,19 +138,24 @@ glm::vec3 expectedKajiyaKay(const std::vector<Srbf>& srbfs, const SrbfConvolutio
     return sum;
 }
 
+// The frame of `scene` without shadows (T̃ = 1: the tables alone), with no warning.
+RenderResult renderUnshadowed(const Scene& scene, RenderSettings settings, const CameraView& camera) {
+    settings.set("shadowMode", "off");
+    Renderer renderer(gl::GlBackend::Egl);
+    Diagnostics diagnostics;
+    RenderResult result = renderer.render(scene, camera, settings, diagnostics);
+    EXPECT_EQ(diagnostics.warningCount(), 0u);
+    return result;
+}
+
 }  // namespace
 
 TEST_F(DomeLighting, TheShaderLooksUpTheTablesAsTheCpuDoes) {
     const std::string sky = writeSky(path("sky.exr"));
     Scene scene = twoStrands();
     scene.setLight(dome(sky));
-    RenderSettings settings;
-    settings.set("shadowMode", "off");  // T̃ = 1: the tables alone
-    Renderer renderer(gl::GlBackend::Egl);
-    Diagnostics diagnostics;
     const CameraView camera = squareCamera(96);
-    RenderResult result = renderer.render(scene, camera, settings, diagnostics);
-    EXPECT_EQ(diagnostics.warningCount(), 0u);
+    RenderResult result = renderUnshadowed(scene, RenderSettings{}, camera);
 
     // The lobes the renderer drew (the same fit, from the process's cache)
     // and the table it read.
@@ -190,13 +195,10 @@ TEST_F(DomeLighting, MarschnerStrandsReadTheirMaterialsRgbTable) {
     Scene scene = twoStrands();
     scene.setLight(dome(sky));
     RenderSettings settings;
-    settings.set("shadowMode", "off");
     settings.set("shadingModel", "marschner");
-    Renderer renderer(gl::GlBackend::Egl);
-    Diagnostics diagnostics;
     const CameraView camera = squareCamera(96);
-    RenderResult result = renderer.render(scene, camera, settings, diagnostics);
-    EXPECT_EQ(diagnostics.warningCount(), 0u);
+    RenderResult result = renderUnshadowed(scene, settings, camera);
+    Diagnostics diagnostics;
 
     const CurvesPrim& prim = *scene.curves().at("/horizontal").prim;
     const HairMaterial material =
@@ -244,13 +246,10 @@ TEST_F(DomeLighting, AbsorptionThatVariesPerCurveIsPutBackPerFragment) {
     Scene scene;
     scene.setCurves(prim);
     scene.setLight(dome(sky));
-    RenderSettings settings;
-    settings.set("shadowMode", "off");
-    Renderer renderer(gl::GlBackend::Egl);
-    Diagnostics diagnostics;
     const CameraView camera = squareCamera(96);
-    RenderResult result = renderer.render(scene, camera, settings, diagnostics);
-    EXPECT_EQ(diagnostics.warningCount(), 0u);
+    const RenderSettings settings;
+    RenderResult result = renderUnshadowed(scene, settings, camera);
+    Diagnostics diagnostics;
 
     const HairMaterial material =
         hairMaterialFor(prim, prepareCurves(prim, diagnostics, hairParameterPrimvars()), settings, diagnostics);
