@@ -50,7 +50,9 @@ def rcolor(c):
 # ---------------------------------------------------------------------------
 
 
-def straight_strands():
+def curtain():
+    """40 straight strands about 10 cm long side by side, tapering from 0.3 to
+    0.02 cm: the curve vertex counts, the points (phantoms included), widths."""
     rng = random.Random(1001)
     counts, points, widths = [], [], []
     strands, real = 40, 5
@@ -63,6 +65,11 @@ def straight_strands():
         points += [rpoint(p) for p in u.add_phantoms(pts)]
         widths += [u.rnd(w) for w in [ws[0]] + ws + [ws[-1]]]
         counts.append(real + 2)
+    return counts, points, widths
+
+
+def straight_strands():
+    counts, points, widths = curtain()
     hair = u.basis_curves("hair", counts, points, widths, "vertex",
                           colors=[(0.4, 0.22, 0.1)], colors_interp="constant")
     key = u.distant_light("key_light", (0.5, -0.6, -0.6), intensity=2, angle=1)
@@ -228,10 +235,35 @@ def dense_clump():
     return layer
 
 
+# ---------------------------------------------------------------------------
+# 4. dome_lit_strands: the curtain under a textured DomeLight alone
+# ---------------------------------------------------------------------------
+
+
+def dome_lit_strands():
+    """The straight curtain lit only by a DomeLight with a small HDR sky
+    (dome_sky.exr, written by make_dome_sky.sh), turned 30 degrees about +Y so
+    that the sun is off the camera's axis: domeLighting=srbf fits it with SRBF
+    lights (README, "Dome lighting")."""
+    counts, points, widths = curtain()
+    hair = u.basis_curves("hair", counts, points, widths, "vertex",
+                          colors=[(0.55, 0.36, 0.2)], colors_interp="constant")
+    dome = u.Prim("DomeLight", "dome", attrs=[
+        u.Attr("float", "inputs:intensity", 0.2),
+        u.Attr("asset", "inputs:texture:file", "./dome_sky.exr"),
+        u.Attr("token", "inputs:texture:format", "latlong"),
+    ] + u.xform_attrs(rotate=(0, 30, 0)))
+    cam, _, _ = u.frame_camera(points, (0, -0.15, -1), focal=50, fill=0.85)
+    layer = u.Layer(doc=DOC, default_prim="World")
+    layer.add(world(cam, hair, dome))
+    return layer
+
+
 EXAMPLES = {
     "straight_strands.usda": straight_strands,
     "wavy_strands.usda": wavy_strands,
     "dense_clump.usda": dense_clump,
+    "dome_lit_strands.usda": dome_lit_strands,
 }
 
 

@@ -540,7 +540,9 @@ class Parser:
         if type_name.endswith("[]") and not isinstance(value, list):
             self.fail("%s needs an array" % type_name)
         for v in values:
-            if base in STRING_TYPES:
+            if base == "asset":
+                ok = isinstance(v, tuple) and v[0] == "@"  # parse_value's (@, path, target)
+            elif base in STRING_TYPES:
                 ok = isinstance(v, str)
             elif base == "matrix4d":
                 ok = isinstance(v, tuple) and len(v) == 4 and all(len(r) == 4 for r in v)

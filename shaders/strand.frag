@@ -16,6 +16,7 @@
 #include "include/hairMaterials.glsl"
 #include "include/shadowFragmentLists.glsl"
 #include "include/shadows.glsl"
+#include "include/srbfLighting.glsl"
 #include "include/strandShading.glsl"
 
 layout(location = 0) in vec3 worldPosition;

@@ -13,6 +13,7 @@
 #include "include/hairMaterials.glsl"
 #include "include/shadowFragmentLists.glsl"
 #include "include/shadows.glsl"
+#include "include/srbfLighting.glsl"
 #include "include/strandShading.glsl"
 #include "include/fragmentLists.glsl"
 

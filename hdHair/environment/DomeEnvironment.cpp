@@ -45,7 +45,7 @@ DomeEnvironment domeEnvironment(const LightPrim& dome, const glm::vec3& radiance
     environment.srbfs.reserve(fit->fit.srbfs.size());
     for (const Srbf& lobe : fit->fit.srbfs) {
         Srbf world = lobe;
-        world.centre = domeLightDirectionToWorld(dome.worldTransform, lobe.centre);
+        world.lobe.centre = domeLightDirectionToWorld(dome.worldTransform, lobe.lobe.centre);
         world.amplitude = lobe.amplitude * radianceScale;
         environment.srbfs.push_back(world);
     }

@@ -1,9 +1,8 @@
 #pragma once
 // The light a DomeLight gives, in world space, ready for shading: either an
 // analytic uniform radiance (an untextured dome) or the SRBF lights fitted
-// to its texture (Ren et al. 2010, §3 Eq. 2; SrbfFit.h). Not yet drawn:
-// rendering still treats every dome as its uniform ambient term
-// (hdHair/shading/ShadingLight.h) until the GL side uses these lobes.
+// to its texture (Ren et al. 2010, §3 Eq. 2; SrbfFit.h), which
+// hdHair/render/DomeLighting.h draws.
 //
 // - Untextured (inputs:texture:file empty): radiance `radianceScale` from
 //   every direction, exactly; nothing is fitted.

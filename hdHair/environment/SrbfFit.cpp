@@ -81,7 +81,7 @@ public:
         if (Candidate shifted = bestBandwidth(meanShift(best.centre, best.kernel), residual_);
             shifted.reduction > best.reduction)
             best = std::move(shifted);
-        lobes_.push_back(Srbf{best.centre, best.bandwidth, glm::vec3(0.0f)});
+        lobes_.push_back(Srbf{SrbfLobe{best.centre, best.bandwidth}, glm::vec3(0.0f)});
         kernels_.push_back(std::move(best.kernel));
         gram_.emplace_back();
         projections_.emplace_back();
@@ -96,14 +96,14 @@ public:
             // The residual without lobe i.
             const glm::dvec3 amplitude(lobes_[i].amplitude);
             for (size_t s = 0; s < grid_.cellCount(); ++s) residual_[s] += amplitude * kernels_[i][s];
-            Candidate best = bestBandwidth(lobes_[i].centre, residual_);
-            const glm::vec3 shifted = meanShift(lobes_[i].centre, kernels_[i]);
-            if (shifted != lobes_[i].centre) {
+            Candidate best = bestBandwidth(lobes_[i].lobe.centre, residual_);
+            const glm::vec3 shifted = meanShift(lobes_[i].lobe.centre, kernels_[i]);
+            if (shifted != lobes_[i].lobe.centre) {
                 Candidate moved = bestBandwidth(shifted, residual_);
                 if (moved.reduction > best.reduction) best = std::move(moved);
             }
-            lobes_[i].centre = best.centre;
-            lobes_[i].bandwidth = best.bandwidth;
+            lobes_[i].lobe.centre = best.centre;
+            lobes_[i].lobe.bandwidth = best.bandwidth;
             lobes_[i].amplitude = glm::vec3(best.amplitude);
             kernels_[i] = std::move(best.kernel);
             updateProducts(i);

@@ -36,11 +36,13 @@ size_t texelBytes(GLenum internalFormat) {
     case GL_RGBA32F: return 16;
     case GL_RGB32F: return 12;
     case GL_RGBA16F: return 8;
+    case GL_RGB16F: return 6;
     case GL_R32F:
     case GL_R32I:
     case GL_R32UI:
     case GL_DEPTH_COMPONENT32F:
-    case GL_RGBA8: return 4;
+    case GL_RGBA8:
+    case GL_RG16F: return 4;
     default:
         throw std::logic_error("GpuMemory: no texel size for GL internal format " + std::to_string(internalFormat));
     }

@@ -94,5 +94,6 @@ struct GpuHairMaterial {
 static_assert(sizeof(GpuHairMaterial) == 112, "std430 layout of HairMaterial");
 constexpr int kHairMaterialPerPoint = 1;  // HAIR_MATERIAL_PER_POINT
 constexpr int kHairMaterialAnalytic = 2;  // HAIR_MATERIAL_ANALYTIC
+constexpr int kHairMaterialSrbfLobes = 4;  // HAIR_MATERIAL_SRBF_LOBES
 
 }  // namespace hdhair::gl

@@ -22,21 +22,27 @@ namespace hdhair {
 
 namespace {
 
-// The lights of one batch; the dome's ambient term belongs to the first
-// batch only, so that summing batches counts it once.
+// The lights of one batch; the dome's ambient or uniform term belongs to
+// the first batch only, so that summing batches counts it once. An SRBF
+// light is kind 2 (lightVector.w), its bandwidth in lightScale.w.
 gl::LightUniforms lightUniforms(const RenderPlan& plan, size_t batch) {
     gl::LightUniforms uniforms;
     auto [begin, end] = plan.lightBatches[batch];
     size_t count = end - begin;
     for (size_t i = 0; i < count; ++i) {
         const ShadingLight& light = plan.lights.lights[begin + i];
-        uniforms.lightVector[i] = glm::vec4(light.directionOrPosition, light.isLocal ? 1.0f : 0.0f);
-        uniforms.lightScale[i] = glm::vec4(light.scale, 0.0f);
+        const float kind = light.isSrbf() ? 2.0f : light.isLocal ? 1.0f : 0.0f;
+        uniforms.lightVector[i] = glm::vec4(light.directionOrPosition, kind);
+        uniforms.lightScale[i] = glm::vec4(light.scale, light.srbfBandwidth);
         uniforms.lightAxis[i] = glm::vec4(light.emissionAxis, light.oneSided ? 1.0f : 0.0f);
         uniforms.lightCone[i] = glm::vec4(light.coneCosOuter, light.coneCosInner, light.shaped ? 1.0f : 0.0f, 0.0f);
     }
     uniforms.lightCount = glm::ivec4(int(count), int(batch), 0, 0);
-    uniforms.ambient = glm::vec4(batch == 0 ? plan.lights.ambient : glm::vec3(0.0f), 0.0f);
+    // w: 0 a flat ambient term (domeLighting=ambient, or no dome), 1 the
+    // uniform dome's analytic response (srbf), which shades from the tables.
+    const bool uniformDome = glm::length(plan.lights.uniformDome) > 0.0f;
+    const glm::vec3 dome = uniformDome ? plan.lights.uniformDome : plan.lights.ambient;
+    uniforms.ambient = batch == 0 ? glm::vec4(dome, uniformDome ? 1.0f : 0.0f) : glm::vec4(0.0f);
     return uniforms;
 }
 
@@ -71,6 +77,11 @@ void upload(FrameContext& context) {
         context.resources.materials.update(inputs.materials->materials, inputs.materials->parameterPoints,
                                            inputs.materials->tables, inputs.materials->tableWidth,
                                            inputs.materials->tableHeight);
+    if (inputs.materials) {
+        const SrbfTableUpload& srbf = inputs.materials->srbfTables;
+        const gl::GpuMemoryUse use("srbfTables");
+        context.resources.srbfTables.update(srbf.marschner, srbf.kajiyaKay, srbf.uniformRows);
+    }
 }
 
 // preparedMeshes -> meshGeometry: every drawn mesh, when one changed.
@@ -89,6 +100,7 @@ void bindBatchInputs(FrameContext& context, gl::RenderTarget& target, size_t bat
     FrameResources& resources = context.resources;
     target.bind();
     resources.materials.bind();
+    resources.srbfTables.bind();
     resources.shadowMaps.bindForLookup();
     resources.shadowReference.bindForLookup();
     resources.strandPass.setUniforms(context.inputs.frame, lightUniforms(context.plan, batch),

@@ -19,6 +19,7 @@
 #include "hdHair/render/CameraView.h"
 #include "hdHair/render/FrameCancellation.h"
 #include "hdHair/render/RenderPlan.h"
+#include "hdHair/render/SrbfMaterialTables.h"
 #include "hdHair/render/StrandUploads.h"
 
 namespace hdhair {
@@ -40,6 +41,8 @@ struct MaterialUpload {
     std::vector<glm::vec4> parameterPoints;
     std::vector<const std::vector<uint16_t>*> tables;
     int tableWidth = 1, tableHeight = 1;
+    // Dome lighting's tables (empty without a dome: 1-texel placeholders).
+    SrbfTableUpload srbfTables;
 };
 
 // The frame's meshes as the GPU draws them: one range of the mesh buffer

@@ -10,6 +10,7 @@
 #include "hdHair/gl/DisplayTransformPass.h"
 #include "hdHair/gl/FragmentListPass.h"
 #include "hdHair/gl/HairMaterialTable.h"
+#include "hdHair/gl/SrbfTableTextures.h"
 #include "hdHair/gl/LightBatchAccumulation.h"
 #include "hdHair/gl/MeshGeometry.h"
 #include "hdHair/gl/MeshPass.h"
@@ -35,6 +36,7 @@ struct FrameResources {
     gl::FragmentListPass fragmentLists;
     gl::LightBatchAccumulation lightBatchAccumulation;
     gl::HairMaterialTable materials;
+    gl::SrbfTableTextures srbfTables;  // dome lighting
     gl::StrandGeometry strands;
     gl::DisplayTransformPass displayTransform;
     gl::MeshGeometry meshes;

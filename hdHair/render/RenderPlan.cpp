@@ -39,6 +39,7 @@ std::string ShadowPlan::resourceOf(const PlannedShadow& shadow) const {
 }
 
 int ShadowPlan::shadowOf(size_t light) const {
+    if (auto shared = sharedMaps.find(light); shared != sharedMaps.end()) light = shared->second;
     for (size_t i = 0; i < lights.size(); ++i)
         if (lights[i].light == light) return int(i);
     return -1;
@@ -173,7 +174,10 @@ std::vector<FrameResource> batchShadowReads(const RenderPlan& plan, size_t batch
     for (size_t light = plan.lightBatches[batch].first; light < plan.lightBatches[batch].second; ++light) {
         int shadow = plan.shadows.shadowOf(light);
         if (shadow < 0 || !plan.shadows.lights[size_t(shadow)].view.valid) continue;
-        reads.push_back(plan.shadows.resourceOf(plan.shadows.lights[size_t(shadow)]));
+        const FrameResource map = plan.shadows.resourceOf(plan.shadows.lights[size_t(shadow)]);
+        // SRBF lights share maps (ShadowPlan::sharedMaps): each read once.
+        if (std::find(reads.begin(), reads.end(), map) != reads.end()) continue;
+        reads.push_back(map);
         if (plan.shadows.meshesCast) reads.push_back(plan.shadows.meshResourceOf(plan.shadows.lights[size_t(shadow)]));
     }
     return reads;
@@ -253,13 +257,18 @@ nlohmann::json RenderPlan::toJson() const { return graph.toJson(); }
 
 RenderPlan makeRenderPlan(const Scene& scene, const RenderSettings& settings, const CameraView& camera,
                           const StrandSummary& strands, bool idsRequested, const MeshSummary& meshes,
-                          bool displayOnGpu) {
+                          bool displayOnGpu, const std::vector<DomeEnvironment>& domes) {
     RenderPlan plan;
+    // domeLighting=srbf: domes are SRBF lights and a uniform term
+    // (DomeLighting.h), not toShadingLights' flat ambient.
+    const bool srbfDomes = domeLightingMode(settings) == DomeLightingMode::Srbf;
     std::vector<const LightPrim*> stageLights;
     const LightPrim* hostCameraLight = nullptr;
     for (const auto& [path, entry] : scene.lights()) {
         if (entry.prim->hostCameraLight) {
             if (!hostCameraLight && entry.prim->visible) hostCameraLight = entry.prim.get();
+        } else if (srbfDomes && entry.prim->type == LightType::Dome) {
+            continue;  // addDomeLights below
         } else if (stageLights.size() < kMaxLights) {
             stageLights.push_back(entry.prim.get());
         } else {
@@ -267,6 +276,9 @@ RenderPlan makeRenderPlan(const Scene& scene, const RenderSettings& settings, co
         }
     }
     plan.lights = toShadingLights(stageLights);
+    if (srbfDomes)
+        plan.domes = addDomeLights(scene, domes, settings.getInt("domeShadowLights"), plan.lights,
+                                   plan.shadows.sharedMaps);
     const bool anyMeshes = meshes.meshes > 0;
     // Meshes are lit unless the shadingModel setting asks for flat
     // displayColor (hair prims may still choose their own model).
@@ -274,7 +286,8 @@ RenderPlan makeRenderPlan(const Scene& scene, const RenderSettings& settings, co
     plan.flatShading = !strands.anyLit && !plan.meshesLit;
 
     std::string cameraLight = settings.getToken("cameraLight");
-    bool stageHasLight = !plan.lights.lights.empty() || glm::length(plan.lights.ambient) > 0.0f;
+    bool stageHasLight = !plan.lights.lights.empty() || glm::length(plan.lights.ambient) > 0.0f ||
+                         glm::length(plan.lights.uniformDome) > 0.0f;
     plan.cameraLight = !plan.flatShading && (cameraLight == "on" || (cameraLight == "auto" && !stageHasLight));
     if (plan.cameraLight) {
         if (hostCameraLight) {
@@ -294,6 +307,7 @@ RenderPlan makeRenderPlan(const Scene& scene, const RenderSettings& settings, co
     const glm::mat3 toRenderingSpace = rec709To(settings.renderingSpace());
     for (ShadingLight& light : plan.lights.lights) light.scale = toRenderingSpace * light.scale;
     plan.lights.ambient = toRenderingSpace * plan.lights.ambient;
+    plan.lights.uniformDome = toRenderingSpace * plan.lights.uniformDome;
 
     planShadows(plan, settings, strands, anyMeshes);
 
@@ -327,6 +341,7 @@ RenderPlan makeRenderPlan(const Scene& scene, const RenderSettings& settings, co
     if (plan.transparency == TransparencyPath::Opaque) plan.msaaSamples = settings.getInt("msaaSamples");
 
     const bool anyStrands = strands.segments > 0;
+    const size_t perPass = size_t(settings.getInt("lightsPerPass"));
     FrameGraph& graph = plan.graph;
     graph.input("preparedStrands");
 
@@ -354,7 +369,6 @@ RenderPlan makeRenderPlan(const Scene& scene, const RenderSettings& settings, co
                               : "no bin sorting on this path";
     graph.add(sort);
 
-    size_t perPass = size_t(settings.getInt("lightsPerPass"));
     size_t lightCount = plan.flatShading ? 0 : plan.lights.lights.size();
     for (size_t begin = 0; begin < lightCount; begin += perPass)
         plan.lightBatches.emplace_back(begin, std::min(begin + perPass, lightCount));
@@ -392,6 +406,8 @@ RenderPlan makeRenderPlan(const Scene& scene, const RenderSettings& settings, co
     std::string shading = plan.flatShading ? "flat displayColor"
                                            : fmt::format("{}, {} light(s){}", models, plan.lights.lights.size(),
                                                          plan.cameraLight ? " incl. the camera light" : "");
+    if (!plan.flatShading)
+        for (const PlannedDome& dome : plan.domes) shading += "; " + dome.describe(perPass);
     std::string multisampling =
         plan.msaaSamples > 0 ? fmt::format(", {}x MSAA", plan.msaaSamples) : std::string();
     // The strand pass writes ids itself where it can keep the nearest

@@ -6,11 +6,13 @@
 // each pass's time, in --stats.
 
 #include <cstdint>
+#include <map>
 #include <string>
 #include <vector>
 
 #include <nlohmann/json_fwd.hpp>
 
+#include "hdHair/render/DomeLighting.h"
 #include "hdHair/render/FrameGraph.h"
 #include "hdHair/render/ShadowLightView.h"
 #include "hdHair/shading/ShadingLight.h"
@@ -77,7 +79,11 @@ struct ShadowPlan {
     // the opaque occluders strands test against).
     bool meshesCast = false;
     std::string meshResourceOf(const PlannedShadow& shadow) const { return "meshDepth " + shadow.key; }
-    // Index into `lights` of light `light`'s shadow, or -1.
+    // SRBF lights without a map of their own that read another light's
+    // (DomeLighting.h): light index -> the index of the light whose map.
+    std::map<size_t, size_t> sharedMaps;
+    // Index into `lights` of the shadow light `light` is shadowed by (its
+    // own, or the one it shares), or -1.
     int shadowOf(size_t light) const;
 };
 
@@ -134,6 +140,8 @@ struct RenderPlan {
     // need a pass too).
     std::vector<std::pair<size_t, size_t>> lightBatches;
     ShadowPlan shadows;
+    // The domes as domeLighting=srbf shades them (empty with ambient).
+    std::vector<PlannedDome> domes;
     // Stage lights beyond kMaxLights, left out of the frame.
     size_t lightsOverCap = 0;
 
@@ -154,8 +162,10 @@ struct RenderPlan {
 // idsRequested: a host asked for primId/instanceId/elementId. Depth is always
 // produced; with blending, by the strand pass (NearestStrandRule.h).
 // displayOnGpu: the frame also delivers its display image, made on the GPU.
+// domes: the visible domes as the renderer fitted them (frameDomeEnvironments);
+// a dome it does not list counts as untextured.
 RenderPlan makeRenderPlan(const Scene& scene, const RenderSettings& settings, const CameraView& camera,
                           const StrandSummary& strands, bool idsRequested = false, const MeshSummary& meshes = {},
-                          bool displayOnGpu = false);
+                          bool displayOnGpu = false, const std::vector<DomeEnvironment>& domes = {});
 
 }  // namespace hdhair

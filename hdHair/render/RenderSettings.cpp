@@ -127,6 +127,21 @@ const std::vector<SettingDescriptor>& RenderSettings::descriptors() {
          "Shadow lookup: nearest (one texel, as in the thesis) or bilinear (transmittance of the four nearest "
          "texels, each against its own nearest depth, weighted bilinearly)",
          0, 0, {"nearest", "bilinear"}},
+        {"domeLighting", SettingType::Token, "srbf",
+         "How DomeLights light the frame: srbf (a textured dome as domeLights Gaussian SRBF lights, each "
+         "convolved with the fibre model by table, Ren et al. 2010; an untextured dome as the exact integral of "
+         "the fibre model under uniform light) or ambient (the dome's radiance times the colour, flat and "
+         "unshadowed: the old term, kept for comparison)",
+         0, 0, {"srbf", "ambient"}},
+        {"domeLights", SettingType::Int, "30",
+         "SRBF lights a textured dome is fitted with (the paper's 30-60; each costs a table lookup per fragment "
+         "and lightsPerPass of them a pass)",
+         10, 60, {}},
+        {"domeShadowLights", SettingType::Int, "4",
+         "Of a dome's SRBF lights, the strongest (amplitude x solid angle) that get their own deep opacity map, "
+         "as distant lights from their centres; each other SRBF reads the map of the shadowed one nearest in "
+         "direction (0: dome lighting unshadowed)",
+         0, 60, {}},
         {"cameraLight", SettingType::Token, "auto",
          "Light from the camera: auto (only when the stage has no lights), on, off", 0, 0,
          {"auto", "on", "off"}},

@@ -332,11 +332,13 @@ TessellationView Renderer::decideShadowMaps(RenderPlan& plan, const StrandSummar
 std::optional<MaterialUpload> Renderer::materialUpload(const std::vector<HairMaterial>& materials,
                                                       const std::vector<CachedCurves*>& drawnCurves,
                                                       const std::vector<DrawnPrim>& drawn,
-                                                      const StrandUploadPlan& uploads) {
+                                                      const StrandUploadPlan& uploads, bool srbfTables,
+                                                      Diagnostics& diagnostics) {
     if (materials == uploadedMaterials_ && uploads.ranges == materialRanges_ &&
-        uploads.firstControls == materialFirstControls_)
+        uploads.firstControls == materialFirstControls_ && srbfTables == materialSrbfTables_)
         return std::nullopt;
     MaterialUpload upload;
+    if (srbfTables) upload.srbfTables = srbfTables_.tablesFor(materials, diagnostics);
     for (const HairMaterial& material : materials) {
         gl::GpuHairMaterial entry;
         entry.modelAndLayer = glm::ivec4(int(material.model), 0, 0, 0);
@@ -348,6 +350,12 @@ std::optional<MaterialUpload> Renderer::materialUpload(const std::vector<HairMat
         entry.sigmaA = glm::vec4(marschner.sigmaA, marschner.causticWidth);
         entry.caustic = glm::vec4(marschner.causticFade, marschner.causticLimit, 0.0f, 0.0f);
         if (material.analyticAzimuthal) entry.modelAndLayer.z |= gl::kHairMaterialAnalytic;
+        if (srbfTables) {
+            const glm::ivec2 tables = upload.srbfTables.materialTables[upload.materials.size()];
+            entry.segments.y = tables.x;  // srbfLighting.glsl: the table, and its uniform-dome row
+            entry.segments.z = tables.y;
+            if (srbfAbsorbsPerFragment(material)) entry.modelAndLayer.z |= gl::kHairMaterialSrbfLobes;
+        }
         if (material.usesTables()) {
             // Tables depend on eta, absorption and glints only: built once per
             // distinct set and kept for later frames.
@@ -381,6 +389,7 @@ std::optional<MaterialUpload> Renderer::materialUpload(const std::vector<HairMat
     uploadedMaterials_ = materials;
     materialRanges_ = uploads.ranges;
     materialFirstControls_ = uploads.firstControls;
+    materialSrbfTables_ = srbfTables;
     return upload;
 }
 
@@ -494,7 +503,10 @@ RenderResult Renderer::renderSamples(const Scene& scene, const CameraView& camer
         inputs.uploads.drawRanges != castersRanges_;
     if (castersChanged) ++castersVersion_;
     castersRanges_ = inputs.uploads.drawRanges;
-    inputs.materials = materialUpload(materials, drawnCurves, inputs.drawn, inputs.uploads);
+    // The domes as lighting (DomeLighting.h): fitted through the fit cache,
+    // and the materials' SRBF tables with them.
+    const std::vector<DomeEnvironment> domes = frameDomeEnvironments(scene, settings, diagnostics);
+    inputs.materials = materialUpload(materials, drawnCurves, inputs.drawn, inputs.uploads, !domes.empty(), diagnostics);
     for (size_t i = 0; i < inputs.drawn.size(); ++i) {
         const PreparedCurves& curves = *inputs.drawn[i].curves;
         inputs.sortSpans.push_back(SortSpan{curves.controlPoints.data(), curves.segmentFirstControl.data(),
@@ -508,7 +520,7 @@ RenderResult Renderer::renderSamples(const Scene& scene, const CameraView& camer
     // Meshes occlude the lights too: a changed mesh changes every shadow.
     if (inputs.meshes.changed) ++castersVersion_;
     result.plan =
-        makeRenderPlan(scene, settings, camera, summary, outputs.ids, meshSummary, outputs.gpuDisplay != nullptr);
+        makeRenderPlan(scene, settings, camera, summary, outputs.ids, meshSummary, outputs.gpuDisplay != nullptr, domes);
     RenderPlan& plan = result.plan;
     inputs.camera = &camera;
     inputs.settings = &settings;

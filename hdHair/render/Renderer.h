@@ -164,7 +164,8 @@ private:
     // ranges changed since they were last sent (else nothing).
     std::optional<MaterialUpload> materialUpload(const std::vector<HairMaterial>& materials,
                                                  const std::vector<CachedCurves*>& drawnCurves,
-                                                 const std::vector<DrawnPrim>& drawn, const StrandUploadPlan& uploads);
+                                                 const std::vector<DrawnPrim>& drawn, const StrandUploadPlan& uploads,
+                                                 bool srbfTables, Diagnostics& diagnostics);
     // Which shadow maps the frame rebuilds and which it keeps (ShadowMapCache),
     // written into the plan; returns the tessellation view every pass uses.
     TessellationView decideShadowMaps(RenderPlan& plan, const StrandSummary& summary, const CameraView& camera,
@@ -177,6 +178,8 @@ private:
     std::vector<HairMaterial> uploadedMaterials_;
     std::vector<gl::SegmentRange> materialRanges_;  // the prims' ranges when the materials were sent
     std::vector<uint64_t> materialFirstControls_;   // and where their control points started
+    bool materialSrbfTables_ = false;               // and whether they carried dome lighting's tables
+    SrbfMaterialTables srbfTables_;
     struct CachedTables {
         HairMaterial material;
         std::vector<uint16_t> halfTexels;

@@ -7,6 +7,7 @@
 #include <glm/gtc/constants.hpp>
 #include <glm/trigonometric.hpp>
 
+#include "hdHair/environment/Srbf.h"
 #include "hdHair/shading/ColorTemperature.h"
 
 namespace hdhair {
@@ -96,7 +97,7 @@ float coneFalloff(const ShadingLight& light, float cosAngle) {
 glm::vec3 irradianceAt(const ShadingLight& light, const glm::vec3& position, glm::vec3* towardsLight) {
     if (!light.isLocal) {
         *towardsLight = light.directionOrPosition;
-        return light.scale;
+        return light.isSrbf() ? light.scale * srbfIntegral(light.srbfBandwidth) : light.scale;
     }
     glm::vec3 offset = light.directionOrPosition - position;
     float distanceSquared = std::max(glm::dot(offset, offset), 1e-12f);

@@ -12,7 +12,14 @@
 //   power, it does not soften.
 // - RectLight, DiskLight: one-sided point approximations at their centre,
 //   emitting along −Z: E = L·A·cosθ/d², with A = width·height or π·r².
-// - DomeLight: a constant ambient radiance L on every fibre.
+// - DomeLight: by default SRBF lights and an analytic uniform term, which
+//   hdHair/render/DomeLighting.h adds; toShadingLights gives the old flat
+//   ambient radiance L (the domeLighting=ambient setting).
+// - An SRBF light (srbfBandwidth > 0) is one Gaussian lobe of a dome
+//   (hdHair/environment/Srbf.h): directionOrPosition is its centre ξ, scale
+//   its amplitude L_j (radiance). Hair reads its response from the SRBF
+//   convolution tables; irradianceAt (meshes) treats it as the distant
+//   light it becomes as λ → ∞, of irradiance L_j ∫G dω (Ren et al. 2010 §3).
 // - inputs:normalize divides out the area (sphere, rect, disk) so that the
 //   light's power no longer depends on its size.
 // - inputs:enableColorTemperature multiplies inputs:color by the blackbody
@@ -51,12 +58,17 @@ struct ShadingLight {
     float coneCosInner = 0.0f;        // cos(angle·(1 − softness)): full light within it
     bool castsShadow = true;          // inputs:shadow:enable
     std::string path;                 // the light prim it came from ("" for the engine's camera light)
+    float srbfBandwidth = 0.0f;       // > 0: an SRBF light of bandwidth λ (isLocal false)
+    bool isSrbf() const { return srbfBandwidth > 0.0f; }
 };
 
 // What the lights of a stage amount to for hair shading.
 struct ShadingLights {
     std::vector<ShadingLight> lights;  // distant and local lights
-    glm::vec3 ambient{0.0f};           // dome lights' radiance, summed
+    glm::vec3 ambient{0.0f};           // dome lights' radiance, summed: a flat term (domeLighting=ambient)
+    // Untextured domes' radiance, summed, shaded as the fibre model's exact
+    // response to uniform light (domeLighting=srbf; hdHair/render/DomeLighting.h).
+    glm::vec3 uniformDome{0.0f};
 };
 
 // Radiance of a light before geometry: intensity · 2^exposure · color, times

@@ -70,7 +70,7 @@ SrbfMarschnerResponse convolveSrbfMarschner(const glm::vec3& t, const glm::vec3&
                                             const SrbfQuadrature& quadrature) {
     const FibreFrame frame = fibreFrame(t, wo);
     const SphereNodes nodes = sphereNodes(quadrature);
-    const glm::dvec3 xi = glm::normalize(glm::dvec3(lobe.axis));
+    const glm::dvec3 xi = glm::normalize(glm::dvec3(lobe.centre));
     const double lambda = lobe.bandwidth;
     // f = Σ_p M_p(θ_i, θ_r) N_p(|φ|, cos θ_r) (Marschner.h: N_p is evaluated
     // at θ_r, so it depends on φ_i only): N_p once per azimuth node.
@@ -109,7 +109,7 @@ KajiyaKayTerms convolveSrbfKajiyaKay(const glm::vec3& t, const glm::vec3& wo, co
     for (std::size_t k = 0; k < nodes.sinTheta.size(); ++k)
         for (std::size_t j = 0; j < nodes.phi.size(); ++j) {
             glm::dvec3 wi = directionAt(frame, nodes, k, j);
-            double g = srbfValue(lobe, wi) * nodes.cosTheta[k];
+            double g = srbfKernel(lobe, wi) * nodes.cosTheta[k];
             KajiyaKayTerms f = evaluateKajiyaKay(t, glm::vec3(wi), wo, parameters);
             diffuse += g * f.diffuse;
             specular += g * f.specular;

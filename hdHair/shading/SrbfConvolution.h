@@ -1,6 +1,6 @@
 #pragma once
 // The radiance a fibre scatters towards ωo when lit by one SRBF lobe of unit
-// amplitude (SrbfLobe.h), integrated numerically: the CPU reference that the
+// amplitude (hdHair/environment/Srbf.h), integrated numerically: the CPU reference that the
 // precomputed tables (SrbfConvolutionTables.h) are built against and tested
 // against. Slow (a million integrand evaluations); never called per frame.
 //
@@ -13,7 +13,7 @@
 //   Kajiya-Kay: f = Kd/π sin(t, ωi) · colour + Ks/π cos^p(θ_e − θ_r)
 //               (KajiyaKayTerms, the response to a distant light of irradiance 1).
 // So a distant light of irradiance E from ξ gives E·f(ξ, ωo), and as λ → ∞
-// L_o → f(ξ, ωo) · ∫ G dω = f(ξ, ωo) · srbfSolidAngle(λ): a sharp lobe is a
+// L_o → f(ξ, ωo) · ∫ G dω = f(ξ, ωo) · srbfIntegral(λ): a sharp lobe is a
 // distant light of irradiance ∫ G dω (tested).
 //
 // Quadrature: the product midpoint rule on the fibre-frame angles
@@ -32,7 +32,7 @@
 
 #include "hdHair/shading/KajiyaKay.h"
 #include "hdHair/shading/Marschner.h"
-#include "hdHair/shading/SrbfLobe.h"
+#include "hdHair/environment/Srbf.h"
 
 namespace hdhair {
 

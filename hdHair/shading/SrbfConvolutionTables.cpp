@@ -13,8 +13,8 @@ namespace hdhair {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
-constexpr double kInverseLambdaMin = 1.0 / double(kSrbfMaxBandwidth);  // 1/64
-constexpr double kInverseLambdaMax = 1.0 / double(kSrbfMinBandwidth);  // 1/16
+constexpr double kInverseLambdaMin = 1.0 / double(kMaxSrbfBandwidth);  // 1/64
+constexpr double kInverseLambdaMax = 1.0 / double(kMinSrbfBandwidth);  // 1/16
 
 // Build quadrature (header): θ_i nodes, N_p azimuth nodes on [0, π], Fourier orders.
 constexpr int kInclinationNodes = 360;
@@ -276,7 +276,7 @@ SrbfConvolutionTable buildSrbfKajiyaKayTable(float shininess, const SrbfTableRes
 SrbfTableAngles srbfTableAngles(const glm::vec3& t, const glm::vec3& wo, const SrbfLobe& lobe) {
     // marschnerAngles with ωi = ξ: sin θ_i = t·ξ, sin θ_r = t·ωo, φ = the
     // angle between their projections on the normal plane (0 when either is 0).
-    MarschnerAngles a = marschnerAngles(t, lobe.axis, wo);
+    MarschnerAngles a = marschnerAngles(t, lobe.centre, wo);
     SrbfTableAngles angles;
     angles.thetaO = std::asin(a.sinThetaR);
     angles.thetaXi = std::asin(a.sinThetaI);

@@ -87,7 +87,7 @@
 
 #include "hdHair/shading/KajiyaKay.h"
 #include "hdHair/shading/Marschner.h"
-#include "hdHair/shading/SrbfLobe.h"
+#include "hdHair/environment/Srbf.h"
 
 namespace hdhair {
 
@@ -145,7 +145,7 @@ struct SrbfTableAngles {
     float thetaO = 0.0f;    // θ_o ∈ [−π/2, π/2]
     float thetaXi = 0.0f;   // θ_ξ ∈ [−π/2, π/2]
     float psi = 0.0f;       // |φ_o − φ_ξ| ∈ [0, π]
-    float bandwidth = kSrbfMinBandwidth;  // λ
+    float bandwidth = kMinSrbfBandwidth;  // λ
 };
 SrbfTableAngles srbfTableAngles(const glm::vec3& t, const glm::vec3& wo, const SrbfLobe& lobe);
 

@@ -14,6 +14,7 @@ struct HairMaterial {
 };
 const int HAIR_MATERIAL_PER_POINT = 1;  // parameters come from the per-point records
 const int HAIR_MATERIAL_ANALYTIC = 2;   // Marschner's azimuthal terms per fragment, not from tables
+const int HAIR_MATERIAL_SRBF_LOBES = 4; // dome lighting: absorption per fragment (srbfLighting.glsl)
 
 layout(std430, binding = 8) readonly buffer HairMaterials {
     HairMaterial materials[];

@@ -121,5 +121,37 @@ float shadowTransmittanceFrom(int i, vec3 point, bool meshesOcclude) {
 // What reaches a strand: through the hair and past the meshes.
 float shadowTransmittance(int i, vec3 centre) { return shadowTransmittanceFrom(i, centre, true); }
 
+// What reaches a strand from SRBF light i (srbfLighting.glsl), whose
+// directions spread about its centre: after Ren et al. 2010 §5 (digest §4.4),
+// the lookup widens with depth behind the first hair, over a square of
+// half-size R = (z − z0)/2 · tan α, α the lobe's 10⁻³ support
+// (cos α = 1 − ln(1000)/λ), z0 the nearest hair at the point's texel. Not
+// the paper's summed-area tables of optical depth: nine taps (a 3 × 3 grid
+// spanning ±R) of the transmittance, averaged. Averaging transmittance
+// rather than exponentiating the mean optical depth avoids Jensen's bias
+// (exp of a mean is at least the mean of exp). Within a texel of z0 (R < 1)
+// it is the ordinary lookup; light views in perspective (not SRBFs) too.
+float srbfShadowTransmittance(int i, vec3 centre) {
+    if (shadows.mode.x == HDHAIR_SHADOW_OFF || shadows.lightMap[i].x < 0.0 || shadows.lightMap[i].w > 0.5)
+        return shadowTransmittance(i, centre);
+    vec4 clip = shadows.lightViewProjection[i] * vec4(centre, 1.0);
+    vec2 position = (clip.xy / clip.w * 0.5 + 0.5) * float(shadows.mode.w);
+    ivec2 texel = ivec2(floor(position));
+    if (any(lessThan(texel, ivec2(0))) || any(greaterThanEqual(texel, ivec2(shadows.mode.w)))) return 1.0;
+    float z = shadowLinearDepth(i, centre) - shadows.lightMap[i].z;
+    float z0 = texelFetch(shadowDepths, ivec3(texel, shadowSlot(i)), 0).r;
+    float lambda = lights.lightScale[i].w;
+    float cosSupport = clamp(1.0 - 6.907755 / lambda, 1e-3, 1.0);  // ln(1000) = 6.907755
+    float tanSupport = sqrt(max(1.0 - cosSupport * cosSupport, 0.0)) / cosSupport;
+    float radius = 0.5 * (z - z0) * tanSupport / shadows.lightMap[i].z;  // texels
+    if (!(radius >= 1.0) || z0 >= HDHAIR_NO_HAIR) return shadowTransmittance(i, centre);
+    radius = min(radius, 0.25 * float(shadows.mode.w));
+    float sum = 0.0;
+    for (int y = -1; y <= 1; ++y)
+        for (int x = -1; x <= 1; ++x)
+            sum += shadowTransmittanceAt(i, ivec2(floor(position + vec2(x, y) * radius)), z, true);
+    return sum / 9.0;
+}
+
 // What reaches a mesh: through the hair.
 float hairShadowTransmittance(int i, vec3 point) { return shadowTransmittanceFrom(i, point, false); }

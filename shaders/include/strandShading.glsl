@@ -2,14 +2,16 @@
 // hair material: flat displayColor (look-dev, and tests whose pixels can be
 // computed by hand), Kajiya-Kay, or Marschner with its azimuthal terms from
 // tables or evaluated per fragment; lit by every light of the pass plus
-// (first pass only) the dome's ambient. Each light's irradiance is scaled by
-// its shadow transmittance at the strand's centre line `centre` (the same
-// for Kajiya-Kay and Marschner; the ambient term is not shadowed). `segment`
+// (first pass only) the dome's ambient or uniform term. SRBF lights of a
+// dome read their material's convolution table (srbfLighting.glsl). Each
+// light's irradiance is scaled by its shadow transmittance at the strand's
+// centre line `centre` (the same for Kajiya-Kay and Marschner; the ambient
+// and uniform dome terms are not shadowed). `segment`
 // and `u` locate the fragment on its span, for parameters that vary along
 // the prim.
 // Needs frameUniforms.glsl, lights.glsl, kajiyaKay.glsl, marschner.glsl,
 // marschnerAnalytic.glsl, catmullRom.glsl, hairMaterials.glsl,
-// shadowFragmentLists.glsl and shadows.glsl.
+// shadowFragmentLists.glsl, shadows.glsl and srbfLighting.glsl.
 vec3 strandRadiance(vec3 worldPosition, vec3 centre, vec3 worldTangent, vec3 hairColor, int materialIndex, int segment,
                     float u) {
     HairShading shading = hairShadingAt(materialIndex, segment, u);
@@ -18,9 +20,18 @@ vec3 strandRadiance(vec3 worldPosition, vec3 centre, vec3 worldTangent, vec3 hai
     if (shading.model == 0) return lights.lightCount.y == 0 ? hairColor : vec3(0.0);
     vec3 t = normalize(worldTangent);
     vec3 e = directionToEye(worldPosition);
-    vec3 radiance = lights.ambient.rgb * hairColor;
+    SrbfAbsorption absorption = srbfAbsorption(shading, t, e);
+    vec3 radiance =
+        lights.ambient.w > 0.5
+            ? lights.ambient.rgb * srbfUniformDomeResponse(materialIndex, shading, absorption, t, e, hairColor)
+            : lights.ambient.rgb * hairColor;
     bool analytic = (shading.flags & HAIR_MATERIAL_ANALYTIC) != 0;
     for (int i = 0; i < lights.lightCount.x; ++i) {
+        if (isSrbfLight(i)) {
+            vec3 lobe = srbfLightRadiance(i, materialIndex, shading, absorption, t, e, hairColor);
+            if (any(greaterThan(lobe, vec3(0.0)))) radiance += lobe * srbfShadowTransmittance(i, centre);
+            continue;
+        }
         vec3 l;
         vec3 irradiance = lightIrradiance(i, worldPosition, l);
         if (all(equal(irradiance, vec3(0.0)))) continue;  // unlit here: no shadow lookup

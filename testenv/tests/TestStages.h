@@ -29,6 +29,8 @@ inline const std::vector<TestStage>& testStages() {
         {"straight_strands", "examples/straight_strands.usda", "/World/main_cam", 320, {0.0}},
         {"wavy_strands", "examples/wavy_strands.usda", "/World/main_cam", 320, {0.0}},
         {"dense_clump", "examples/dense_clump.usda", "/World/main_cam", 320, {0.0}},
+        // No baseline yet: the dome's SRBF lighting is checked pixel by pixel in testDomeLighting.
+        {"dome_lit_strands", "examples/dome_lit_strands.usda", "/World/main_cam", 0, {}},
         {"bases", "testenv/stages/bases.usda", "/World/main_cam", 320, {0.0}},
         {"interpolations", "testenv/stages/interpolations.usda", "/World/main_cam", 256, {0.0}},
         {"hair_parameters", "testenv/stages/hair_parameters.usda", "/World/main_cam", 256, {0.0}},

@@ -129,16 +129,16 @@ TEST(DomeEnvironment, TurningTheDomeTurnsItsLobes) {
     LightPrim light = dome(path, "latlong");
     const DomeEnvironment still = domeEnvironment(light, glm::vec3(1.0f), {}, diagnostics, cache);
     ASSERT_FALSE(still.srbfs.empty());
-    EXPECT_LT(degreesBetween(still.srbfs[0].centre, glm::vec3(0, 0, 1)), 2.0f);
+    EXPECT_LT(degreesBetween(still.srbfs[0].lobe.centre, glm::vec3(0, 0, 1)), 2.0f);
     EXPECT_EQ(still.uniformRadiance, glm::vec3(0.0f));
 
     light.worldTransform = glm::rotate(glm::dmat4(1.0), glm::radians(90.0), glm::dvec3(0, 1, 0));
     const DomeEnvironment turned = domeEnvironment(light, glm::vec3(1.0f), {}, diagnostics, cache);
     ASSERT_EQ(turned.srbfs.size(), still.srbfs.size());
-    EXPECT_LT(degreesBetween(turned.srbfs[0].centre, glm::vec3(1, 0, 0)), 2.0f);
+    EXPECT_LT(degreesBetween(turned.srbfs[0].lobe.centre, glm::vec3(1, 0, 0)), 2.0f);
     for (size_t i = 0; i < still.srbfs.size(); ++i) {
-        const glm::vec3 expected(still.srbfs[i].centre.z, still.srbfs[i].centre.y, -still.srbfs[i].centre.x);
-        EXPECT_LT(glm::length(turned.srbfs[i].centre - expected), 1e-5f) << i;
+        const glm::vec3 expected(still.srbfs[i].lobe.centre.z, still.srbfs[i].lobe.centre.y, -still.srbfs[i].lobe.centre.x);
+        EXPECT_LT(glm::length(turned.srbfs[i].lobe.centre - expected), 1e-5f) << i;
         EXPECT_EQ(turned.srbfs[i].amplitude, still.srbfs[i].amplitude);
     }
     EXPECT_GT(environmentRadiance(turned, glm::vec3(1, 0, 0)).r, 10.0f * environmentRadiance(turned, glm::vec3(0, 0, 1)).r);
@@ -204,7 +204,7 @@ TEST(DomeEnvironment, AOneKSkyFits) {
     Diagnostics diagnostics;
     const DomeEnvironment environment = domeEnvironment(dome(path), glm::vec3(1.0f), {}, diagnostics, cache);
     EXPECT_EQ(environment.srbfs.size(), 30u);
-    EXPECT_LT(degreesBetween(environment.srbfs[0].centre, sun), 3.0f);
+    EXPECT_LT(degreesBetween(environment.srbfs[0].lobe.centre, sun), 3.0f);
     EXPECT_LT(environment.fitError, 0.2f);
     EXPECT_EQ(diagnostics.warningCount(), 0u) << allWarnings(diagnostics);
 }

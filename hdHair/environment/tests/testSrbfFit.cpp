@@ -73,8 +73,8 @@ TEST(SrbfFit, OneLobeIsFoundAgain) {
     settings.prefilterBandwidth = 0.0f;  // the map is an SRBF already
     const SrbfFit fit = fitSrbfs(grid, settings);
     ASSERT_EQ(fit.srbfs.size(), 1u);
-    EXPECT_LT(degreesBetween(fit.srbfs[0].centre, centre), 0.5f);
-    EXPECT_NEAR(fit.srbfs[0].bandwidth, 32.0f, 1e-3f);  // one of the nine: 16 · 4^(4/8)
+    EXPECT_LT(degreesBetween(fit.srbfs[0].lobe.centre, centre), 0.5f);
+    EXPECT_NEAR(fit.srbfs[0].lobe.bandwidth, 32.0f, 1e-3f);  // one of the nine: 16 · 4^(4/8)
     EXPECT_NEAR(fit.srbfs[0].amplitude.r, 2.0f, 0.02f);
     EXPECT_NEAR(fit.srbfs[0].amplitude.b, 0.5f, 0.005f);
     EXPECT_LT(fit.relativeError, 0.01f);
@@ -94,13 +94,13 @@ TEST(SrbfFit, ThePrefilterKeepsASunsPower) {
     const SrbfFit prefiltered = fitSrbfs(grid, settings);
     ASSERT_EQ(prefiltered.srbfs.size(), 1u);
     const Srbf& lobe = prefiltered.srbfs[0];
-    EXPECT_NEAR(lobe.amplitude.r * srbfIntegral(lobe.bandwidth), power, 0.05f * power);
-    EXPECT_LT(degreesBetween(lobe.centre, grid.directions[sunCell]), 1.0f);
+    EXPECT_NEAR(lobe.amplitude.r * srbfIntegral(lobe.lobe.bandwidth), power, 0.05f * power);
+    EXPECT_LT(degreesBetween(lobe.lobe.centre, grid.directions[sunCell]), 1.0f);
     settings.prefilterBandwidth = 0.0f;
     const SrbfFit rawFit = fitSrbfs(grid, settings);
     ASSERT_EQ(rawFit.srbfs.size(), 1u);
     const Srbf& raw = rawFit.srbfs[0];
-    EXPECT_GT(raw.amplitude.r * srbfIntegral(raw.bandwidth), 1.6f * power);
+    EXPECT_GT(raw.amplitude.r * srbfIntegral(raw.lobe.bandwidth), 1.6f * power);
 }
 
 // A uniform map, fitted with 10, 30 and 60 lobes: its stated error holds
@@ -126,8 +126,8 @@ TEST(SrbfFit, UniformMapsAreReproducedWithinTheStatedError) {
         const float sphereError = float(std::sqrt(error / energy));
         EXPECT_LT(sphereError, 1.1f * fit.relativeError + 0.005f) << lobes << " lobes";
         for (const Srbf& lobe : fit.srbfs) {
-            EXPECT_GE(lobe.bandwidth, kMinSrbfBandwidth);
-            EXPECT_LE(lobe.bandwidth, kMaxSrbfBandwidth);
+            EXPECT_GE(lobe.lobe.bandwidth, kMinSrbfBandwidth);
+            EXPECT_LE(lobe.lobe.bandwidth, kMaxSrbfBandwidth);
             EXPECT_GE(std::min({lobe.amplitude.r, lobe.amplitude.g, lobe.amplitude.b}), 0.0f);
         }
     }
@@ -138,7 +138,7 @@ TEST(SrbfFit, TheStrongestLobeIsTheSun) {
     const RadianceGrid grid = sampledGrid(64, 32, [](const glm::vec3& d) { return test::proceduralSky(d, kSun); });
     const SrbfFit fit = fitSrbfs(grid);
     ASSERT_FALSE(fit.srbfs.empty());
-    EXPECT_LT(degreesBetween(fit.srbfs[0].centre, kSun), 3.0f);
+    EXPECT_LT(degreesBetween(fit.srbfs[0].lobe.centre, kSun), 3.0f);
     EXPECT_LT(fit.relativeError, 0.2f);
 }
 

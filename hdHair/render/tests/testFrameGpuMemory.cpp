@@ -14,9 +14,11 @@
 
 #include "hdHair/base/Diagnostics.h"
 #include "hdHair/render/Renderer.h"
+#include "hdHair/render/tests/SquareCamera.h"
 #include "hdHair/scene/Scene.h"
 
 using namespace hdhair;
+using hdhair::test::squareCamera;
 
 namespace {
 
@@ -45,14 +47,6 @@ CurvesPrim strands(const std::string& path, int curves, int spans, float opacity
     prim.primvars["displayOpacity"].name = "displayOpacity";
     prim.primvars["displayOpacity"].values = {opacity};
     return prim;
-}
-
-CameraView squareCamera(int pixels) {
-    CameraPrim camera;
-    camera.projection = Projection::Orthographic;
-    camera.horizontalAperture = camera.verticalAperture = 24.0f;
-    camera.worldTransform = glm::translate(glm::dmat4(1.0), glm::dvec3(0.0, 0.0, 5.0));
-    return cameraViewFromPrim(camera, pixels);
 }
 
 uint64_t bytesOf(const RenderStats& stats, const std::string& use) {

@@ -13,10 +13,12 @@
 #include "hdHair/image/DisplayTransform.h"
 #include "hdHair/image/ImageWriter.h"
 #include "hdHair/render/Renderer.h"
+#include "hdHair/render/tests/SquareCamera.h"
 #include "hdHair/render/SupersampleResolve.h"
 #include "hdHair/scene/Scene.h"
 
 using namespace hdhair;
+using hdhair::test::squareCamera;
 
 namespace {
 
@@ -37,15 +39,6 @@ CurvesPrim horizontalStrands(const std::string& path, int primId, const std::vec
     widths.values = {0.2f};
     prim.primvars["widths"] = widths;
     return prim;
-}
-
-// An orthographic camera looking down -Z at the unit square [-1.2, 1.2]^2.
-CameraView squareCamera(int pixels) {
-    CameraPrim camera;
-    camera.projection = Projection::Orthographic;
-    camera.horizontalAperture = camera.verticalAperture = 24.0f;  // tenths of a unit: 2.4 units
-    camera.worldTransform = glm::translate(glm::dmat4(1.0), glm::dvec3(0.0, 0.0, 5.0));
-    return cameraViewFromPrim(camera, pixels);
 }
 
 int pixelRow(const CameraView& camera, float y) {

@@ -75,7 +75,7 @@ std::vector<Configuration> configurations(int uniform, int nearCone, unsigned se
         Configuration c;
         c.t = randomDirection();
         c.wo = randomDirection();
-        c.lobe.axis = randomDirection();
+        c.lobe.centre = randomDirection();
         c.lobe.bandwidth = bandwidth();
         result.push_back(c);
     }
@@ -85,7 +85,7 @@ std::vector<Configuration> configurations(int uniform, int nearCone, unsigned se
         Configuration c;
         c.t = glm::vec3(1, 0, 0);
         c.wo = direction(thetaO, unit(random) * 2 * kPi);
-        c.lobe.axis = direction(thetaXi, unit(random) * 2 * kPi);
+        c.lobe.centre = direction(thetaXi, unit(random) * 2 * kPi);
         c.lobe.bandwidth = bandwidth();
         result.push_back(c);
     }
@@ -127,8 +127,8 @@ TEST(ModifiedBessel, MatchesTheIntegralDefinition) {
 }
 
 TEST(SrbfLobe, SolidAngleIsTheIntegralOfTheKernel) {
-    EXPECT_NEAR(srbfSolidAngle(16.0), 0.3927, 1e-4);  // Ren digest §2.1
-    EXPECT_NEAR(srbfSolidAngle(64.0), 0.0982, 1e-4);
+    EXPECT_NEAR(srbfIntegral(16.0), 0.3927, 1e-4);  // Ren digest §2.1
+    EXPECT_NEAR(srbfIntegral(64.0), 0.0982, 1e-4);
     // ∫ G dω by the same product rule as the reference, about an arbitrary axis.
     SrbfLobe lobe{glm::normalize(glm::vec3(0.3f, -0.5f, 0.8f)), 37.0f};
     const int nTheta = 720, nPhi = 1440;
@@ -138,11 +138,11 @@ TEST(SrbfLobe, SolidAngleIsTheIntegralOfTheKernel) {
         for (int j = 0; j < nPhi; ++j) {
             double phi = (j + 0.5) * 2 * kPi / nPhi;
             glm::dvec3 w(std::sin(theta), std::cos(theta) * std::cos(phi), std::cos(theta) * std::sin(phi));
-            sum += srbfValue(lobe, w) * std::cos(theta);
+            sum += srbfKernel(lobe, w) * std::cos(theta);
         }
     }
     // To 3e-6: the product rule's accuracy, and the float axis's length.
-    EXPECT_NEAR(sum * (kPi / nTheta) * (2 * kPi / nPhi), srbfSolidAngle(37.0), 1e-5 * srbfSolidAngle(37.0));
+    EXPECT_NEAR(sum * (kPi / nTheta) * (2 * kPi / nPhi), srbfIntegral(37.0), 1e-5 * srbfIntegral(37.0));
 }
 
 TEST(SrbfConvolution, ReferenceIntegrandIsTheModel) {
@@ -164,7 +164,7 @@ TEST(SrbfConvolution, ReferenceIntegrandIsTheModel) {
         for (int j = 0; j < coarse.azimuths; ++j) {
             double phi = -kPi + (j + 0.5) * 2 * kPi / coarse.azimuths;
             glm::dvec3 wi = std::sin(theta) * tn + std::cos(theta) * (std::cos(phi) * u + std::sin(phi) * w);
-            double g = srbfValue(lobe, wi) * std::cos(theta);
+            double g = srbfKernel(lobe, wi) * std::cos(theta);
             marschnerSum += g * glm::dvec3(evaluateMarschner(t, glm::vec3(wi), wo, marschner).radiance());
             KajiyaKayTerms f = evaluateKajiyaKay(t, glm::vec3(wi), wo, kajiyaKay);
             diffuse += g * f.diffuse;
@@ -207,7 +207,7 @@ TEST(SrbfConvolution, SharpLobeConvergesToTheDistantLight) {
     ASSERT_GT(fk.specular, 1e-3f);
     double previous = 1e30, previousKk = 1e30;
     for (float bandwidth : {256.0f, 1024.0f, 4096.0f}) {
-        double irradiance = srbfSolidAngle(bandwidth);
+        double irradiance = srbfIntegral(bandwidth);
         glm::vec3 l = convolveSrbfMarschner(t, wo, {xi, bandwidth}, marschner).radiance();
         KajiyaKayTerms lk = convolveSrbfKajiyaKay(t, wo, {xi, bandwidth}, kajiyaKay);
         double deviation = 0.0;
@@ -333,8 +333,8 @@ TEST(SrbfConvolutionTables, FiniteAndBoundedAtBandwidthBoundsAndGrazing) {
                     KajiyaKayTerms k = evaluateSrbfKajiyaKayTable(kk, {1, 0, 0}, wo, {xi, bandwidth}, {1, 1, 60});
                     EXPECT_TRUE(std::isfinite(k.diffuse) && k.diffuse >= 0.0f);
                     EXPECT_TRUE(std::isfinite(k.specular) && k.specular >= 0.0f);
-                    EXPECT_LE(k.diffuse, srbfSolidAngle(16.0) / kPi * 1.001);
-                    EXPECT_LE(k.specular, srbfSolidAngle(16.0) / kPi * 1.001);
+                    EXPECT_LE(k.diffuse, srbfIntegral(16.0) / kPi * 1.001);
+                    EXPECT_LE(k.specular, srbfIntegral(16.0) / kPi * 1.001);
                 }
     // The reference at the bounds and at grazing: finite, within the furnace,
     // and the table agrees with it there too.
@@ -365,11 +365,11 @@ TEST(SrbfConvolutionTables, WhiteFurnaceFromLobesStaysWithinTheBound) {
     SrbfConvolutionTable table = buildSrbfMarschnerTable(clear);
     const std::vector<glm::vec3> centres = fibonacciSphere(400);
     const float bandwidth = 16.0f;
-    const double amplitude = 4.0 * kPi / (double(centres.size()) * srbfSolidAngle(bandwidth));
+    const double amplitude = 4.0 * kPi / (double(centres.size()) * srbfIntegral(bandwidth));
     double lowest = 1e30, highest = 0.0;  // of the environment E(ω) = Σ a G
     for (const glm::vec3& w : fibonacciSphere(3000)) {
         double e = 0.0;
-        for (const glm::vec3& centre : centres) e += amplitude * srbfValue({centre, bandwidth}, glm::dvec3(w));
+        for (const glm::vec3& centre : centres) e += amplitude * srbfKernel({centre, bandwidth}, glm::dvec3(w));
         lowest = std::min(lowest, e);
         highest = std::max(highest, e);
     }
