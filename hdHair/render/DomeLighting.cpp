@@ -64,8 +64,10 @@ std::vector<PlannedDome> addDomeLights(const Scene& scene, const std::vector<Dom
     for (const auto& [path, entry] : scene.lights()) {
         const LightPrim& prim = *entry.prim;
         if (!isDrawnDome(prim)) continue;
+        // A structured binding cannot be captured in C++17 (clang refuses it).
+        const std::string& domePath = path;
         auto found = std::find_if(domes.begin(), domes.end(),
-                                  [&](const DomeEnvironment& dome) { return dome.lightPath == path; });
+                                  [&](const DomeEnvironment& dome) { return dome.lightPath == domePath; });
         PlannedDome dome;
         dome.path = path;
         dome.firstLight = lights.lights.size();
