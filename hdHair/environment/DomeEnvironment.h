@@ -37,6 +37,7 @@
 #include <glm/vec3.hpp>
 
 #include "hdHair/base/Diagnostics.h"
+#include "hdHair/environment/DomeLightSampling.h"
 #include "hdHair/environment/DomeTextureFitCache.h"
 #include "hdHair/environment/Srbf.h"
 #include "hdHair/scene/LightPrim.h"
@@ -48,12 +49,32 @@ struct DomeEnvironment {
     glm::vec3 uniformRadiance{0.0f};  // from every direction (an untextured dome)
     std::vector<Srbf> srbfs;          // world space; amplitudes in radiance, radianceScale applied
     float fitError = 0.0f;            // the fit's relative L2 error (SrbfFit.h); 0 for a uniform dome
+    // The reference's view (sampledDomeEnvironment): the dome as distant
+    // lights; then uniformRadiance is 0 and srbfs is empty.
+    std::vector<SampledDomeLight> sampledLights;
 };
 
 // `dome` must be a LightType::Dome light. Warnings go to `diagnostics`.
 DomeEnvironment domeEnvironment(const LightPrim& dome, const glm::vec3& radianceScale,
                                 const DomeFitSettings& settings, Diagnostics& diagnostics,
                                 DomeTextureFitCache& cache = DomeTextureFitCache::process());
+
+// The grid the reference samples a texture on: 0.7° cells, finer than any
+// lobe (Srbf.h) and than the fit's 5.6°, so the reference sees the map as it
+// is, sun included, not its prefiltered fit.
+constexpr int kSampledDomeGridWidth = 512;
+constexpr int kSampledDomeGridHeight = 256;
+
+// The dome as the yardstick the SRBF path is measured against
+// (domeLighting=sampled): `lightCount` distant lights importance-sampled
+// from its radiance (DomeLightSampling.h), in world space. A texture is read
+// onto a kSampledDomeGridWidth × kSampledDomeGridHeight grid, unblurred and
+// not cached (the reference is slow anyway); an untextured dome (or one whose
+// texture cannot be used, with the same warnings as domeEnvironment) is
+// sampled as uniform radiance, so the analytic uniform term is measured too.
+// The file is read on every call: a reference frame costs minutes.
+DomeEnvironment sampledDomeEnvironment(const LightPrim& dome, const glm::vec3& radianceScale, int lightCount,
+                                       Diagnostics& diagnostics);
 
 // The environment's radiance arriving from the world direction ω (unit):
 // uniformRadiance + Σ_j L_j G(ω; ξ_j, λ_j).

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 #include <fmt/format.h>
 
@@ -86,6 +87,39 @@ ImageComparison compareImages(const Image& actual, const Image& expected, const 
                     result.outliers <= tolerance.allowedOutliers;
     result.description = describe(result, tolerance);
     return result;
+}
+
+RelativeColorError relativeColorError(const Image& actual, const Image& reference) {
+    if (actual.width != reference.width || actual.height != reference.height || actual.channels != reference.channels ||
+        actual.pixels.size() != reference.pixels.size())
+        throw std::invalid_argument("relativeColorError: the images' sizes differ");
+    const size_t channels = size_t(actual.channels);
+    const size_t colorChannels = channels == 4 ? 3 : channels;
+    const size_t pixels = size_t(actual.width) * size_t(actual.height);
+    RelativeColorError error;
+    double differenceSquares = 0.0, referenceSquares = 0.0, largestDifference = 0.0, largestReference = 0.0;
+    double actualSum = 0.0, referenceSum = 0.0;
+    for (size_t p = 0; p < pixels; ++p) {
+        if (!covered(actual, p) && !covered(reference, p)) continue;
+        ++error.coveredPixels;
+        for (size_t c = 0; c < colorChannels; ++c) {
+            const double a = actual.pixels[p * channels + c], b = reference.pixels[p * channels + c];
+            const double d = std::isfinite(a) && std::isfinite(b) ? std::abs(a - b) : INFINITY;
+            differenceSquares += d * d;
+            referenceSquares += b * b;
+            actualSum += a;
+            referenceSum += b;
+            largestDifference = std::max(largestDifference, d);
+            largestReference = std::max(largestReference, std::abs(b));
+        }
+    }
+    if (error.coveredPixels == 0) return error;
+    error.rootMeanSquare = referenceSquares > 0.0 ? std::sqrt(differenceSquares / referenceSquares)
+                                                  : (differenceSquares > 0.0 ? INFINITY : 0.0);
+    error.sumRatio = referenceSum != 0.0 ? actualSum / referenceSum : (actualSum == 0.0 ? 1.0 : INFINITY);
+    error.largest = largestReference > 0.0 ? largestDifference / largestReference
+                                           : (largestDifference > 0.0 ? INFINITY : 0.0);
+    return error;
 }
 
 Image differenceImage(const Image& actual, const Image& expected, const CoveredPixelTolerance& tolerance, float gain) {

@@ -56,6 +56,23 @@ struct ImageComparison {
 
 ImageComparison compareImages(const Image& actual, const Image& expected, const CoveredPixelTolerance& tolerance);
 
+// An image's colour error relative to a reference, over the pixels either
+// covers and the colour channels only (RGB of RGBA; alpha, the same
+// coverage in both, would dilute it): the RMS of the difference over the RMS
+// of the reference (the SRBF fit's relative L2 measure, on pixels), and the
+// largest difference over the reference's largest value; and the ratio of
+// their sums (the bias: 1.1 is 10 % too bright overall). What the dome
+// lighting's bounds against its reference are stated in (testDomeReference,
+// hdhair-bench --table dome). Both 0 when nothing is covered; sizes must match
+// (std::invalid_argument otherwise).
+struct RelativeColorError {
+    size_t coveredPixels = 0;
+    double rootMeanSquare = 0.0;
+    double largest = 0.0;
+    double sumRatio = 1.0;
+};
+RelativeColorError relativeColorError(const Image& actual, const Image& reference);
+
 // An image to look at beside a failed comparison: each pixel's largest
 // channel difference |actual - expected| times `gain`, as opaque grey,
 // red where it is over the tolerance's outlier limit, so that moved edges

@@ -27,22 +27,35 @@ float lobePower(const Srbf& srbf) {
 }  // namespace
 
 DomeLightingMode domeLightingMode(const RenderSettings& settings) {
-    return settings.getToken("domeLighting") == "ambient" ? DomeLightingMode::Ambient : DomeLightingMode::Srbf;
+    const std::string mode = settings.getToken("domeLighting");
+    if (mode == "ambient") return DomeLightingMode::Ambient;
+    return mode == "sampled" ? DomeLightingMode::Sampled : DomeLightingMode::Srbf;
 }
 
 std::vector<DomeEnvironment> frameDomeEnvironments(const Scene& scene, const RenderSettings& settings,
                                                    Diagnostics& diagnostics) {
     std::vector<DomeEnvironment> domes;
-    if (domeLightingMode(settings) != DomeLightingMode::Srbf) return domes;
+    const DomeLightingMode mode = domeLightingMode(settings);
+    if (mode == DomeLightingMode::Ambient) return domes;
     DomeFitSettings fit;
     fit.srbf.maxLobes = settings.getInt("domeLights");
-    for (const auto& [path, entry] : scene.lights())
-        if (isDrawnDome(*entry.prim))
-            domes.push_back(domeEnvironment(*entry.prim, lightRadiance(*entry.prim), fit, diagnostics));
+    for (const auto& [path, entry] : scene.lights()) {
+        if (!isDrawnDome(*entry.prim)) continue;
+        const glm::vec3 radiance = lightRadiance(*entry.prim);
+        domes.push_back(mode == DomeLightingMode::Sampled
+                            ? sampledDomeEnvironment(*entry.prim, radiance, settings.getInt("domeSampledLights"),
+                                                     diagnostics)
+                            : domeEnvironment(*entry.prim, radiance, fit, diagnostics));
+    }
     return domes;
 }
 
 std::string PlannedDome::describe(size_t lightsPerPass) const {
+    if (sampledLights > 0)
+        return fmt::format("dome {}: the reference (domeLighting=sampled): {} distant lights importance-sampled from "
+                           "its radiance, {} per pass, {}",
+                           path, sampledLights, lightsPerPass,
+                           shadowedLights > 0 ? "each with a shadow map of its own" : "unshadowed");
     if (srbfLights == 0)
         return fmt::format("dome {}: uniform dome: analytic (no usable texture: the fibre model's exact response to "
                            "uniform radiance, from its SRBF table)",
@@ -77,6 +90,20 @@ std::vector<PlannedDome> addDomeLights(const Scene& scene, const std::vector<Dom
             continue;
         }
         lights.uniformDome += found->uniformRadiance;
+        if (!found->sampledLights.empty()) {
+            for (size_t k = 0; k < found->sampledLights.size(); ++k) {
+                ShadingLight light;
+                light.directionOrPosition = found->sampledLights[k].direction;
+                light.scale = found->sampledLights[k].irradiance;
+                light.castsShadow = prim.shadowEnable;
+                light.path = fmt::format("{} sample {}", path, k);
+                lights.lights.push_back(light);
+            }
+            dome.sampledLights = found->sampledLights.size();
+            dome.shadowedLights = prim.shadowEnable ? dome.sampledLights : 0;
+            planned.push_back(dome);
+            continue;
+        }
         dome.fitError = found->fitError;
         const std::vector<Srbf>& srbfs = found->srbfs;
         std::vector<size_t> order(srbfs.size());

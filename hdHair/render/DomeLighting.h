@@ -13,6 +13,15 @@
 //   batch.
 // - ambient: the old flat term, radiance × colour (toShadingLights), kept to
 //   compare with.
+// - sampled: the reference the srbf mode is measured against (issue 16):
+//   each dome, textured or not, as domeSampledLights distant lights
+//   importance-sampled from its radiance (sampledDomeEnvironment,
+//   DomeLightSampling.h), each casting its own deep opacity map when the dome
+//   casts shadows, through the ordinary light and shadow passes. Slow
+//   (minutes a frame is fine: it serves tests on small images and
+//   hdhair-bench --table dome), and refused rather than drawn wrong: when
+//   shadowMemoryMB cannot hold every sampled light's map the frame fails
+//   (Renderer) instead of leaving lights unshadowed.
 // Self-shadowing (T̃_j, Ren §5): the domeShadowLights strongest SRBFs of a
 // dome that casts shadows (amplitude summed over RGB × ∫G dω) get their own
 // deep opacity map, as distant lights from ξ_j (the ordinary shadow
@@ -37,14 +46,15 @@ class Diagnostics;
 class RenderSettings;
 class Scene;
 
-enum class DomeLightingMode { Srbf, Ambient };
+enum class DomeLightingMode { Srbf, Ambient, Sampled };
 DomeLightingMode domeLightingMode(const RenderSettings& settings);
 
 // The visible DomeLights of `scene` (path order) as world-space lighting,
 // fitted with domeLights SRBFs through the process's fit cache: a fit per
-// texture file and setting, then a `stat` a frame. A texture that cannot be
-// used warns (naming the prim and the file) and the dome comes back
-// uniform. Empty under domeLighting=ambient.
+// texture file and setting, then a `stat` a frame; under domeLighting=sampled,
+// as domeSampledLights sampled lights (sampledDomeEnvironment). A texture
+// that cannot be used warns (naming the prim and the file) and the dome
+// comes back uniform. Empty under domeLighting=ambient.
 std::vector<DomeEnvironment> frameDomeEnvironments(const Scene& scene, const RenderSettings& settings,
                                                    Diagnostics& diagnostics);
 
@@ -54,11 +64,15 @@ struct PlannedDome {
     size_t firstLight = 0;      // its first SRBF in ShadingLights::lights
     size_t srbfLights = 0;      // 0: a uniform dome, shaded analytically
     size_t shadowedLights = 0;  // SRBFs with a map of their own
+    size_t sampledLights = 0;   // domeLighting=sampled: its distant lights (all shadowed when it casts)
     float fitError = 0.0f;
     std::string describe(size_t lightsPerPass) const;
 };
 
-// Adds the scene's visible domes to `lights` as the srbf mode shades them:
+// Adds the scene's visible domes to `lights` as the srbf or sampled mode
+// shades them. A sampled dome (DomeEnvironment::sampledLights) becomes its
+// distant lights ("<dome> sample <k>"), casting shadows when the dome does.
+// Otherwise, as the srbf mode shades them:
 // each SRBF as a ShadingLight (a dome's strongest first; path
 // "<dome> srbf <j>"), uniform radiance to lights.uniformDome. A visible dome
 // that `domes` does not list counts as untextured (its radiance, uniform).

@@ -259,15 +259,16 @@ RenderPlan makeRenderPlan(const Scene& scene, const RenderSettings& settings, co
                           const StrandSummary& strands, bool idsRequested, const MeshSummary& meshes,
                           bool displayOnGpu, const std::vector<DomeEnvironment>& domes) {
     RenderPlan plan;
-    // domeLighting=srbf: domes are SRBF lights and a uniform term
-    // (DomeLighting.h), not toShadingLights' flat ambient.
-    const bool srbfDomes = domeLightingMode(settings) == DomeLightingMode::Srbf;
+    // domeLighting=srbf or sampled: domes are SRBF lights and a uniform term,
+    // or sampled distant lights (DomeLighting.h), not toShadingLights' flat
+    // ambient.
+    const bool domesAsLights = domeLightingMode(settings) != DomeLightingMode::Ambient;
     std::vector<const LightPrim*> stageLights;
     const LightPrim* hostCameraLight = nullptr;
     for (const auto& [path, entry] : scene.lights()) {
         if (entry.prim->hostCameraLight) {
             if (!hostCameraLight && entry.prim->visible) hostCameraLight = entry.prim.get();
-        } else if (srbfDomes && entry.prim->type == LightType::Dome) {
+        } else if (domesAsLights && entry.prim->type == LightType::Dome) {
             continue;  // addDomeLights below
         } else if (stageLights.size() < kMaxLights) {
             stageLights.push_back(entry.prim.get());
@@ -276,7 +277,7 @@ RenderPlan makeRenderPlan(const Scene& scene, const RenderSettings& settings, co
         }
     }
     plan.lights = toShadingLights(stageLights);
-    if (srbfDomes)
+    if (domesAsLights)
         plan.domes = addDomeLights(scene, domes, settings.getInt("domeShadowLights"), plan.lights,
                                    plan.shadows.sharedMaps);
     const bool anyMeshes = meshes.meshes > 0;

@@ -130,13 +130,19 @@ const std::vector<SettingDescriptor>& RenderSettings::descriptors() {
         {"domeLighting", SettingType::Token, "srbf",
          "How DomeLights light the frame: srbf (a textured dome as domeLights Gaussian SRBF lights, each "
          "convolved with the fibre model by table, Ren et al. 2010; an untextured dome as the exact integral of "
-         "the fibre model under uniform light) or ambient (the dome's radiance times the colour, flat and "
-         "unshadowed: the old term, kept for comparison)",
-         0, 0, {"srbf", "ambient"}},
+         "the fibre model under uniform light), ambient (the dome's radiance times the colour, flat and "
+         "unshadowed: the old term, kept for comparison) or sampled (the reference: every dome as "
+         "domeSampledLights importance-sampled distant lights, each with its own shadow map; slow, and a frame "
+         "whose maps shadowMemoryMB cannot hold fails)",
+         0, 0, {"srbf", "ambient", "sampled"}},
         {"domeLights", SettingType::Int, "30",
          "SRBF lights a textured dome is fitted with (the paper's 30-60; each costs a table lookup per fragment "
          "and lightsPerPass of them a pass)",
          10, 60, {}},
+        {"domeSampledLights", SettingType::Int, "1024",
+         "Distant lights a dome becomes under domeLighting=sampled (importance-sampled from its radiance; each "
+         "its own shadow map when the dome casts shadows, so lower shadowMapResolution or raise shadowMemoryMB)",
+         1, 65536, {}},
         {"domeShadowLights", SettingType::Int, "4",
          "Of a dome's SRBF lights, the strongest (amplitude x solid angle) that get their own deep opacity map, "
          "as distant lights from their centres; each other SRBF reads the map of the shadowed one nearest in "

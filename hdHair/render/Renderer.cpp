@@ -302,7 +302,17 @@ TessellationView Renderer::decideShadowMaps(RenderPlan& plan, const StrandSummar
         requests.push_back({shadow.key, shadow.view, followsCamera});
         requested.push_back(i);
     }
-    if (shadows.overBudget > 0 && !plan.flatShading && summary.segments > 0)
+    const bool shadowsDrawn = shadows.overBudget > 0 && !plan.flatShading && summary.segments > 0;
+    // The reference must not shade lights unshadowed: it is what the SRBF
+    // path's shadows are measured against (DomeLighting.h).
+    if (shadowsDrawn && domeLightingMode(settings) == DomeLightingMode::Sampled)
+        throw std::invalid_argument(fmt::format(
+            "domeLighting=sampled: {} lights cast shadows, more than the {} maps shadowMemoryMB={} holds at "
+            "shadowMapResolution={} ({} would be drawn unshadowed); lower domeSampledLights or "
+            "shadowMapResolution, or raise shadowMemoryMB",
+            shadows.lights.size(), shadows.maxMaps, settings.getInt("shadowMemoryMB"), shadows.resolution,
+            shadows.overBudget));
+    if (shadowsDrawn)
         diagnostics.warn("render", fmt::format("{} lights cast shadows, more than the {} maps shadowMemoryMB={} holds "
                                                "at shadowMapResolution={}; the last {} in path order shade "
                                                "unshadowed",

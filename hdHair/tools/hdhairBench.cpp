@@ -2,6 +2,7 @@
 //
 //   hdhair-bench [--stage FILE]... [--imageWidth N]
 //                [--table complexity|transparency|shading|shadows|tessellation|all] [Google Benchmark flags]
+//   hdhair-bench --table dome [--domeTexture FILE] [--repetitions N] [--stage FILE]... [--imageWidth N]
 //   hdhair-bench --accuracy [--quick] [--out DIR] [--repetitions N] [--stage FILE]... [--imageWidth N]
 //   hdhair-bench --report accuracy.json [--out DIR]   (an earlier report's front and tables again)
 //
@@ -31,6 +32,9 @@
 //                                       light turned by a microradian), per shadowLayers,
 //                                       shadowMapResolution, filter and spacing, timed in
 //                                       process CPU seconds (llvmpipe's threads included)
+// --table dome: the SRBF dome lighting against its reference and its cost
+// (DomeBench.h), under --domeTexture (default examples/dome_sky.exr), 128
+// pixels wide unless --imageWidth says otherwise; no Google Benchmark runs.
 // Then it prints markdown tables: each configuration's time relative to a
 // reference measured in the same run (these machines are shared and noisy,
 // so ratios mean more than milliseconds), and its image error against the
@@ -77,6 +81,7 @@
 #include "hdHair/render/CameraView.h"
 #include "hdHair/render/Renderer.h"
 #include "hdHair/scene/Scene.h"
+#include "hdHair/tools/DomeBench.h"
 #include "hdHair/usda/SceneReader.h"
 #include "hdHair/usda/Stage.h"
 #include "hdHair/usda/tests/SyntheticLayers.h"
@@ -501,7 +506,7 @@ int main(int argc, char** argv) {
     std::string table = "all";
     bool accuracyRun = false, quick = false;
     int repetitions = 3;
-    std::string out = "accuracy", command, report;
+    std::string out = "accuracy", command, report, domeTexture = HDHAIR_SOURCE_DIR "/examples/dome_sky.exr";
     std::vector<char*> benchmarkArguments;
     for (int i = 0; i < argc; ++i) {
         command += (i ? " " : "") + std::string(argv[i]);
@@ -510,6 +515,7 @@ int main(int argc, char** argv) {
         else if (i + 1 < argc && std::strcmp(argv[i], "--table") == 0) table = argv[++i];
         else if (i + 1 < argc && std::strcmp(argv[i], "--out") == 0) out = argv[++i];
         else if (i + 1 < argc && std::strcmp(argv[i], "--report") == 0) report = argv[++i];
+        else if (i + 1 < argc && std::strcmp(argv[i], "--domeTexture") == 0) domeTexture = argv[++i];
         else if (i + 1 < argc && std::strcmp(argv[i], "--repetitions") == 0) repetitions = std::atoi(argv[++i]);
         else if (std::strcmp(argv[i], "--accuracy") == 0) accuracyRun = true;
         else if (std::strcmp(argv[i], "--quick") == 0) quick = true;
@@ -545,7 +551,9 @@ int main(int argc, char** argv) {
     }
     // Accuracy frames are many (about 50 configurations a stage, the
     // reference 16 samples a pixel): small images keep the matrix to minutes.
-    if (imageWidth == 0) imageWidth = !accuracyRun ? 512 : quick ? 64 : 128;
+    // So are dome frames: the reference is a thousand lights, each with a map.
+    const bool domeTable = table == "dome";
+    if (imageWidth == 0) imageWidth = accuracyRun || domeTable ? (quick ? 64 : 128) : 512;
     if (imageWidth < 1 || imageWidth > 16384) {
         std::fprintf(stderr, "hdhair-bench: error: --imageWidth must be between 1 and 16384\n");
         return 2;
@@ -588,6 +596,18 @@ int main(int argc, char** argv) {
     } catch (const std::exception& error) {
         std::fprintf(stderr, "hdhair-bench: error: %s\n", error.what());
         return 1;
+    }
+    if (domeTable) {
+        try {
+            std::vector<DomeBenchStage> domeStages;
+            for (const auto& stage : stages) domeStages.push_back({stage->name, stage->path, &stage->scene, stage->camera});
+            printDomeTables(*renderer(), domeStages, {domeTexture, repetitions});
+            renderer().reset();
+            return 0;
+        } catch (const std::exception& error) {
+            std::fprintf(stderr, "hdhair-bench: error: %s\n", error.what());
+            return 1;
+        }
     }
     if (accuracyRun) {
         try {

@@ -208,3 +208,54 @@ TEST(DomeEnvironment, AOneKSkyFits) {
     EXPECT_LT(environment.fitError, 0.2f);
     EXPECT_EQ(diagnostics.warningCount(), 0u) << allWarnings(diagnostics);
 }
+
+TEST(DomeEnvironment, TheReferenceSamplesTheTextureTurnedScaledAndUnblurred) {
+    TemporaryFolder folder;
+    const glm::vec3 bright = glm::normalize(glm::vec3(0.0f, 0.2f, 1.0f));
+    LightPrim sky = dome(writeBrightSpotMap(folder, bright));
+    sky.worldTransform = glm::rotate(glm::dmat4(1.0), glm::radians(90.0), glm::dvec3(0.0, 1.0, 0.0));
+    Diagnostics diagnostics;
+    const glm::vec3 scale(2.0f, 1.0f, 0.5f);
+    const DomeEnvironment sampled = sampledDomeEnvironment(sky, scale, 256, diagnostics);
+    EXPECT_EQ(diagnostics.warningCount(), 0u) << allWarnings(diagnostics);
+    EXPECT_TRUE(sampled.srbfs.empty());
+    EXPECT_EQ(sampled.uniformRadiance, glm::vec3(0.0f));
+    ASSERT_EQ(sampled.sampledLights.size(), 256u);
+    // The disc (1.2 of luminous power, against the grey dome's 1.26) draws
+    // about half the samples, all within 4° (its 2.5° radius and a 1.4° cell)
+    // of the turned direction (+Z turned 90° about +Y is +X): the map as it
+    // is, not its λ = 64 (7°) prefiltered fit.
+    const glm::vec3 turned = domeLightDirectionToWorld(sky.worldTransform, bright);
+    size_t inDisc = 0;
+    glm::vec3 total(0.0f);
+    for (const SampledDomeLight& light : sampled.sampledLights) {
+        inDisc += degreesBetween(light.direction, turned) < 4.0f ? 1 : 0;
+        total += light.irradiance;
+    }
+    EXPECT_GT(inDisc, 100u);
+    EXPECT_LT(inDisc, 156u);
+    // Tinted per channel by the radiance scale.
+    EXPECT_NEAR(total.r / total.g, 2.0f, 1e-3f);
+    EXPECT_NEAR(total.b / total.g, 0.5f, 1e-3f);
+}
+
+TEST(DomeEnvironment, TheReferenceSamplesAnUntexturedOrUnusableDomeUniformly) {
+    TemporaryFolder folder;
+    Diagnostics diagnostics;
+    const DomeEnvironment uniform = sampledDomeEnvironment(dome(""), glm::vec3(1.0f), 64, diagnostics);
+    EXPECT_EQ(diagnostics.warningCount(), 0u);
+    const std::string missing = folder.path("none.exr");
+    const DomeEnvironment fallback = sampledDomeEnvironment(dome(missing), glm::vec3(1.0f), 64, diagnostics);
+    EXPECT_TRUE(mentions(diagnostics, {"/World/sky.inputs:texture:file", missing, "lit uniformly"}))
+        << allWarnings(diagnostics);
+    ASSERT_EQ(uniform.sampledLights.size(), 64u);
+    ASSERT_EQ(fallback.sampledLights.size(), 64u);
+    // Uniform radiance 1 is π of irradiance on any plane; over the sphere,
+    // the lights' irradiance sums to 4π.
+    glm::vec3 total(0.0f);
+    for (size_t k = 0; k < 64; ++k) {
+        EXPECT_EQ(uniform.sampledLights[k].direction, fallback.sampledLights[k].direction);
+        total += uniform.sampledLights[k].irradiance;
+    }
+    EXPECT_NEAR(total.g, 4.0f * 3.14159265f, 1e-3f);
+}
