@@ -1,5 +1,7 @@
 #include "hdHair/gl/GpuMemory.h"
 
+#include <algorithm>
+
 #include <stdexcept>
 #include <string>
 #include <unordered_map>
@@ -53,9 +55,11 @@ void recordBufferBytes(GLuint name, size_t bytes, const char* use) {
 }
 
 void recordTextureStorage(GLuint name, GLenum internalFormat, GLsizei width, GLsizei height, GLsizei depthOrLayers,
-                          GLsizei samples, const char* use) {
-    const uint64_t texels = uint64_t(width) * uint64_t(height) * uint64_t(depthOrLayers) *
-                            uint64_t(samples > 0 ? samples : 1);
+                          GLsizei samples, const char* use, GLsizei levels) {
+    uint64_t texels = 0;
+    for (GLsizei level = 0; level < std::max<GLsizei>(levels, 1); ++level)
+        texels += uint64_t(std::max(width >> level, 1)) * uint64_t(std::max(height >> level, 1)) *
+                  uint64_t(depthOrLayers) * uint64_t(samples > 0 ? samples : 1);
     ledger().textures[name] = Entry{texels * texelBytes(internalFormat), useOrCurrent(use)};
 }
 

@@ -29,8 +29,10 @@ size_t texelBytes(GLenum internalFormat);
 // Records the storage of buffer or texture `name` on this thread's context.
 // `use` nullptr: the innermost GpuMemoryUse alive on this thread, else "other".
 void recordBufferBytes(GLuint name, size_t bytes, const char* use = nullptr);
+// `levels` > 1: a mip chain of 2D levels (each half the last, at least 1
+// texel) over the same layers.
 void recordTextureStorage(GLuint name, GLenum internalFormat, GLsizei width, GLsizei height, GLsizei depthOrLayers,
-                          GLsizei samples, const char* use = nullptr);
+                          GLsizei samples, const char* use = nullptr, GLsizei levels = 1);
 // Called when the names are deleted (GlObjects' deleters).
 void forgetBuffer(GLuint name);
 void forgetTexture(GLuint name);

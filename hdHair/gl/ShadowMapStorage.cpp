@@ -1,6 +1,7 @@
 #include "hdHair/gl/ShadowMapStorage.h"
 
 #include <array>
+#include <stdexcept>
 #include <string>
 
 #include "hdHair/gl/GpuMemory.h"
@@ -11,14 +12,25 @@ namespace {
 
 constexpr float kNoHair = 3.0e38f;  // HDHAIR_NO_HAIR in shaders/include/shadows.glsl
 
-Texture arrayTexture(GLenum format, int resolution, int layers) {
+// The levels of a full mip chain down to 1 × 1.
+int fullMipLevels(int resolution) {
+    int levels = 1;
+    while ((resolution >> levels) > 0) ++levels;
+    return levels;
+}
+
+Texture arrayTexture(GLenum format, int resolution, int layers, int levels = 1) {
     GLuint name = 0;
     glCreateTextures(GL_TEXTURE_2D_ARRAY, 1, &name);
-    glTextureStorage3D(name, 1, format, resolution, resolution, layers);
-    recordTextureStorage(name, format, resolution, resolution, layers, 0, "shadowMaps");
-    // Read with texelFetch only: z0-relative values cannot be filtered.
-    glTextureParameteri(name, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-    glTextureParameteri(name, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    glTextureStorage3D(name, levels, format, resolution, resolution, layers);
+    recordTextureStorage(name, format, resolution, resolution, layers, 0, "shadowMaps", levels);
+    // The ordinary lookup reads with texelFetch: z0-relative values cannot be
+    // filtered. The mip chain (opacity only) is read with textureLod by SRBF
+    // lights, which average layers across texels on purpose (Ren et al. §5).
+    glTextureParameteri(name, GL_TEXTURE_MIN_FILTER, levels > 1 ? GL_LINEAR_MIPMAP_LINEAR : GL_NEAREST);
+    glTextureParameteri(name, GL_TEXTURE_MAG_FILTER, levels > 1 ? GL_LINEAR : GL_NEAREST);
+    glTextureParameteri(name, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTextureParameteri(name, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
     return Texture(name);
 }
 
@@ -31,17 +43,25 @@ ShadowMapStorage::ShadowMapStorage() {
     ensure(1, 1, 1);
 }
 
-void ShadowMapStorage::ensure(int resolution, int layerTargets, int slots) {
-    if (resolution == resolution_ && layerTargets == targets_ && slots == slots_) return;
+void ShadowMapStorage::ensure(int resolution, int layerTargets, int slots, bool opacityMipmaps) {
+    if (resolution == resolution_ && layerTargets == targets_ && slots == slots_ && opacityMipmaps == opacityMipmaps_)
+        return;
     resolution_ = resolution;
     targets_ = layerTargets;
     slots_ = slots;
+    opacityMipmaps_ = opacityMipmaps;
     allocate();
+}
+
+void ShadowMapStorage::generateOpacityMipmaps() {
+    if (!opacityMipmaps_) throw std::logic_error("shadow maps: opacity mipmaps asked for but not allocated");
+    glGenerateTextureMipmap(opacity_.get());
+    checkGlError("averaging the shadow maps' opacity layers into mipmaps");
 }
 
 void ShadowMapStorage::allocate() {
     depths_ = arrayTexture(GL_R32F, resolution_, slots_);
-    opacity_ = arrayTexture(GL_RGBA16F, resolution_, slots_ * targets_);
+    opacity_ = arrayTexture(GL_RGBA16F, resolution_, slots_ * targets_, opacityMipmaps_ ? fullMipLevels(resolution_) : 1);
     meshDepths_ = arrayTexture(GL_R32F, resolution_, slots_);
     checkGlError(("allocating " + std::to_string(slots_) + " shadow maps of " + std::to_string(resolution_) + "x" +
                   std::to_string(resolution_) + " texels")

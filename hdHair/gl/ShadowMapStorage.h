@@ -23,7 +23,14 @@ public:
 
     // Makes room for `slots` maps of resolution^2 texels and `layerTargets`
     // RGBA16F layers each; reallocates (contents lost) only when they change.
-    void ensure(int resolution, int layerTargets, int slots);
+    // `opacityMipmaps`: the opacity layers get a mip chain, the convolution
+    // optical depth map SRBF lights read (generateOpacityMipmaps; 1/3 more
+    // opacity memory), only while a frame asks for it.
+    void ensure(int resolution, int layerTargets, int slots, bool opacityMipmaps = false);
+
+    // Averages every slot's opacity layers down the mip chain (level k: the
+    // mean over 2^k × 2^k texels), after the maps were drawn.
+    void generateOpacityMipmaps();
 
     // Binds the framebuffer that draws slot `slot`'s nearest depth, cleared
     // to "no hair" (HDHAIR_NO_HAIR in shaders/include/shadows.glsl), with the
@@ -50,6 +57,7 @@ private:
     Texture depths_, opacity_, meshDepths_;
     Framebuffer framebuffer_;
     int resolution_ = 0, targets_ = 0, slots_ = 0;
+    bool opacityMipmaps_ = false;
 };
 
 }  // namespace hdhair::gl

@@ -73,6 +73,8 @@ struct ShadowUniforms {
     glm::vec4 extinction{1.0f, 0.0f, 0.0f, 0.0f};  // x: k of T = exp(-k opacity)
     // x: 1 when meshes cast shadows: every slot's mesh depth (the nearest
     // mesh in the light's view) is current and hides the strands behind it.
+    // y: 1 when SRBF lights read the opacity layers' mip chain
+    // (domeShadowFilter=mipmap, ShadowPlan::convolvedOpacity).
     glm::ivec4 occluders{0};
 };
 static_assert(sizeof(ShadowUniforms) == 64 * kMaxLightsPerPass + 48 * kMaxLightsPerPass + 16 * 8 + 48,

@@ -250,7 +250,8 @@ size_t shadowNamed(const RenderPlan& plan, const std::string& key) {
 
 void prepareShadowMaps(FrameContext& context) {
     const ShadowPlan& shadows = context.plan.shadows;
-    context.resources.shadowMaps.ensure(shadows.resolution, (shadows.layers + 3) / 4, std::max(shadows.capacity, 1));
+    context.resources.shadowMaps.ensure(shadows.resolution, (shadows.layers + 3) / 4, std::max(shadows.capacity, 1),
+                                        shadows.convolvedOpacity);
 }
 
 // "shadowDepth L": the nearest hair in light L's view.
@@ -371,6 +372,10 @@ void runFramePass(const FramePass& pass, FrameContext& context) {
     if (name.rfind("meshShadow ", 0) == 0) return meshShadow(context, shadowNamed(context.plan, name.substr(11)));
     if (name.rfind("shadowFragments ", 0) == 0)
         return shadowFragments(context, shadowNamed(context.plan, name.substr(16)));
+    if (name == "opacityMipmaps") {
+        prepareShadowMaps(context);
+        return context.resources.shadowMaps.generateOpacityMipmaps();
+    }
     if (name == "readback") return readback(context);
     if (name == "displayTransform") return displayTransform(context);
     throw std::logic_error("frame graph: no pass called '" + name + "'");

@@ -128,6 +128,9 @@ void planShadows(RenderPlan& plan, const RenderSettings& settings, const StrandS
         }
         shadows.lights.push_back(std::move(shadow));
     }
+    if (shadows.mode == ShadowMode::DeepOpacity && settings.getToken("domeShadowFilter") == "mipmap")
+        for (size_t i = 0; i < plan.lights.lights.size() && !shadows.convolvedOpacity; ++i)
+            shadows.convolvedOpacity = plan.lights.lights[i].isSrbf() && shadows.shadowOf(i) >= 0;
 }
 
 // The passes that build light `shadow`'s map, wanted or not with the reason.
@@ -167,7 +170,11 @@ void addShadowPasses(FrameGraph& graph, const RenderPlan& plan, const PlannedSha
                                 flat});
 }
 
-// The shadow maps light batch `batch` reads: those of its lights that have one.
+// The opacity layers of every map averaged into a mip chain ("opacityMipmaps").
+const FrameResource kConvolvedOpacity = "convolvedOpacity";
+
+// The shadow maps light batch `batch` reads: those of its lights that have
+// one, and the mip chain when its SRBF lights read through it.
 std::vector<FrameResource> batchShadowReads(const RenderPlan& plan, size_t batch) {
     std::vector<FrameResource> reads;
     if (plan.shadows.mode == ShadowMode::Off) return reads;
@@ -180,6 +187,13 @@ std::vector<FrameResource> batchShadowReads(const RenderPlan& plan, size_t batch
         reads.push_back(map);
         if (plan.shadows.meshesCast) reads.push_back(plan.shadows.meshResourceOf(plan.shadows.lights[size_t(shadow)]));
     }
+    // Its SRBF lights that read a map read it through the mip chain.
+    if (plan.shadows.convolvedOpacity)
+        for (size_t light = plan.lightBatches[batch].first; light < plan.lightBatches[batch].second; ++light)
+            if (plan.lights.lights[light].isSrbf() && plan.shadows.shadowOf(light) >= 0) {
+                reads.push_back(kConvolvedOpacity);
+                break;
+            }
     return reads;
 }
 
@@ -376,6 +390,23 @@ RenderPlan makeRenderPlan(const Scene& scene, const RenderSettings& settings, co
     if (plan.lightBatches.empty()) plan.lightBatches.emplace_back(0, 0);
 
     for (const PlannedShadow& shadow : plan.shadows.lights) addShadowPasses(graph, plan, shadow, anyStrands);
+    if (plan.shadows.convolvedOpacity) {
+        // After every map it averages: the chain covers the whole array.
+        FramePass mipmaps{"opacityMipmaps", {}, {kConvolvedOpacity}, anyStrands && !plan.flatShading, ""};
+        size_t lobes = 0;
+        for (const PlannedShadow& shadow : plan.shadows.lights)
+            if (shadow.view.valid) {
+                mipmaps.reads.push_back(plan.shadows.resourceOf(shadow));
+                lobes += plan.lights.lights[shadow.light].isSrbf() ? 1 : 0;
+            }
+        mipmaps.wanted = mipmaps.wanted && lobes > 0;
+        mipmaps.reason = mipmaps.wanted ? fmt::format("the opacity layers of {} SRBF light map(s) averaged into a mip "
+                                                      "chain: the convolution optical depth map their lookups widen "
+                                                      "over with depth (domeShadowFilter=mipmap; Ren et al. 2010 §5)",
+                                                      lobes)
+                                        : "no SRBF light has a map";
+        graph.add(mipmaps);
+    }
 
     std::vector<FrameResource> frameImages{"color", "depth"};
     if (idsRequested) frameImages.push_back("ids");

@@ -82,6 +82,10 @@ struct ShadowPlan {
     // SRBF lights without a map of their own that read another light's
     // (DomeLighting.h): light index -> the index of the light whose map.
     std::map<size_t, size_t> sharedMaps;
+    // domeShadowFilter=mipmap and some SRBF light reads a map: the
+    // "opacityMipmaps" pass averages the opacity layers into a mip chain,
+    // the convolution optical depth map those lights read ("convolvedOpacity").
+    bool convolvedOpacity = false;
     // Index into `lights` of the shadow light `light` is shadowed by (its
     // own, or the one it shares), or -1.
     int shadowOf(size_t light) const;

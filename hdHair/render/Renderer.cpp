@@ -319,7 +319,9 @@ TessellationView Renderer::decideShadowMaps(RenderPlan& plan, const StrandSummar
                                                shadows.lights.size(), shadows.maxMaps,
                                                settings.getInt("shadowMemoryMB"), shadows.resolution,
                                                shadows.overBudget));
-    const ShadowFrame frame = shadowMaps_.update(requests, shadowSettingsKey(settings), castersVersion_, camera,
+    // A mip chain added or dropped reallocates the opacity layers, losing every map.
+    const std::string storageKey = shadowSettingsKey(settings) + (shadows.convolvedOpacity ? "mipmapped;" : "");
+    const ShadowFrame frame = shadowMaps_.update(requests, storageKey, castersVersion_, camera,
                                                  summary.casters, shadows.mode == ShadowMode::Reference);
     shadows.capacity = frame.capacity;
     for (size_t r = 0; r < requests.size(); ++r) {

@@ -22,7 +22,7 @@ gl::ShadowUniforms common(const ShadowPlan& shadows) {
         uniforms.layerBoundaries[i / 4][int(i % 4)] = shadows.boundaries[i];
     uniforms.mode = glm::ivec4(modeOf(shadows.mode), shadows.layers, shadows.bilinear ? 1 : 0, shadows.resolution);
     uniforms.extinction = glm::vec4(kShadowExtinction, 0.0f, 0.0f, 0.0f);
-    uniforms.occluders = glm::ivec4(shadows.meshesCast ? 1 : 0, 0, 0, 0);
+    uniforms.occluders = glm::ivec4(shadows.meshesCast ? 1 : 0, shadows.convolvedOpacity ? 1 : 0, 0, 0);
     for (glm::vec4& map : uniforms.lightMap) map.x = -1.0f;
     return uniforms;
 }

@@ -37,6 +37,11 @@ std::vector<DomeRow> domeRows() {
         rows.push_back({fmt::format("30 SRBFs, {} map{}{}", maps, maps == 1 ? "" : "s", maps == 30 ? " (one a lobe)" : ""),
                         {"domeLights=30", fmt::format("domeShadowLights={}", maps)},
                         true});
+    // The paper's convolution optical depth map instead of nine taps.
+    for (int maps : {4, 30})
+        rows.push_back({fmt::format("30 SRBFs, {} maps, mip chain", maps),
+                        {"domeLights=30", fmt::format("domeShadowLights={}", maps), "domeShadowFilter=mipmap"},
+                        true});
     for (int lobes : {10, 20, 30, 40, 60})
         rows.push_back({fmt::format("{} SRBFs, unshadowed", lobes),
                         {fmt::format("domeLights={}", lobes), "shadowMode=off"},

@@ -11,6 +11,8 @@
 //    (domeShadowLights), against the shadowed reference;
 //  - 30 lobes with 0, 1, 8 and 30 maps (30: a map per lobe, the scheme the
 //    issue calls too slow), against the shadowed reference;
+//  - 30 lobes with 4 and 30 maps read through the convolution optical depth
+//    map (domeShadowFilter=mipmap) instead of nine taps;
 //  - SRBF lights 10 to 60 unshadowed, against the unshadowed reference;
 //  - the references: domeLighting=sampled, `referenceLights` distant lights,
 //    each with its own deep opacity map (or none, unshadowed).

@@ -22,7 +22,8 @@ layout(std140, binding = 2) uniform ShadowUniforms {
     vec4 layerBoundaries[8];  // d_k / d_K for layers k = 1..32, 4 a vec4
     ivec4 mode;               // x: HDHAIR_SHADOW_*, y: layers, z: 0 nearest, 1 bilinear; w: resolution
     vec4 extinction;          // x: k of T = exp(-k opacity)
-    ivec4 occluders;          // x: 1 when shadowMeshDepths holds the meshes of every slot
+    ivec4 occluders;          // x: 1 when shadowMeshDepths holds the meshes of every slot;
+                              // y: 1 when SRBF lights read shadowOpacity's mip chain
 } shadows;
 
 // Per light slot: the nearest hair's linear depth, and the layers, 4 a texel
@@ -42,28 +43,52 @@ int shadowSlot(int i) { return int(shadows.lightMap[i].x); }
 
 float shadowLayerBoundary(int layer) { return shadows.layerBoundaries[layer / 4][layer % 4]; }
 
-// Opacity in front of linear depth z at one texel of light i's deep opacity
-// map: 0 in front of the nearest hair (or where there is none), linear
-// between layers, the last layer's beyond it.
-float deepOpacityAt(int i, ivec2 texel, float z) {
-    int slot = shadowSlot(i);
-    float d = z - texelFetch(shadowDepths, ivec3(texel, slot), 0).r;
-    if (d <= 0.0) return 0.0;
-    int layers = shadows.mode.y;
-    int targets = (layers + 3) / 4;
-    float scale = shadows.lightMap[i].y;
+// Opacity at depth d (> 0) behind the nearest hair, from the layers'
+// opacities (4 a vec4, up to 32): linear between layers, the last layer's
+// beyond it. `scale`: d_K, the last layer's depth (lightMap.y).
+float opacityBehindNearestHair(float d, float scale, vec4 targets[8]) {
     float previousDepth = 0.0, previousOpacity = 0.0;
-    vec4 target = vec4(0.0);
-    for (int layer = 0; layer < layers; ++layer) {
-        if (layer % 4 == 0) target = texelFetch(shadowOpacity, ivec3(texel, slot * targets + layer / 4), 0);
+    for (int layer = 0; layer < shadows.mode.y; ++layer) {
         float boundary = shadowLayerBoundary(layer) * scale;
-        float opacity = target[layer % 4];
+        float opacity = targets[layer / 4][layer % 4];
         if (d < boundary)
             return mix(previousOpacity, opacity, (d - previousDepth) / max(boundary - previousDepth, 1e-30));
         previousDepth = boundary;
         previousOpacity = opacity;
     }
     return previousOpacity;
+}
+
+// Opacity in front of linear depth z at one texel of light i's deep opacity
+// map: 0 in front of the nearest hair (or where there is none).
+float deepOpacityAt(int i, ivec2 texel, float z) {
+    int slot = shadowSlot(i);
+    float d = z - texelFetch(shadowDepths, ivec3(texel, slot), 0).r;
+    if (d <= 0.0) return 0.0;
+    int targets = (shadows.mode.y + 3) / 4;
+    vec4 layers[8];
+    for (int t = 0; t < targets; ++t) layers[t] = texelFetch(shadowOpacity, ivec3(texel, slot * targets + t), 0);
+    return opacityBehindNearestHair(d, shadows.lightMap[i].y, layers);
+}
+
+// The convolution optical depth map of Ren et al. 2010 §5 (digest §4.3-4.4),
+// with a mip chain where the paper builds summed-area tables: each layer's
+// opacity (optical depth over k, T = exp(-k opacity)) averaged over the
+// 2R-texel square around `position` (level log2 2R, trilinear), at depth d
+// behind the nearest hair of the point's own texel (z0 cannot be averaged:
+// the paper keeps it apart too), then exponentiated by the caller. Jensen:
+// exp of the mean optical depth is at least the mean transmittance, so this
+// is brighter than the nine taps where occlusion varies over the footprint.
+float convolvedOpacityAt(int i, vec2 position, ivec2 texel, float z, float radius) {
+    int slot = shadowSlot(i);
+    float d = z - texelFetch(shadowDepths, ivec3(texel, slot), 0).r;
+    if (d <= 0.0) return 0.0;
+    int targets = (shadows.mode.y + 3) / 4;
+    float lod = log2(2.0 * radius);
+    vec2 uv = position / float(shadows.mode.w);
+    vec4 layers[8];
+    for (int t = 0; t < targets; ++t) layers[t] = textureLod(shadowOpacity, vec3(uv, float(slot * targets + t)), lod);
+    return opacityBehindNearestHair(d, shadows.lightMap[i].y, layers);
 }
 
 // The reference: every fragment of the texel nearer than z, exactly what
@@ -125,12 +150,14 @@ float shadowTransmittance(int i, vec3 centre) { return shadowTransmittanceFrom(i
 // directions spread about its centre: after Ren et al. 2010 §5 (digest §4.4),
 // the lookup widens with depth behind the first hair, over a square of
 // half-size R = (z − z0)/2 · tan α, α the lobe's 10⁻³ support
-// (cos α = 1 − ln(1000)/λ), z0 the nearest hair at the point's texel. Not
-// the paper's summed-area tables of optical depth: nine taps (a 3 × 3 grid
-// spanning ±R) of the transmittance, averaged. Averaging transmittance
-// rather than exponentiating the mean optical depth avoids Jensen's bias
-// (exp of a mean is at least the mean of exp). Within a texel of z0 (R < 1)
-// it is the ordinary lookup; light views in perspective (not SRBFs) too.
+// (cos α = 1 − ln(1000)/λ), z0 the nearest hair at the point's texel.
+// domeShadowFilter=taps (occluders.y 0): nine taps (a 3 × 3 grid spanning
+// ±R) of the transmittance, averaged; averaging transmittance rather than
+// exponentiating the mean optical depth avoids Jensen's bias (exp of a mean
+// is at least the mean of exp). mipmap (occluders.y 1): the paper's
+// convolution optical depth map (convolvedOpacityAt). Within a texel of z0
+// (R < 1) it is the ordinary lookup; light views in perspective (not SRBFs)
+// too.
 float srbfShadowTransmittance(int i, vec3 centre) {
     if (shadows.mode.x == HDHAIR_SHADOW_OFF || shadows.lightMap[i].x < 0.0 || shadows.lightMap[i].w > 0.5)
         return shadowTransmittance(i, centre);
@@ -146,6 +173,11 @@ float srbfShadowTransmittance(int i, vec3 centre) {
     float radius = 0.5 * (z - z0) * tanSupport / shadows.lightMap[i].z;  // texels
     if (!(radius >= 1.0) || z0 >= HDHAIR_NO_HAIR) return shadowTransmittance(i, centre);
     radius = min(radius, 0.25 * float(shadows.mode.w));
+    if (shadows.occluders.y != 0) {  // domeShadowFilter=mipmap
+        if (shadows.occluders.x != 0 && z > texelFetch(shadowMeshDepths, ivec3(texel, shadowSlot(i)), 0).r)
+            return 0.0;
+        return exp(-shadows.extinction.x * convolvedOpacityAt(i, position, texel, z, radius));
+    }
     float sum = 0.0;
     for (int y = -1; y <= 1; ++y)
         for (int x = -1; x <= 1; ++x)

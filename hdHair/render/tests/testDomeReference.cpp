@@ -181,6 +181,17 @@ TEST_F(DomeReference, ShadowedSrbfLightingIsWithinItsBoundOfTheReference) {
     // shadows less across a lobe's width than along its centre.
     EXPECT_LT(error.rootMeanSquare, 0.12);
     EXPECT_LT(error.largest, 0.15);
+    EXPECT_FALSE(shadowed.plan.isEnabled("opacityMipmaps"));
+
+    // The paper's convolution optical depth map (domeShadowFilter=mipmap):
+    // the layers averaged from a mip chain, a pass of its own.
+    const RenderResult convolved = render(scene, withSettings({{"domeShadowFilter", "mipmap"}}));
+    EXPECT_TRUE(convolved.plan.isEnabled("opacityMipmaps"));
+    EXPECT_NE(convolved.color.pixels, shadowed.color.pixels);
+    const RelativeColorError convolvedError = errorOf(convolved, sampled, "30 SRBFs, 4 maps, mip chain");
+    EXPECT_LT(convolvedError.rootMeanSquare, 0.12);
+    EXPECT_LT(convolvedError.largest, 0.15);
+
     // Mutation: the SRBF path without its shadows is further off (0.126).
     const RelativeColorError unshadowed =
         errorOf(render(scene, withSettings({{"shadowMode", "off"}})), sampled, "30 SRBFs, shadows off");
