@@ -19,6 +19,7 @@
 #include "hdHair/curves/PreparedCurves.h"
 #include "hdHair/render/HairMaterial.h"
 #include "hdHair/render/Renderer.h"
+#include "hdHair/render/tests/OwnCacheFolderTest.h"
 #include "hdHair/render/tests/SquareCamera.h"
 #include "hdHair/scene/tests/AuthoredPrimvar.h"
 #include "hdHair/scene/Scene.h"
@@ -34,16 +35,8 @@ namespace {
 const glm::vec3 kHairColor(0.6f, 0.4f, 0.3f);
 const KajiyaKayParameters kKajiyaKay;  // the settings' defaults: Kd 1, Ks 0.35, p 60
 
-// The SRBF tables go to a folder of the test's own (SrbfTableCache.h).
-class DomeLighting : public ::testing::Test {
-protected:
-    void SetUp() override { setenv("HDHAIR_CACHE_DIR", folder_.path("cache").c_str(), 1); }
-    void TearDown() override { unsetenv("HDHAIR_CACHE_DIR"); }
-    std::string path(const std::string& name) const { return folder_.path(name); }
-
-private:
-    test::TemporaryFolder folder_;
-};
+// The SRBF tables go to a folder of the test's own.
+class DomeLighting : public test::OwnCacheFolderTest {};
 
 CurvesPrim strand(const std::string& path, glm::vec3 from, glm::vec3 to) {
     CurvesPrim prim;

@@ -21,6 +21,7 @@
 #include "hdHair/environment/tests/LatlongTestTextures.h"
 #include "hdHair/image/ImageComparison.h"
 #include "hdHair/render/Renderer.h"
+#include "hdHair/render/tests/OwnCacheFolderTest.h"
 #include "hdHair/render/tests/HairTuft.h"
 #include "hdHair/scene/Scene.h"
 
@@ -28,16 +29,8 @@ using namespace hdhair;
 
 namespace {
 
-// The SRBF tables go to a folder of the test's own (SrbfTableCache.h).
-class DomeReference : public ::testing::Test {
-protected:
-    void SetUp() override { setenv("HDHAIR_CACHE_DIR", folder_.path("cache").c_str(), 1); }
-    void TearDown() override { unsetenv("HDHAIR_CACHE_DIR"); }
-    std::string path(const std::string& name) const { return folder_.path(name); }
-
-private:
-    test::TemporaryFolder folder_;
-};
+// The SRBF tables go to a folder of the test's own.
+class DomeReference : public test::OwnCacheFolderTest {};
 
 // The sun a little above the horizon towards +Z, the camera's side, and to
 // the right: it lights the tuft's front and side, and its shadows fall
