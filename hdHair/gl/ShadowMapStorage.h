@@ -28,9 +28,11 @@ public:
     // opacity memory), only while a frame asks for it.
     void ensure(int resolution, int layerTargets, int slots, bool opacityMipmaps = false);
 
-    // Averages every slot's opacity layers down the mip chain (level k: the
-    // mean over 2^k × 2^k texels), after the maps were drawn.
-    void generateOpacityMipmaps();
+    // Averages slot `slot`'s opacity layers down the mip chain (level k: the
+    // mean over 2^k × 2^k texels), after its map was drawn. Through a view of
+    // the slot's layers: the whole array (every slot the cache holds) would
+    // cost as much as the maps on a small groom.
+    void generateOpacityMipmaps(int slot);
 
     // Binds the framebuffer that draws slot `slot`'s nearest depth, cleared
     // to "no hair" (HDHAIR_NO_HAIR in shaders/include/shadows.glsl), with the

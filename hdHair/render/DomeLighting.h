@@ -28,9 +28,11 @@
 // passes); every other SRBF of that dome reads the map of the shadowed SRBF
 // nearest to it in direction (ShadowPlan::sharedMaps). The lookup widens
 // with depth behind the first hair by the lobe's support angle
-// (srbfShadowTransmittance in shaders/include/shadows.glsl: nine taps, not
-// the paper's summed-area tables). A dome with shadow:enable false and the
-// uniform term are unshadowed.
+// (srbfShadowTransmittance in shaders/include/shadows.glsl): by default
+// (domeShadowFilter=mipmap) through the paper's convolution optical depth
+// map, a mip chain of the opacity layers (the opacityMipmaps pass) where the
+// paper builds summed-area tables; or (taps) nine lookups of transmittance.
+// A dome with shadow:enable false and the uniform term are unshadowed.
 
 #include <cstddef>
 #include <map>

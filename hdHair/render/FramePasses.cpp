@@ -282,6 +282,15 @@ void meshShadow(FrameContext& context, size_t shadow) {
                                             lightShadowUniforms(context.plan, shadow));
 }
 
+// "opacityMipmaps": the mip chain of every map drawn this frame (a kept map
+// keeps its chain: its layers were not touched).
+void opacityMipmaps(FrameContext& context) {
+    prepareShadowMaps(context);
+    for (const PlannedShadow& shadow : context.plan.shadows.lights)
+        if (shadow.view.valid && shadow.slot >= 0 && shadow.rebuild)
+            context.resources.shadowMaps.generateOpacityMipmaps(shadow.slot);
+}
+
 // "shadowFragments L": every fragment of light L's view (shadowMode=reference).
 void shadowFragments(FrameContext& context, size_t shadow) {
     FrameResources& resources = context.resources;
@@ -372,10 +381,7 @@ void runFramePass(const FramePass& pass, FrameContext& context) {
     if (name.rfind("meshShadow ", 0) == 0) return meshShadow(context, shadowNamed(context.plan, name.substr(11)));
     if (name.rfind("shadowFragments ", 0) == 0)
         return shadowFragments(context, shadowNamed(context.plan, name.substr(16)));
-    if (name == "opacityMipmaps") {
-        prepareShadowMaps(context);
-        return context.resources.shadowMaps.generateOpacityMipmaps();
-    }
+    if (name == "opacityMipmaps") return opacityMipmaps(context);
     if (name == "readback") return readback(context);
     if (name == "displayTransform") return displayTransform(context);
     throw std::logic_error("frame graph: no pass called '" + name + "'");

@@ -139,11 +139,11 @@ const std::vector<SettingDescriptor>& RenderSettings::descriptors() {
          "SRBF lights a textured dome is fitted with (the paper's 30-60; each costs a table lookup per fragment "
          "and lightsPerPass of them a pass)",
          10, 60, {}},
-        {"domeShadowFilter", SettingType::Token, "taps",
-         "How an SRBF light's shadow widens with depth behind the first hair (Ren et al. 2010 section 5): taps "
-         "(nine lookups of the map's transmittance over the lobe's footprint, averaged) or mipmap (the paper's "
-         "convolution optical depth map: the opacity layers averaged over the footprint from a mip chain, then "
-         "exponentiated; a third more opacity memory)",
+        {"domeShadowFilter", SettingType::Token, "mipmap",
+         "How an SRBF light's shadow widens with depth behind the first hair (Ren et al. 2010 section 5): mipmap "
+         "(the paper's convolution optical depth map: the opacity layers averaged over the footprint from a mip "
+         "chain, then exponentiated; a third more opacity memory; half the error of taps against the reference "
+         "on the dense clump) or taps (nine lookups of the map's transmittance over the footprint, averaged)",
          0, 0, {"taps", "mipmap"}},
         {"domeSampledLights", SettingType::Int, "1024",
          "Distant lights a dome becomes under domeLighting=sampled (importance-sampled from its radiance; each "

@@ -8,11 +8,12 @@
 // shadow scheme, not the map size, is measured:
 //  - ambient: the old flat term (domeLighting=ambient), the time base;
 //  - SRBF lights 10, 20, 30, 40, 60 (domeLights) with the default 4 maps
-//    (domeShadowLights), against the shadowed reference;
+//    (domeShadowLights) read with nine taps (domeShadowFilter=taps), against
+//    the shadowed reference;
 //  - 30 lobes with 0, 1, 8 and 30 maps (30: a map per lobe, the scheme the
-//    issue calls too slow), against the shadowed reference;
+//    issue calls too slow), taps, against the shadowed reference;
 //  - 30 lobes with 4 and 30 maps read through the convolution optical depth
-//    map (domeShadowFilter=mipmap) instead of nine taps;
+//    map (domeShadowFilter=mipmap, the default);
 //  - SRBF lights 10 to 60 unshadowed, against the unshadowed reference;
 //  - the references: domeLighting=sampled, `referenceLights` distant lights,
 //    each with its own deep opacity map (or none, unshadowed).
