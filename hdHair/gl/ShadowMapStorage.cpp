@@ -53,17 +53,10 @@ void ShadowMapStorage::ensure(int resolution, int layerTargets, int slots, bool 
     allocate();
 }
 
-void ShadowMapStorage::generateOpacityMipmaps(int slot) {
-    if (!opacityMipmaps_ || slot < 0 || slot >= slots_)
-        throw std::logic_error("shadow maps: opacity mipmaps asked for slot " + std::to_string(slot) +
-                               " without a mip chain or out of range");
-    GLuint view = 0;
-    glGenTextures(1, &view);
-    glTextureView(view, GL_TEXTURE_2D_ARRAY, opacity_.get(), GL_RGBA16F, 0, GLuint(fullMipLevels(resolution_)),
-                  GLuint(slot * targets_), GLuint(targets_));
-    const Texture slotLayers(view);
-    glGenerateTextureMipmap(view);
-    checkGlError("averaging a shadow map's opacity layers into mipmaps");
+void ShadowMapStorage::generateOpacityMipmaps() {
+    if (!opacityMipmaps_) throw std::logic_error("shadow maps: opacity mipmaps asked for but not allocated");
+    glGenerateTextureMipmap(opacity_.get());
+    checkGlError("averaging the shadow maps' opacity layers into mipmaps");
 }
 
 void ShadowMapStorage::allocate() {

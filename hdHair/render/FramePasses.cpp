@@ -282,13 +282,11 @@ void meshShadow(FrameContext& context, size_t shadow) {
                                             lightShadowUniforms(context.plan, shadow));
 }
 
-// "opacityMipmaps": the mip chain of every map drawn this frame (a kept map
-// keeps its chain: its layers were not touched).
+// "opacityMipmaps": the mip chain of every map (ShadowMapStorage says why
+// all at once).
 void opacityMipmaps(FrameContext& context) {
     prepareShadowMaps(context);
-    for (const PlannedShadow& shadow : context.plan.shadows.lights)
-        if (shadow.view.valid && shadow.slot >= 0 && shadow.rebuild)
-            context.resources.shadowMaps.generateOpacityMipmaps(shadow.slot);
+    context.resources.shadowMaps.generateOpacityMipmaps();
 }
 
 // "shadowFragments L": every fragment of light L's view (shadowMode=reference).
