@@ -178,22 +178,20 @@ const FrameResource kConvolvedOpacity = "convolvedOpacity";
 std::vector<FrameResource> batchShadowReads(const RenderPlan& plan, size_t batch) {
     std::vector<FrameResource> reads;
     if (plan.shadows.mode == ShadowMode::Off) return reads;
+    bool srbfMapRead = false;
     for (size_t light = plan.lightBatches[batch].first; light < plan.lightBatches[batch].second; ++light) {
         int shadow = plan.shadows.shadowOf(light);
         if (shadow < 0 || !plan.shadows.lights[size_t(shadow)].view.valid) continue;
+        srbfMapRead = srbfMapRead || plan.lights.lights[light].isSrbf();
         const FrameResource map = plan.shadows.resourceOf(plan.shadows.lights[size_t(shadow)]);
         // SRBF lights share maps (ShadowPlan::sharedMaps): each read once.
         if (std::find(reads.begin(), reads.end(), map) != reads.end()) continue;
         reads.push_back(map);
         if (plan.shadows.meshesCast) reads.push_back(plan.shadows.meshResourceOf(plan.shadows.lights[size_t(shadow)]));
     }
-    // Its SRBF lights that read a map read it through the mip chain.
-    if (plan.shadows.convolvedOpacity)
-        for (size_t light = plan.lightBatches[batch].first; light < plan.lightBatches[batch].second; ++light)
-            if (plan.lights.lights[light].isSrbf() && plan.shadows.shadowOf(light) >= 0) {
-                reads.push_back(kConvolvedOpacity);
-                break;
-            }
+    // Its SRBF lights that read a map read it through the mip chain (which
+    // "opacityMipmaps" makes whenever an SRBF light has a map).
+    if (plan.shadows.convolvedOpacity && srbfMapRead) reads.push_back(kConvolvedOpacity);
     return reads;
 }
 
@@ -392,14 +390,16 @@ RenderPlan makeRenderPlan(const Scene& scene, const RenderSettings& settings, co
     for (const PlannedShadow& shadow : plan.shadows.lights) addShadowPasses(graph, plan, shadow, anyStrands);
     if (plan.shadows.convolvedOpacity) {
         // After every map it averages: the chain covers the whole array.
-        FramePass mipmaps{"opacityMipmaps", {}, {kConvolvedOpacity}, anyStrands && !plan.flatShading, ""};
+        // Wanted exactly when a batch reads the chain: an SRBF light has a
+        // map (batchShadowReads); no strands, no valid light views.
+        FramePass mipmaps{"opacityMipmaps", {}, {kConvolvedOpacity}, true, ""};
         size_t lobes = 0;
         for (const PlannedShadow& shadow : plan.shadows.lights)
             if (shadow.view.valid) {
                 mipmaps.reads.push_back(plan.shadows.resourceOf(shadow));
                 lobes += plan.lights.lights[shadow.light].isSrbf() ? 1 : 0;
             }
-        mipmaps.wanted = mipmaps.wanted && lobes > 0;
+        mipmaps.wanted = lobes > 0;
         mipmaps.reason = mipmaps.wanted ? fmt::format("the opacity layers of {} SRBF light map(s) averaged into a mip "
                                                       "chain: the convolution optical depth map their lookups widen "
                                                       "over with depth (domeShadowFilter=mipmap; Ren et al. 2010 §5)",

@@ -19,6 +19,7 @@
 #include "hdHair/curves/PreparedCurves.h"
 #include "hdHair/render/HairMaterial.h"
 #include "hdHair/render/Renderer.h"
+#include "hdHair/meshes/tests/TestMeshes.h"
 #include "hdHair/render/tests/OwnCacheFolderTest.h"
 #include "hdHair/render/tests/SquareCamera.h"
 #include "hdHair/scene/tests/AuthoredPrimvar.h"
@@ -394,4 +395,20 @@ TEST_F(DomeLighting, TheStrongestLobesShadowTheHairBehind) {
     EXPECT_GT(upper.r, 0.85f * upperLit.r);
     // No maps at all: what shadowMode=off gives, pixel for pixel.
     EXPECT_EQ(render("domeShadowLights", "0").color.pixels, unshadowed.color.pixels);
+}
+
+TEST_F(DomeLighting, AMeshUnderADomeWithNoCurvesPlansNoMipChain) {
+    // No strands: no lobe gets a map, so no batch reads the mip chain and
+    // no pass makes it (a batch that read it would fail the frame graph).
+    Scene scene;
+    scene.setMesh(test::uvSphere("/sphere", glm::vec3(0.0f), 0.8f));
+    scene.setLight(dome(writeSky(path("sky.exr"))));
+    Renderer renderer(gl::GlBackend::Egl);
+    Diagnostics diagnostics;
+    RenderSettings settings;
+    settings.set("lightsPerPass", "4");
+    const RenderResult result = renderer.render(scene, squareCamera(32), settings, diagnostics);
+    EXPECT_FALSE(result.plan.isEnabled("opacityMipmaps"));
+    EXPECT_TRUE(result.plan.isEnabled("lightBatch 2"));
+    EXPECT_GT(pixelAt(result, squareCamera(32), {0.0f, 0.0f}).r, 0.0f);
 }
