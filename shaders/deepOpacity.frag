@@ -8,6 +8,7 @@
 // the last (the thesis's option (b)), so layer K holds all the hair along
 // the texel. The light is entry 0 of the shadow uniforms; z0 comes from
 // pass 1 (shadowDepth.frag) at this very texel.
+#include "include/shadingFeatures.glsl"
 #include "include/frameUniforms.glsl"
 #include "include/lights.glsl"
 #include "include/shadowFragmentLists.glsl"

@@ -10,6 +10,7 @@
 // Meshes are two-sided: no face is culled, and a face seen from the back is
 // lit as its back (the normal reversed). They receive the hair's shadows
 // (the deep opacity maps of the batch's lights), not their own.
+#include "include/shadingFeatures.glsl"
 #include "include/lights.glsl"
 #include "include/meshGeometry.glsl"
 #include "include/shadowFragmentLists.glsl"

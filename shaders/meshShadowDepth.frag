@@ -5,6 +5,7 @@
 // cleared to HDHAIR_NO_HAIR: the opaque occluders the strands test against
 // (shadows.glsl). The meshes come through mesh.vert with the light's
 // view-projection; the light is entry 0 of the shadow uniforms.
+#include "include/shadingFeatures.glsl"
 #include "include/lights.glsl"
 #include "include/shadowFragmentLists.glsl"
 #include "include/shadows.glsl"

@@ -8,6 +8,7 @@
 // frame uniforms: ribbons facing the light, the camera's tessellation, the
 // same sub-pixel coverage rule in the light's pixels. The light is entry 0
 // of the shadow uniforms.
+#include "include/shadingFeatures.glsl"
 #include "include/frameUniforms.glsl"
 #include "include/lights.glsl"
 #include "include/shadowFragmentLists.glsl"

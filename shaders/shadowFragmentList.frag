@@ -5,6 +5,7 @@
 // alpha (coverage x opacity in the light's pixels). A count-only
 // draw (capacity at or below the count) sizes the pool first. The light is
 // entry 0 of the shadow uniforms.
+#include "include/shadingFeatures.glsl"
 #include "include/frameUniforms.glsl"
 #include "include/lights.glsl"
 #include "include/shadowFragmentLists.glsl"

@@ -6,6 +6,7 @@
 // draws also give the frame its depth, whatever their order: the nearest-
 // depth image is min-blended, so it keeps the nearest fragment that
 // definesDepthAndIds() accepts.
+#include "include/shadingFeatures.glsl"
 #include "include/frameUniforms.glsl"
 #include "include/lights.glsl"
 #include "include/kajiyaKay.glsl"
@@ -44,6 +45,7 @@ void main() {
     // from: the nearest one faint fragments are looked through to.
     bool definesDepth = frame.drawMode == 0 || definesDepthAndIds(colorAlpha.a);
     if (frame.drawMode == 2 && !definesDepth) discard;
+#if HDHAIR_FEATURE_SHADE
     if (frame.drawMode == 2) {
         outColor = vec4(0.0);  // masked: the ids pass needs no shading
     } else {
@@ -51,6 +53,9 @@ void main() {
             strandRadiance(worldPosition, strandCentre, worldTangent, colorAlpha.rgb, ids.z, ids.w, spanU);
         outColor = frame.drawMode == 0 ? vec4(radiance, 1.0) : vec4(radiance * colorAlpha.a, colorAlpha.a);
     }
+#else
+    outColor = vec4(0.0);  // the ids pass's program: no shading compiled
+#endif
     outPrimId = ids.x;
     outInstanceId = segmentPrimAndInstance(ids.w).y;
     outElementId = ids.y;

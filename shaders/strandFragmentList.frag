@@ -3,6 +3,7 @@
 // Exact transparency, pass 1: shades each strand fragment like strand.frag
 // and appends it to its pixel's list instead of blending it. Fragments hidden
 // by opaque geometry are rejected before shading (early depth test).
+#include "include/shadingFeatures.glsl"
 #include "include/frameUniforms.glsl"
 #include "include/lights.glsl"
 #include "include/kajiyaKay.glsl"

@@ -13,7 +13,7 @@ constexpr GLint kResolveIds = 0;  // uniform location in shaders/fragmentListRes
 }  // namespace
 
 FragmentListPass::FragmentListPass()
-    : listProgram_(createProgram({"strand.vert", "strand.tesc", "strand.tese", "strandFragmentList.frag"})),
+    : listPrograms_({"strand.vert", "strand.tesc", "strand.tese", "strandFragmentList.frag"}),
       resolveProgram_(createProgram({"fullscreen.vert", "fragmentListResolve.frag"})),
       emptyVertexArray_(createVertexArray()),
       counter_(createBuffer(nullptr, 2 * sizeof(uint32_t), GL_DYNAMIC_STORAGE_BIT | GL_MAP_READ_BIT, "fragmentLists")),
@@ -22,7 +22,9 @@ FragmentListPass::FragmentListPass()
 }
 
 uint64_t FragmentListPass::render(const StrandGeometry& geometry, const std::vector<SegmentRange>& ranges, int width,
-                                  int height, size_t capacity, float maxSegmentsPerSpan, bool writeIds) {
+                                  int height, size_t capacity, float maxSegmentsPerSpan, bool writeIds,
+                                  ShadingFeatures features) {
+    const Program& listProgram = listPrograms_.get(features);
     if (width != headsWidth_ || height != headsHeight_) {
         GLuint name = 0;
         glCreateTextures(GL_TEXTURE_2D, 1, &name);
@@ -50,7 +52,7 @@ uint64_t FragmentListPass::render(const StrandGeometry& geometry, const std::vec
 
     // Pass 1: lists. Opaque geometry's depth rejects hidden fragments; the
     // strands themselves write nothing to the framebuffer.
-    glUseProgram(listProgram_.get());
+    glUseProgram(listProgram.get());
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LEQUAL);
     glDepthMask(GL_FALSE);

@@ -10,6 +10,7 @@
 
 #include "hdHair/gl/GlObjects.h"
 #include "hdHair/gl/SegmentRange.h"
+#include "hdHair/gl/ShadingPrograms.h"
 #include "hdHair/gl/StrandGeometry.h"
 
 namespace hdhair::gl {
@@ -18,7 +19,7 @@ constexpr size_t kFragmentNodeBytes = 32;  // FragmentNode in shaders/include/fr
 
 class FragmentListPass {
 public:
-    FragmentListPass();  // compiles both programs
+    FragmentListPass();  // compiles the resolve program; list programs as render() asks for them
 
     // Renders into the currently bound framebuffer, over what it holds: the
     // strands' colour is composited over it, their nearest depth min-blended
@@ -30,12 +31,14 @@ public:
     // hdHair/render/NearestStrandRule.h.
     // Returns how many fragments the strands produced; more than
     // `capacity` means the image is incomplete and must not be used.
-    // `ranges`: the drawn prims' segments.
+    // `ranges`: the drawn prims' segments. `features`: the shading the list
+    // program compiles, as for StrandPass::setUniforms.
     uint64_t render(const StrandGeometry& geometry, const std::vector<SegmentRange>& ranges, int width, int height,
-                    size_t capacity, float maxSegmentsPerSpan, bool writeIds);
+                    size_t capacity, float maxSegmentsPerSpan, bool writeIds, ShadingFeatures features);
 
 private:
-    Program listProgram_, resolveProgram_;
+    ShadingPrograms listPrograms_;
+    Program resolveProgram_;
     VertexArray emptyVertexArray_;
     Texture heads_;
     int headsWidth_ = 0, headsHeight_ = 0;

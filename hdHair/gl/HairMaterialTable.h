@@ -11,6 +11,7 @@
 #include <glm/vec4.hpp>
 
 #include "hdHair/gl/GlObjects.h"
+#include "hdHair/gl/ShadingFeatures.h"
 #include "hdHair/gl/UniformBlocks.h"
 
 namespace hdhair::gl {
@@ -26,6 +27,8 @@ public:
     void update(const std::vector<GpuHairMaterial>& materials, const std::vector<glm::vec4>& parameterPoints,
                 const std::vector<const std::vector<uint16_t>*>& tableTexels, int width, int height);
     void bind() const;
+    // The shading the table's materials call for (materialShadingFeatures).
+    ShadingFeatures features() const { return features_; }
 
 private:
     Buffer materials_;
@@ -33,6 +36,7 @@ private:
     Buffer parameterPoints_;
     size_t parameterPointCapacity_ = 0;
     Texture tables_;
+    ShadingFeatures features_;
 };
 
 }  // namespace hdhair::gl

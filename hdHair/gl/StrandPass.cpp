@@ -1,13 +1,14 @@
 #include "hdHair/gl/StrandPass.h"
 
 #include <algorithm>
+#include <stdexcept>
 
 #include "hdHair/gl/RenderTarget.h"
 
 namespace hdhair::gl {
 
 StrandPass::StrandPass()
-    : program_(createProgram({"strand.vert", "strand.tesc", "strand.tese", "strand.frag"})),
+    : programs_({"strand.vert", "strand.tesc", "strand.tese", "strand.frag"}),
       emptyVertexArray_(createVertexArray()),
       frameBlock_(createBuffer(nullptr, sizeof(FrameUniforms), GL_DYNAMIC_STORAGE_BIT)),
       lightBlock_(createBuffer(nullptr, sizeof(LightUniforms), GL_DYNAMIC_STORAGE_BIT)),
@@ -15,7 +16,9 @@ StrandPass::StrandPass()
     checkGlError("setting up the strand pass");
 }
 
-void StrandPass::setUniforms(const FrameUniforms& frame, const LightUniforms& lights, const ShadowUniforms& shadows) {
+void StrandPass::setUniforms(const FrameUniforms& frame, const LightUniforms& lights, const ShadowUniforms& shadows,
+                             ShadingFeatures features) {
+    program_ = &programs_.get(features);
     glNamedBufferSubData(frameBlock_.get(), 0, sizeof(frame), &frame);
     glNamedBufferSubData(lightBlock_.get(), 0, sizeof(lights), &lights);
     glNamedBufferSubData(shadowBlock_.get(), 0, sizeof(shadows), &shadows);
@@ -57,7 +60,8 @@ void StrandPass::draw(const StrandGeometry& geometry, const std::vector<SegmentR
     const std::vector<SegmentRange> ordered{SegmentRange{0, orderedSegments_}};
     const std::vector<SegmentRange>& patches = orderedDraw_ ? ordered : ranges;
 
-    glUseProgram(program_.get());
+    if (!program_) throw std::logic_error("StrandPass::draw before setUniforms");
+    glUseProgram(program_->get());
     glBindVertexArray(emptyVertexArray_.get());
     glEnable(GL_DEPTH_TEST);
     glDisable(GL_CULL_FACE);  // ribbons are seen from both sides

@@ -10,6 +10,7 @@
 
 #include "hdHair/gl/GlObjects.h"
 #include "hdHair/gl/SegmentRange.h"
+#include "hdHair/gl/ShadingPrograms.h"
 #include "hdHair/gl/StrandGeometry.h"
 #include "hdHair/gl/UniformBlocks.h"
 
@@ -23,11 +24,15 @@ enum class StrandBlending {
 
 class StrandPass {
 public:
-    StrandPass();  // compiles the strand program; throws on driver errors
+    StrandPass();
 
     // Uploads and binds the frame's uniform blocks (also used by other
-    // passes): frame at 0, lights at 1, their shadows at 2.
-    void setUniforms(const FrameUniforms& frame, const LightUniforms& lights, const ShadowUniforms& shadows);
+    // passes): frame at 0, lights at 1, their shadows at 2. The draws after
+    // it use the strand program compiled with `features`
+    // (strandShadingFeatures() of these uniforms, or ShadingFeatures::all()),
+    // compiled now if no draw has used it before; throws on driver errors.
+    void setUniforms(const FrameUniforms& frame, const LightUniforms& lights, const ShadowUniforms& shadows,
+                     ShadingFeatures features);
 
     // Sends the frame's drawing order (segments far to near), once a frame:
     // every light batch draws with it.
@@ -44,8 +49,12 @@ public:
     // none ran. Waits for those draws: call it after the frame's readback.
     uint64_t takeTriangles();
 
+    // The strand programs compiled so far, one a set of features.
+    size_t compiledPrograms() const { return programs_.compiled(); }
+
 private:
-    Program program_;
+    ShadingPrograms programs_;
+    const Program* program_ = nullptr;  // setUniforms()'s
     VertexArray emptyVertexArray_;  // core profile draws need one bound
     Buffer frameBlock_, lightBlock_, shadowBlock_, orderBuffer_;
     size_t orderCapacity_ = 0, orderedSegments_ = 0;

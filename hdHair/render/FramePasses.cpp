@@ -93,18 +93,37 @@ void meshUpload(FrameContext& context) {
     for (size_t i = 0; i < meshes.meshes.size(); ++i) geometry.write(meshes.draws[i].first, meshes.meshes[i]->vertices);
 }
 
+// The parts of the strand shading a draw with these uniforms can reach
+// (hdHair/gl/ShadingFeatures.h); all of them with specializeShaders off.
+// Each set the frame uses is named once in the stats.
+gl::ShadingFeatures strandFeatures(FrameContext& context, const gl::FrameUniforms& frame,
+                                   const gl::LightUniforms& lights, const gl::ShadowUniforms& shadows) {
+    const gl::ShadingFeatures features =
+        context.inputs.settings->getBool("specializeShaders")
+            ? gl::strandShadingFeatures(frame, lights, shadows, context.resources.materials.features())
+            : gl::ShadingFeatures::all();
+    std::vector<std::string>& named = context.result.stats.strandShaders;
+    const std::string name = features.describe();
+    if (std::find(named.begin(), named.end(), name) == named.end()) named.push_back(name);
+    return features;
+}
+
 // Binds `target` and what a pass drawing light batch `batch` reads besides
 // its geometry: the hair materials, the frame's and the batch's lights'
-// uniforms, and their shadow maps (meshes and strands alike).
-void bindBatchInputs(FrameContext& context, gl::RenderTarget& target, size_t batch) {
+// uniforms, and their shadow maps (meshes and strands alike). Returns the
+// shading features the strand programs compile for it.
+gl::ShadingFeatures bindBatchInputs(FrameContext& context, gl::RenderTarget& target, size_t batch) {
     FrameResources& resources = context.resources;
     target.bind();
     resources.materials.bind();
     resources.srbfTables.bind();
     resources.shadowMaps.bindForLookup();
     resources.shadowReference.bindForLookup();
-    resources.strandPass.setUniforms(context.inputs.frame, lightUniforms(context.plan, batch),
-                                     batchShadowUniforms(context.plan, batch));
+    const gl::LightUniforms lights = lightUniforms(context.plan, batch);
+    const gl::ShadowUniforms shadows = batchShadowUniforms(context.plan, batch);
+    const gl::ShadingFeatures features = strandFeatures(context, context.inputs.frame, lights, shadows);
+    resources.strandPass.setUniforms(context.inputs.frame, lights, shadows, features);
+    return features;
 }
 
 // Draws the meshes lit by the lights of one batch into `target`, before the
@@ -185,13 +204,13 @@ void drawStrands(FrameContext& context, gl::RenderTarget& target, size_t batch) 
     FrameInputs& inputs = context.inputs;
     RenderPlan& plan = context.plan;
     FrameResources& resources = context.resources;
-    bindBatchInputs(context, target, batch);
+    const gl::ShadingFeatures features = bindBatchInputs(context, target, batch);
     if (plan.transparency == TransparencyPath::Exact) {
         const CameraView& camera = *inputs.camera;
         uint64_t fragments = resources.fragmentLists.render(resources.strands, inputs.uploads.drawRanges,
                                                             camera.imageWidth, camera.imageHeight,
                                                             inputs.fragmentListCapacity, inputs.frame.maxSegmentsPerSpan,
-                                                            target.images().ids);
+                                                            target.images().ids, features);
         context.result.stats.fragments = fragments;
         if (fragments <= inputs.fragmentListCapacity) return;
         const int memoryMB = inputs.settings->getInt("exactMemoryMB");
@@ -224,7 +243,10 @@ void ids(FrameContext& context) {
     gl::FrameUniforms idsFrame = context.inputs.frame;
     idsFrame.drawMode = 2;
     idsFrame.orderedDraw = 0;
-    context.resources.strandPass.setUniforms(idsFrame, lightUniforms(context.plan, 0), gl::ShadowUniforms{});
+    const gl::LightUniforms lights = lightUniforms(context.plan, 0);
+    const gl::ShadowUniforms noShadows{};
+    context.resources.strandPass.setUniforms(idsFrame, lights, noShadows,
+                                             strandFeatures(context, idsFrame, lights, noShadows));
     drawStrandPieces(context, false, gl::StrandBlending::IdsOnly);
 }
 

@@ -161,6 +161,11 @@ const std::vector<SettingDescriptor>& RenderSettings::descriptors() {
          "How strand draws are cut: auto (batches of at most 2,048 tessellated vertices on llvmpipe, which "
          "draws larger tessellated draws wrongly; whole ranges elsewhere), on (batched on any driver) or off",
          0, 0, {"auto", "on", "off"}},
+        {"specializeShaders", SettingType::Bool, "true",
+         "Compile each strand program with only the shading its draw can reach (its materials' models, its "
+         "lights' kinds, its shadow lookups; the ids pass with none): the image is the same, and software "
+         "rasterisers (llvmpipe), which pay for every branch of a shader, draw faster; false compiles everything",
+         0, 0, {}},
         {"passTimings", SettingType::Bool, "false",
          "Time every pass of a frame for --stats and --verbose: GL timer queries where they measure whole passes, "
          "else (llvmpipe) the CPU clock with glFinish after each pass, which costs the overlap between passes; "

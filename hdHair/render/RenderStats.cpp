@@ -36,6 +36,7 @@ nlohmann::json RenderStats::toJson() const {
     json["uploadedSegments"] = uploadedSegments;
     json["passTiming"] = passTiming;
     json["drawBatching"] = drawBatching;
+    json["strandShaders"] = strandShaders;
     json["shadowMapsRebuilt"] = shadowMapsRebuilt;
     json["shadowMapsKept"] = shadowMapsKept;
     json["shadowMaps"] = shadowMaps;

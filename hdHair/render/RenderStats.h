@@ -46,6 +46,9 @@ struct RenderStats {
     uint64_t uploadedSegments = 0;  // strand segments sent to the GPU this frame (only changed prims)
     std::string passTiming;       // how passes were timed (the passTimings setting and the driver)
     std::string drawBatching;     // how strand draws were cut (hdHair/gl/PatchBatching.h)
+    // The strand programs the frame drew with, each by the shading it compiles
+    // (hdHair/gl/ShadingFeatures.h describe(): "shade kajiyaKay deepOpacity"; the ids pass's "none").
+    std::vector<std::string> strandShaders;
     // Shadow maps this frame: rebuilt, kept from an earlier frame, and per
     // shadow-casting light what happened and why ({"light", "map", "reason"};
     // map is "rebuilt", "kept" or "none").

@@ -411,14 +411,18 @@ int run(const Options& options) {
             std::string passes;
             for (const PassTiming& pass : result.stats.passes)
                 passes += fmt::format("{}{} {:.1f} ms", passes.empty() ? "" : ", ", pass.name, pass.milliseconds);
+            std::string programs;
+            for (const std::string& shading : result.stats.strandShaders)
+                programs += fmt::format("{}[{}]", programs.empty() ? "" : ", ", shading);
             std::printf("hdhair-record: %s: %dx%d, camera %s, %llu curves, %llu segments, %llu strand triangles"
-                        "; %s; strand %s; wrote %s\n",
+                        "; %s; strand %s; strand programs %s; wrote %s\n",
                         describeTime(time).c_str(), camera.imageWidth,
                         camera.imageHeight, cameraName.c_str(),
                         static_cast<unsigned long long>(result.stats.curves),
                         static_cast<unsigned long long>(result.stats.segments),
                         static_cast<unsigned long long>(result.stats.strandTriangles), passes.c_str(),
-                        result.stats.drawBatching.c_str(), outputPath.c_str());
+                        result.stats.drawBatching.c_str(), programs.empty() ? "none" : programs.c_str(),
+                        outputPath.c_str());
         }
         nlohmann::json frameStats = result.stats.toJson();
         frameStats["output"] = outputPath;

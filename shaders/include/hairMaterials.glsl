@@ -1,7 +1,8 @@
 // Hair materials (hdHair/render/HairMaterial.h), one per distinct prim
 // material in the frame, and the per-control-point hair parameters of prims
 // whose parameters vary per curve or per vertex; hdHair/gl/HairMaterialTable.h
-// fills both. Needs catmullRom.glsl, marschnerAnalytic.glsl and strandGeometry.glsl.
+// fills both. Needs catmullRom.glsl, marschnerAnalytic.glsl and strandGeometry.glsl,
+// after shadingFeatures.glsl.
 struct HairMaterial {
     ivec4 modelAndLayer;  // x: 0 flat, 1 Kajiya-Kay, 2 Marschner; y: first layer of its Marschner tables;
                           // z: flags (HAIR_MATERIAL_*); w: its prim's first per-point record
@@ -57,6 +58,7 @@ HairShading hairShadingAt(int materialIndex, int segment, float u) {
     shading.fibre.causticWidth = material.sigmaA.w;
     shading.fibre.causticFade = material.caustic.x;
     shading.fibre.causticLimit = material.caustic.y;
+#if HDHAIR_FEATURE_PER_POINT_PARAMETERS
     if ((shading.flags & HAIR_MATERIAL_PER_POINT) == 0) return shading;
 
     vec4 w = catmullRomWeights(clamp(u, 0.0, 1.0));
@@ -75,5 +77,6 @@ HairShading hairShadingAt(int materialIndex, int segment, float u) {
         shading.fibre.alpha = b.x * vec3(1.0, -0.5, -1.5);
         shading.fibre.beta = b.y * vec3(1.0, 0.5, 2.0);
     }
+#endif
     return shading;
 }

@@ -1,4 +1,5 @@
-// Lights in the form hdHair/shading/ShadingLight.h prepares them.
+// Lights in the form hdHair/shading/ShadingLight.h prepares them. Needs
+// shadingFeatures.glsl.
 #define HDHAIR_MAX_LIGHTS 16
 
 layout(std140, binding = 1) uniform LightUniforms {
@@ -38,14 +39,19 @@ bool isSrbfLight(int i) { return lights.lightVector[i].w > 1.5; }
 // what meshes (Lambert) use; hair reads the convolution tables instead.
 vec3 lightIrradiance(int i, vec3 position, out vec3 toLight) {
     vec4 v = lights.lightVector[i];
+#if HDHAIR_FEATURE_SRBF_LIGHTS
     if (v.w > 1.5) {
         toLight = v.xyz;
         float lambda = lights.lightScale[i].w;
         return lights.lightScale[i].rgb * (6.283185307179586 * (1.0 - exp(-2.0 * lambda)) / lambda);
     }
+#endif
+#if HDHAIR_FEATURE_LOCAL_LIGHTS
     if (v.w < 0.5) {
+#endif
         toLight = v.xyz;
         return lights.lightScale[i].rgb;
+#if HDHAIR_FEATURE_LOCAL_LIGHTS
     }
     vec3 offset = v.xyz - position;
     float distanceSquared = max(dot(offset, offset), 1e-12);
@@ -54,4 +60,5 @@ vec3 lightIrradiance(int i, vec3 position, out vec3 toLight) {
     float facing = 1.0;
     if (lights.lightAxis[i].w > 0.5) facing = max(0.0, cosAngle);
     return lights.lightScale[i].rgb * (facing * lightCone(i, cosAngle) / distanceSquared);
+#endif
 }

@@ -4,7 +4,7 @@
 // from every fragment the light view saw. hdHair/render/DeepOpacityLayers.h
 // gives the layers, the lookup and k; hdHair/gl/UniformBlocks.h
 // ShadowUniforms mirrors the block. Needs lights.glsl (HDHAIR_MAX_LIGHTS)
-// and shadowFragmentLists.glsl.
+// and shadowFragmentLists.glsl, after shadingFeatures.glsl.
 #define HDHAIR_SHADOW_OFF 0
 #define HDHAIR_SHADOW_DEEP_OPACITY 1
 #define HDHAIR_SHADOW_REFERENCE 2
@@ -109,11 +109,19 @@ float referenceOpacityAt(int i, ivec2 texel, float z) {
 // themselves receive only the hair's shadow (a mesh would shadow itself).
 float shadowTransmittanceAt(int i, ivec2 texel, float z, bool meshesOcclude) {
     if (any(lessThan(texel, ivec2(0))) || any(greaterThanEqual(texel, ivec2(shadows.mode.w)))) return 1.0;
+#if HDHAIR_FEATURE_MESH_OCCLUDERS
     if (meshesOcclude && shadows.occluders.x != 0 &&
         z > texelFetch(shadowMeshDepths, ivec3(texel, shadowSlot(i)), 0).r)
         return 0.0;
+#endif
+#if HDHAIR_FEATURE_SHADOW_REFERENCE && HDHAIR_FEATURE_DEEP_OPACITY
     float opacity = shadows.mode.x == HDHAIR_SHADOW_REFERENCE ? referenceOpacityAt(i, texel, z)
                                                               : deepOpacityAt(i, texel, z);
+#elif HDHAIR_FEATURE_SHADOW_REFERENCE
+    float opacity = referenceOpacityAt(i, texel, z);
+#else
+    float opacity = deepOpacityAt(i, texel, z);
+#endif
     return exp(-shadows.extinction.x * opacity);
 }
 
@@ -123,6 +131,9 @@ float shadowTransmittanceAt(int i, ivec2 texel, float z, bool meshesOcclude) {
 // rasterisation of the same strand disagree by less than a texel the strand
 // does not shadow itself.
 float shadowTransmittanceFrom(int i, vec3 point, bool meshesOcclude) {
+#if !HDHAIR_FEATURE_DEEP_OPACITY && !HDHAIR_FEATURE_SHADOW_REFERENCE
+    return 1.0;  // shadows off, or no light of the pass has a map
+#else
     if (shadows.mode.x == HDHAIR_SHADOW_OFF || shadows.lightMap[i].x < 0.0) return 1.0;
     vec4 clip = shadows.lightViewProjection[i] * vec4(point, 1.0);
     if (clip.w <= 0.0) return 1.0;  // behind a perspective light's eye: outside its view
@@ -141,6 +152,7 @@ float shadowTransmittanceFrom(int i, vec3 point, bool meshesOcclude) {
     float t01 = shadowTransmittanceAt(i, base + ivec2(0, 1), z, meshesOcclude);
     float t11 = shadowTransmittanceAt(i, base + ivec2(1, 1), z, meshesOcclude);
     return mix(mix(t00, t10, w.x), mix(t01, t11, w.x), w.y);
+#endif
 }
 
 // What reaches a strand: through the hair and past the meshes.
@@ -159,6 +171,9 @@ float shadowTransmittance(int i, vec3 centre) { return shadowTransmittanceFrom(i
 // (R < 1) it is the ordinary lookup; light views in perspective (not SRBFs)
 // too.
 float srbfShadowTransmittance(int i, vec3 centre) {
+#if !HDHAIR_FEATURE_SRBF_SHADOW_TAPS && !HDHAIR_FEATURE_SRBF_SHADOW_MIPMAP
+    return shadowTransmittance(i, centre);  // no lobe of the pass has a map
+#else
     if (shadows.mode.x == HDHAIR_SHADOW_OFF || shadows.lightMap[i].x < 0.0 || shadows.lightMap[i].w > 0.5)
         return shadowTransmittance(i, centre);
     vec4 clip = shadows.lightViewProjection[i] * vec4(centre, 1.0);
@@ -173,16 +188,26 @@ float srbfShadowTransmittance(int i, vec3 centre) {
     float radius = 0.5 * (z - z0) * tanSupport / shadows.lightMap[i].z;  // texels
     if (!(radius >= 1.0) || z0 >= HDHAIR_NO_HAIR) return shadowTransmittance(i, centre);
     radius = min(radius, 0.25 * float(shadows.mode.w));
-    if (shadows.occluders.y != 0) {  // domeShadowFilter=mipmap
+#if HDHAIR_FEATURE_SRBF_SHADOW_MIPMAP
+#if HDHAIR_FEATURE_SRBF_SHADOW_TAPS
+    if (shadows.occluders.y != 0)
+#endif
+    {  // domeShadowFilter=mipmap
+#if HDHAIR_FEATURE_MESH_OCCLUDERS
         if (shadows.occluders.x != 0 && z > texelFetch(shadowMeshDepths, ivec3(texel, shadowSlot(i)), 0).r)
             return 0.0;
+#endif
         return exp(-shadows.extinction.x * convolvedOpacityAt(i, position, texel, z, radius));
     }
+#endif
+#if HDHAIR_FEATURE_SRBF_SHADOW_TAPS
     float sum = 0.0;
     for (int y = -1; y <= 1; ++y)
         for (int x = -1; x <= 1; ++x)
             sum += shadowTransmittanceAt(i, ivec2(floor(position + vec2(x, y) * radius)), z, true);
     return sum / 9.0;
+#endif
+#endif
 }
 
 // What reaches a mesh: through the hair.

@@ -8,7 +8,8 @@
 // Kd·colour and Ks. T̃_j, the shadow, is the caller's.
 // hdHair/gl/SrbfTableTextures.h says how tables of several materials share
 // one texture: side by side along x, table k at x = k·width.
-// Needs lights.glsl, hairMaterials.glsl and marschnerAnalytic.glsl.
+// Needs lights.glsl, hairMaterials.glsl and marschnerAnalytic.glsl, after
+// shadingFeatures.glsl (a flat-only frame calls none of this).
 
 layout(binding = 5) uniform sampler3D srbfMarschnerTables;  // RGB, 32 ψ × 64 θ_o × 512 a table
 layout(binding = 6) uniform sampler3D srbfKajiyaKayTables;  // RG, 1 × 64 × 512 a table
@@ -69,6 +70,15 @@ vec3 srbfEnergyRatio(vec3 absorbed, vec3 white) {
     return ratio;
 }
 
+// No fragment's absorption: what srbfAbsorption gives every material
+// without HAIR_MATERIAL_SRBF_LOBES.
+SrbfAbsorption srbfNoAbsorption() {
+    SrbfAbsorption absorption;
+    absorption.perFragment = false;
+    absorption.tt = absorption.trt = vec3(1.0);
+    return absorption;
+}
+
 SrbfAbsorption srbfAbsorption(HairShading shading, vec3 t, vec3 e) {
     SrbfAbsorption absorption;
     absorption.perFragment = shading.model == 2 && (shading.flags & HAIR_MATERIAL_SRBF_LOBES) != 0;
@@ -107,12 +117,20 @@ vec3 srbfLightRadiance(int i, int materialIndex, HairShading shading, SrbfAbsorp
     vec3 angles = srbfTableAngles(t, e, lights.lightVector[i].xyz);
     float lambda = lights.lightScale[i].w;
     int table = materials[materialIndex].segments.y;
+#if HDHAIR_FEATURE_MARSCHNER_TABLED || HDHAIR_FEATURE_MARSCHNER_ANALYTIC
+#if HDHAIR_FEATURE_KAJIYA_KAY
     if (shading.model == 2)
+#endif
         return lights.lightScale[i].rgb *
                srbfMarschnerRadiance(sampleSrbfTable(srbfMarschnerTables, table, SRBF_TABLE_AZIMUTHS, angles, lambda),
                                      absorption);
+#endif
+#if HDHAIR_FEATURE_KAJIYA_KAY
     vec2 terms = sampleSrbfTable(srbfKajiyaKayTables, table, 1, angles, lambda).xy;
     return lights.lightScale[i].rgb * (shading.kajiyaKay.x * terms.x * hairColor + shading.kajiyaKay.y * terms.y);
+#else
+    return vec3(0.0);  // not reached: the frame has no Kajiya-Kay material
+#endif
 }
 
 // The radiance a uniform dome of radiance 1 sends towards the eye
@@ -126,6 +144,15 @@ vec3 srbfUniformDomeResponse(int materialIndex, HairShading shading, SrbfAbsorpt
     int x0 = min(int(floor(u)), size.x - 1), x1 = min(x0 + 1, size.x - 1);
     vec3 response = mix(texelFetch(srbfUniformDome, ivec2(x0, row), 0).rgb,
                         texelFetch(srbfUniformDome, ivec2(x1, row), 0).rgb, u - float(x0));
-    if (shading.model == 2) return srbfMarschnerRadiance(response, absorption);
+#if HDHAIR_FEATURE_MARSCHNER_TABLED || HDHAIR_FEATURE_MARSCHNER_ANALYTIC
+#if HDHAIR_FEATURE_KAJIYA_KAY
+    if (shading.model == 2)
+#endif
+        return srbfMarschnerRadiance(response, absorption);
+#endif
+#if HDHAIR_FEATURE_KAJIYA_KAY
     return shading.kajiyaKay.x * response.x * hairColor + shading.kajiyaKay.y * response.y;
+#else
+    return vec3(0.0);  // not reached: the frame has no Kajiya-Kay material
+#endif
 }

@@ -11,39 +11,69 @@
 // the prim.
 // Needs frameUniforms.glsl, lights.glsl, kajiyaKay.glsl, marschner.glsl,
 // marschnerAnalytic.glsl, catmullRom.glsl, hairMaterials.glsl,
-// shadowFragmentLists.glsl, shadows.glsl and srbfLighting.glsl.
+// shadowFragmentLists.glsl, shadows.glsl and srbfLighting.glsl, after
+// shadingFeatures.glsl, whose switches cut out what the frame does not use.
 vec3 strandRadiance(vec3 worldPosition, vec3 centre, vec3 worldTangent, vec3 hairColor, int materialIndex, int segment,
                     float u) {
     HairShading shading = hairShadingAt(materialIndex, segment, u);
     // Flat colour is unlit: it belongs to the first light batch alone, so
     // that summing batches counts it once.
     if (shading.model == 0) return lights.lightCount.y == 0 ? hairColor : vec3(0.0);
+#if HDHAIR_FEATURE_KAJIYA_KAY || HDHAIR_FEATURE_MARSCHNER_TABLED || HDHAIR_FEATURE_MARSCHNER_ANALYTIC
     vec3 t = normalize(worldTangent);
     vec3 e = directionToEye(worldPosition);
+#if HDHAIR_FEATURE_SRBF_ABSORPTION
     SrbfAbsorption absorption = srbfAbsorption(shading, t, e);
+#else
+    SrbfAbsorption absorption = srbfNoAbsorption();
+#endif
+#if HDHAIR_FEATURE_UNIFORM_DOME
     vec3 radiance =
         lights.ambient.w > 0.5
             ? lights.ambient.rgb * srbfUniformDomeResponse(materialIndex, shading, absorption, t, e, hairColor)
             : lights.ambient.rgb * hairColor;
+#else
+    vec3 radiance = lights.ambient.rgb * hairColor;
+#endif
     bool analytic = (shading.flags & HAIR_MATERIAL_ANALYTIC) != 0;
     for (int i = 0; i < lights.lightCount.x; ++i) {
+#if HDHAIR_FEATURE_SRBF_LIGHTS
         if (isSrbfLight(i)) {
             vec3 lobe = srbfLightRadiance(i, materialIndex, shading, absorption, t, e, hairColor);
             if (any(greaterThan(lobe, vec3(0.0)))) radiance += lobe * srbfShadowTransmittance(i, centre);
             continue;
         }
+#endif
         vec3 l;
         vec3 irradiance = lightIrradiance(i, worldPosition, l);
         if (all(equal(irradiance, vec3(0.0)))) continue;  // unlit here: no shadow lookup
         irradiance *= shadowTransmittance(i, centre);
+#if HDHAIR_FEATURE_MARSCHNER_TABLED || HDHAIR_FEATURE_MARSCHNER_ANALYTIC
+#if HDHAIR_FEATURE_KAJIYA_KAY
         if (shading.model == 2) {
+#endif
+#if HDHAIR_FEATURE_MARSCHNER_TABLED && HDHAIR_FEATURE_MARSCHNER_ANALYTIC
             radiance += irradiance * (analytic ? marschnerAnalytic(t, l, e, shading.fibre)
                                                : marschnerTabled(t, l, e, marschnerTables, shading.tableLayer,
                                                                  shading.fibre.alpha, shading.fibre.beta));
-        } else {
-            KajiyaKayTerms terms = kajiyaKay(t, l, e, shading.kajiyaKay.x, shading.kajiyaKay.y, shading.kajiyaKay.z);
-            radiance += irradiance * (terms.diffuse * hairColor + terms.specular);
+#elif HDHAIR_FEATURE_MARSCHNER_ANALYTIC
+            radiance += irradiance * marschnerAnalytic(t, l, e, shading.fibre);
+#else
+            radiance += irradiance * marschnerTabled(t, l, e, marschnerTables, shading.tableLayer, shading.fibre.alpha,
+                                                     shading.fibre.beta);
+#endif
+#if HDHAIR_FEATURE_KAJIYA_KAY
+            continue;
         }
+#endif
+#endif
+#if HDHAIR_FEATURE_KAJIYA_KAY
+        KajiyaKayTerms terms = kajiyaKay(t, l, e, shading.kajiyaKay.x, shading.kajiyaKay.y, shading.kajiyaKay.z);
+        radiance += irradiance * (terms.diffuse * hairColor + terms.specular);
+#endif
     }
     return radiance;
+#else
+    return vec3(0.0);  // every material of the frame is flat
+#endif
 }

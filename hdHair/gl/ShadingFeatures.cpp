@@ -1,0 +1,90 @@
+#include "hdHair/gl/ShadingFeatures.h"
+
+#include <algorithm>
+
+namespace hdhair::gl {
+
+const std::vector<ShadingFeatureSwitch>& shadingFeatureSwitches() {
+    static const std::vector<ShadingFeatureSwitch> switches{
+        {ShadingFeature::Shade, "HDHAIR_FEATURE_SHADE", "shade"},
+        {ShadingFeature::KajiyaKay, "HDHAIR_FEATURE_KAJIYA_KAY", "kajiyaKay"},
+        {ShadingFeature::MarschnerTabled, "HDHAIR_FEATURE_MARSCHNER_TABLED", "marschnerTabled"},
+        {ShadingFeature::MarschnerAnalytic, "HDHAIR_FEATURE_MARSCHNER_ANALYTIC", "marschnerAnalytic"},
+        {ShadingFeature::PerPointParameters, "HDHAIR_FEATURE_PER_POINT_PARAMETERS", "perPointParameters"},
+        {ShadingFeature::SrbfAbsorption, "HDHAIR_FEATURE_SRBF_ABSORPTION", "srbfAbsorption"},
+        {ShadingFeature::LocalLights, "HDHAIR_FEATURE_LOCAL_LIGHTS", "localLights"},
+        {ShadingFeature::SrbfLights, "HDHAIR_FEATURE_SRBF_LIGHTS", "srbfLights"},
+        {ShadingFeature::UniformDome, "HDHAIR_FEATURE_UNIFORM_DOME", "uniformDome"},
+        {ShadingFeature::DeepOpacity, "HDHAIR_FEATURE_DEEP_OPACITY", "deepOpacity"},
+        {ShadingFeature::ShadowReference, "HDHAIR_FEATURE_SHADOW_REFERENCE", "shadowReference"},
+        {ShadingFeature::MeshOccluders, "HDHAIR_FEATURE_MESH_OCCLUDERS", "meshOccluders"},
+        {ShadingFeature::SrbfShadowTaps, "HDHAIR_FEATURE_SRBF_SHADOW_TAPS", "srbfShadowTaps"},
+        {ShadingFeature::SrbfShadowMipmap, "HDHAIR_FEATURE_SRBF_SHADOW_MIPMAP", "srbfShadowMipmap"},
+    };
+    return switches;
+}
+
+ShadingFeatures ShadingFeatures::all() {
+    ShadingFeatures features;
+    for (const ShadingFeatureSwitch& entry : shadingFeatureSwitches()) features.add(entry.feature);
+    return features;
+}
+
+std::string ShadingFeatures::glsl() const {
+    // The guard the file has, so that a program including it twice is fine.
+    std::string text = "#ifndef HDHAIR_SHADING_FEATURES\n#define HDHAIR_SHADING_FEATURES 1\n";
+    for (const ShadingFeatureSwitch& entry : shadingFeatureSwitches())
+        text += std::string("#define ") + entry.macro + (has(entry.feature) ? " 1\n" : " 0\n");
+    return text + "#endif\n";
+}
+
+std::string ShadingFeatures::describe() const {
+    std::string text;
+    for (const ShadingFeatureSwitch& entry : shadingFeatureSwitches())
+        if (has(entry.feature)) text += (text.empty() ? "" : " ") + std::string(entry.name);
+    return text.empty() ? "none" : text;
+}
+
+ShadingFeatures materialShadingFeatures(const std::vector<GpuHairMaterial>& materials) {
+    ShadingFeatures features;
+    for (const GpuHairMaterial& material : materials) {
+        const int model = material.modelAndLayer.x, flags = material.modelAndLayer.z;
+        // hairMaterials.glsl's model: 0 flat, 2 Marschner, anything else Kajiya-Kay.
+        if (model == 2) {
+            features.add((flags & kHairMaterialAnalytic) != 0 ? ShadingFeature::MarschnerAnalytic
+                                                               : ShadingFeature::MarschnerTabled);
+            if ((flags & kHairMaterialSrbfLobes) != 0) features.add(ShadingFeature::SrbfAbsorption);
+        } else if (model != 0) {
+            features.add(ShadingFeature::KajiyaKay);
+        }
+        if ((flags & kHairMaterialPerPoint) != 0) features.add(ShadingFeature::PerPointParameters);
+    }
+    return features;
+}
+
+ShadingFeatures strandShadingFeatures(const FrameUniforms& frame, const LightUniforms& lights,
+                                      const ShadowUniforms& shadows, ShadingFeatures materials) {
+    ShadingFeatures features;
+    if (frame.drawMode == 2) return features;  // strand.frag's ids: no shading at all
+    features.add(ShadingFeature::Shade).add(materials);
+    if (lights.ambient.w > 0.5f) features.add(ShadingFeature::UniformDome);
+    // The shaders read lights 0 .. lightCount.x - 1 and take their kind from
+    // lightVector.w: < 0.5 distant, > 1.5 SRBF, else local.
+    const int count = std::min(std::max(lights.lightCount.x, 0), kMaxLightsPerPass);
+    const int mode = shadows.mode.x;
+    for (int i = 0; i < count; ++i) {
+        const float kind = lights.lightVector[i].w;
+        const bool srbf = kind > 1.5f;
+        if (srbf) features.add(ShadingFeature::SrbfLights);
+        else if (kind >= 0.5f) features.add(ShadingFeature::LocalLights);
+        // shadows.glsl: no shadow with mode off or a light without a map.
+        if (mode == kShadowModeOff || shadows.lightMap[i].x < 0.0f) continue;
+        features.add(mode == kShadowModeReference ? ShadingFeature::ShadowReference : ShadingFeature::DeepOpacity);
+        if (shadows.occluders.x != 0) features.add(ShadingFeature::MeshOccluders);
+        if (srbf)
+            features.add(shadows.occluders.y != 0 ? ShadingFeature::SrbfShadowMipmap : ShadingFeature::SrbfShadowTaps);
+    }
+    return features;
+}
+
+}  // namespace hdhair::gl

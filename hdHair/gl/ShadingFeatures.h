@@ -1,0 +1,83 @@
+#pragma once
+// Which parts of the strand shading a draw can reach, read from the very
+// uniforms and materials it draws with, and the GLSL that compiles only
+// those parts (it replaces shaders/include/shadingFeatures.glsl, whose
+// switches this mirrors). Why: llvmpipe runs a fragment shader as masked
+// SIMD and pays for every branch whether a fragment takes it or not, so a
+// Kajiya-Kay frame with one deep-opacity light ran the Marschner, SRBF and
+// reference-shadow code too (on the TressFX bear at 1280 px the strand pass
+// took twice as long, and the ids pass three times as long, as with only
+// the code the frame reaches). A feature is on whenever the draw could
+// take its branch, so a specialised program draws exactly what the
+// complete one draws (testShadingFeatures).
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "hdHair/gl/UniformBlocks.h"
+
+namespace hdhair::gl {
+
+enum class ShadingFeature : uint32_t {
+    Shade = 1u << 0,                // colour is written (not the ids pass)
+    KajiyaKay = 1u << 1,            // a material of model 1
+    MarschnerTabled = 1u << 2,      // a Marschner material reading its tables
+    MarschnerAnalytic = 1u << 3,    // a Marschner material evaluated per fragment
+    PerPointParameters = 1u << 4,   // a material whose parameters vary per curve or vertex
+    SrbfAbsorption = 1u << 5,       // a Marschner material with absorption per fragment under a dome
+    LocalLights = 1u << 6,          // a light with a position
+    SrbfLights = 1u << 7,           // a dome's SRBF lobe
+    UniformDome = 1u << 8,          // the uniform dome's exact response
+    DeepOpacity = 1u << 9,          // deep opacity maps, a light of the draw having one
+    ShadowReference = 1u << 10,     // the reference shadows' fragment lists, likewise
+    MeshOccluders = 1u << 11,       // meshes' depth in the light views
+    SrbfShadowTaps = 1u << 12,      // a lobe with a map, nine taps (domeShadowFilter=taps)
+    SrbfShadowMipmap = 1u << 13,    // a lobe with a map, the mip chain (domeShadowFilter=mipmap)
+};
+
+class ShadingFeatures {
+public:
+    ShadingFeatures() = default;
+    static ShadingFeatures all();  // what the file compiles as it stands
+
+    bool has(ShadingFeature feature) const { return (bits_ & uint32_t(feature)) != 0; }
+    ShadingFeatures& add(ShadingFeature feature) {
+        bits_ |= uint32_t(feature);
+        return *this;
+    }
+    ShadingFeatures& add(ShadingFeatures features) {
+        bits_ |= features.bits_;
+        return *this;
+    }
+    uint32_t bits() const { return bits_; }
+    bool operator==(const ShadingFeatures& other) const { return bits_ == other.bits_; }
+    bool operator!=(const ShadingFeatures& other) const { return bits_ != other.bits_; }
+
+    // The replacement of include/shadingFeatures.glsl: every switch defined,
+    // 1 for the features held and 0 for the rest.
+    std::string glsl() const;
+    // The features held, by name ("kajiyaKay deepOpacity"), or "none".
+    std::string describe() const;
+
+private:
+    uint32_t bits_ = 0;
+};
+
+// Every switch: its feature, its GLSL macro and the name describe() uses.
+struct ShadingFeatureSwitch {
+    ShadingFeature feature;
+    const char* macro;
+    const char* name;
+};
+const std::vector<ShadingFeatureSwitch>& shadingFeatureSwitches();
+
+// The features a table of materials calls for, whichever prims read them.
+ShadingFeatures materialShadingFeatures(const std::vector<GpuHairMaterial>& materials);
+
+// The features a strand draw with these uniforms reaches, its materials
+// calling for `materials`: nothing but the ids for the ids pass (drawMode 2).
+ShadingFeatures strandShadingFeatures(const FrameUniforms& frame, const LightUniforms& lights,
+                                      const ShadowUniforms& shadows, ShadingFeatures materials);
+
+}  // namespace hdhair::gl

@@ -1,0 +1,166 @@
+// Which parts of the strand shading a draw reaches (hdHair/gl/ShadingFeatures.h):
+// each uniform and material condition turns on its feature and nothing
+// else, the switches are those shaders/include/shadingFeatures.glsl
+// defines, and every program one switch short of all, or with one switch
+// alone, compiles and links. That the programs draw what the complete one
+// draws is testenv's testShaderSpecialization.
+
+#include <ostream>
+#include <regex>
+#include <set>
+#include <sstream>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "hdHair/gl/GlRenderThread.h"
+#include "hdHair/gl/ShaderSources.h"
+#include "hdHair/gl/ShadingFeatures.h"
+#include "hdHair/gl/ShadingPrograms.h"
+
+using namespace hdhair::gl;
+
+namespace hdhair::gl {
+// Failures name the features, not the bytes.
+void PrintTo(const ShadingFeatures& features, std::ostream* out) { *out << features.describe(); }
+}  // namespace hdhair::gl
+
+namespace {
+
+ShadingFeatures only(std::initializer_list<ShadingFeature> features) {
+    ShadingFeatures set;
+    for (ShadingFeature feature : features) set.add(feature);
+    return set;
+}
+
+// A colour draw of distant lights without shadows or materials' needs.
+struct Draw {
+    FrameUniforms frame;
+    LightUniforms lights;
+    ShadowUniforms shadows;
+    Draw() {
+        frame.drawMode = 1;
+        lights.lightCount.x = 1;
+        shadows.lightMap[0].x = -1.0f;
+    }
+    ShadingFeatures features(ShadingFeatures materials = {}) const {
+        return strandShadingFeatures(frame, lights, shadows, materials);
+    }
+};
+
+GpuHairMaterial material(int model, int flags = 0) {
+    GpuHairMaterial entry;
+    entry.modelAndLayer = glm::ivec4(model, 0, flags, 0);
+    return entry;
+}
+
+}  // namespace
+
+TEST(ShadingFeatures, TheSwitchesAreThoseTheShaderFileDefines) {
+    const std::string file = embeddedShaderSources().at("include/shadingFeatures.glsl");
+    std::set<std::string> defined;
+    const std::regex define(R"(#define (HDHAIR_FEATURE_[A-Z_]+) 1\b)");
+    for (auto it = std::sregex_iterator(file.begin(), file.end(), define); it != std::sregex_iterator(); ++it)
+        defined.insert((*it)[1]);
+    std::set<std::string> switches;
+    for (const ShadingFeatureSwitch& entry : shadingFeatureSwitches()) switches.insert(entry.macro);
+    EXPECT_EQ(defined, switches);
+    // The replacement defines every switch, 1 or 0.
+    const std::string text = only({ShadingFeature::Shade, ShadingFeature::DeepOpacity}).glsl();
+    for (const ShadingFeatureSwitch& entry : shadingFeatureSwitches()) {
+        const bool on = entry.feature == ShadingFeature::Shade || entry.feature == ShadingFeature::DeepOpacity;
+        EXPECT_NE(text.find(std::string("#define ") + entry.macro + (on ? " 1\n" : " 0\n")), std::string::npos)
+            << entry.macro;
+    }
+    EXPECT_EQ(only({ShadingFeature::Shade, ShadingFeature::DeepOpacity}).describe(), "shade deepOpacity");
+    EXPECT_EQ(ShadingFeatures().describe(), "none");
+}
+
+TEST(ShadingFeatures, MaterialsCallForTheirModelsAndFlags) {
+    EXPECT_EQ(materialShadingFeatures({}), ShadingFeatures());
+    EXPECT_EQ(materialShadingFeatures({material(0)}), ShadingFeatures());  // flat: nothing to compile
+    EXPECT_EQ(materialShadingFeatures({material(1)}), only({ShadingFeature::KajiyaKay}));
+    EXPECT_EQ(materialShadingFeatures({material(2)}), only({ShadingFeature::MarschnerTabled}));
+    EXPECT_EQ(materialShadingFeatures({material(2, kHairMaterialAnalytic)}), only({ShadingFeature::MarschnerAnalytic}));
+    EXPECT_EQ(materialShadingFeatures({material(1, kHairMaterialPerPoint)}),
+              only({ShadingFeature::KajiyaKay, ShadingFeature::PerPointParameters}));
+    EXPECT_EQ(materialShadingFeatures({material(2, kHairMaterialSrbfLobes)}),
+              only({ShadingFeature::MarschnerTabled, ShadingFeature::SrbfAbsorption}));
+    // Absorption per fragment is Marschner's only (srbfAbsorption's test).
+    EXPECT_EQ(materialShadingFeatures({material(1, kHairMaterialSrbfLobes)}), only({ShadingFeature::KajiyaKay}));
+    EXPECT_EQ(materialShadingFeatures({material(0), material(1), material(2)}),
+              only({ShadingFeature::KajiyaKay, ShadingFeature::MarschnerTabled}));
+}
+
+TEST(ShadingFeatures, EachUniformConditionTurnsOnItsFeature) {
+    const ShadingFeatures shade = only({ShadingFeature::Shade});
+    Draw draw;
+    EXPECT_EQ(draw.features(), shade);
+    EXPECT_EQ(draw.features(only({ShadingFeature::KajiyaKay})), only({ShadingFeature::Shade, ShadingFeature::KajiyaKay}));
+
+    Draw ids;  // the ids pass shades nothing, whatever else it binds
+    ids.frame.drawMode = 2;
+    ids.lights.ambient.w = 1.0f;
+    EXPECT_EQ(ids.features(ShadingFeatures::all()), ShadingFeatures());
+
+    Draw dome;
+    dome.lights.ambient.w = 1.0f;
+    EXPECT_EQ(dome.features(), only({ShadingFeature::Shade, ShadingFeature::UniformDome}));
+
+    Draw local;
+    local.lights.lightVector[0].w = 1.0f;
+    EXPECT_EQ(local.features(), only({ShadingFeature::Shade, ShadingFeature::LocalLights}));
+    Draw lobe;
+    lobe.lights.lightVector[0].w = 2.0f;
+    EXPECT_EQ(lobe.features(), only({ShadingFeature::Shade, ShadingFeature::SrbfLights}));
+    // Lights past the pass's count are not read.
+    Draw unused;
+    unused.lights.lightVector[1].w = 2.0f;
+    EXPECT_EQ(unused.features(), shade);
+
+    Draw deep;
+    deep.shadows.mode.x = kShadowModeDeepOpacity;
+    EXPECT_EQ(deep.features(), shade) << "a mode with no light that has a map looks nothing up";
+    deep.shadows.lightMap[0].x = 0.0f;
+    EXPECT_EQ(deep.features(), only({ShadingFeature::Shade, ShadingFeature::DeepOpacity}));
+    deep.shadows.occluders.x = 1;
+    EXPECT_EQ(deep.features(), only({ShadingFeature::Shade, ShadingFeature::DeepOpacity, ShadingFeature::MeshOccluders}));
+
+    Draw reference;
+    reference.shadows.mode.x = kShadowModeReference;
+    reference.shadows.lightMap[0].x = 0.0f;
+    EXPECT_EQ(reference.features(), only({ShadingFeature::Shade, ShadingFeature::ShadowReference}));
+    Draw off;
+    off.shadows.lightMap[0].x = 0.0f;  // a map, but shadows off
+    EXPECT_EQ(off.features(), shade);
+
+    Draw taps = lobe;
+    taps.shadows.mode.x = kShadowModeDeepOpacity;
+    taps.shadows.lightMap[0].x = 3.0f;
+    EXPECT_EQ(taps.features(), only({ShadingFeature::Shade, ShadingFeature::SrbfLights, ShadingFeature::DeepOpacity,
+                                     ShadingFeature::SrbfShadowTaps}));
+    Draw mipmap = taps;
+    mipmap.shadows.occluders.y = 1;
+    EXPECT_EQ(mipmap.features(), only({ShadingFeature::Shade, ShadingFeature::SrbfLights,
+                                       ShadingFeature::DeepOpacity, ShadingFeature::SrbfShadowMipmap}));
+}
+
+TEST(ShadingFeatures, EveryProgramOneSwitchFromAllOrWithOneAloneCompiles) {
+    GlRenderThread thread(GlBackend::Egl);
+    thread.run([] {
+        std::vector<ShadingFeatures> sets{ShadingFeatures(), ShadingFeatures::all()};
+        for (const ShadingFeatureSwitch& entry : shadingFeatureSwitches()) {
+            ShadingFeatures allBut;
+            for (const ShadingFeatureSwitch& other : shadingFeatureSwitches())
+                if (other.feature != entry.feature) allBut.add(other.feature);
+            sets.push_back(allBut);
+            sets.push_back(only({ShadingFeature::Shade, entry.feature}));
+        }
+        for (const char* fragment : {"strand.frag", "strandFragmentList.frag"}) {
+            ShadingPrograms programs({"strand.vert", "strand.tesc", "strand.tese", fragment});
+            for (const ShadingFeatures& features : sets)
+                EXPECT_NO_THROW(programs.get(features)) << fragment << " with " << features.describe();
+            EXPECT_EQ(programs.compiled(), sets.size());
+        }
+    });
+}
