@@ -17,6 +17,7 @@ const std::vector<ShadingFeatureSwitch>& shadingFeatureSwitches() {
         {ShadingFeature::UniformDome, "HDHAIR_FEATURE_UNIFORM_DOME", "uniformDome"},
         {ShadingFeature::DeepOpacity, "HDHAIR_FEATURE_DEEP_OPACITY", "deepOpacity"},
         {ShadingFeature::ShadowReference, "HDHAIR_FEATURE_SHADOW_REFERENCE", "shadowReference"},
+        {ShadingFeature::BilinearShadows, "HDHAIR_FEATURE_BILINEAR_SHADOWS", "bilinearShadows"},
         {ShadingFeature::MeshOccluders, "HDHAIR_FEATURE_MESH_OCCLUDERS", "meshOccluders"},
         {ShadingFeature::SrbfShadowTaps, "HDHAIR_FEATURE_SRBF_SHADOW_TAPS", "srbfShadowTaps"},
         {ShadingFeature::SrbfShadowMipmap, "HDHAIR_FEATURE_SRBF_SHADOW_MIPMAP", "srbfShadowMipmap"},
@@ -81,6 +82,7 @@ ShadingFeatures strandShadingFeatures(const FrameUniforms& frame, const LightUni
         if (mode == kShadowModeOff || shadows.lightMap[i].x < 0.0f) continue;
         features.add(mode == kShadowModeReference ? ShadingFeature::ShadowReference : ShadingFeature::DeepOpacity);
         if (shadows.occluders.x != 0) features.add(ShadingFeature::MeshOccluders);
+        if (shadows.mode.z != 0) features.add(ShadingFeature::BilinearShadows);
         if (srbf)
             features.add(shadows.occluders.y != 0 ? ShadingFeature::SrbfShadowMipmap : ShadingFeature::SrbfShadowTaps);
     }

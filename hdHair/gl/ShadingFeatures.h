@@ -32,6 +32,7 @@ enum class ShadingFeature : uint32_t {
     DeepOpacity = 1u << 9,          // deep opacity maps, a light of the draw having one
     ShadowReference = 1u << 10,     // the reference shadows' fragment lists, likewise
     MeshOccluders = 1u << 11,       // meshes' depth in the light views
+    BilinearShadows = 1u << 14,     // four texels a lookup (shadowFilter=bilinear), not one
     SrbfShadowTaps = 1u << 12,      // a lobe with a map, nine taps (domeShadowFilter=taps)
     SrbfShadowMipmap = 1u << 13,    // a lobe with a map, the mip chain (domeShadowFilter=mipmap)
 };

@@ -22,6 +22,7 @@
 #define HDHAIR_FEATURE_UNIFORM_DOME 1         // ambient.w 1: the uniform dome's exact response
 #define HDHAIR_FEATURE_DEEP_OPACITY 1         // shadow mode deep opacity with a light that has a map
 #define HDHAIR_FEATURE_SHADOW_REFERENCE 1     // shadow mode reference with a light that has a map
+#define HDHAIR_FEATURE_BILINEAR_SHADOWS 1     // mode.z 1: shadowFilter=bilinear, a light having a map
 #define HDHAIR_FEATURE_MESH_OCCLUDERS 1       // occluders.x: the meshes' depth in every slot
 #define HDHAIR_FEATURE_SRBF_SHADOW_TAPS 1     // an SRBF lobe with a map, occluders.y 0
 #define HDHAIR_FEATURE_SRBF_SHADOW_MIPMAP 1   // an SRBF lobe with a map, occluders.y 1

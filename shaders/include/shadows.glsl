@@ -140,6 +140,7 @@ float shadowTransmittanceFrom(int i, vec3 point, bool meshesOcclude) {
     vec2 position = (clip.xy / clip.w * 0.5 + 0.5) * float(shadows.mode.w);
     float z = shadowLinearDepth(i, point);
     z -= shadows.lightMap[i].z * (shadows.lightMap[i].w > 0.5 ? z : 1.0);
+#if HDHAIR_FEATURE_BILINEAR_SHADOWS
     if (shadows.mode.z == 0) return shadowTransmittanceAt(i, ivec2(floor(position)), z, meshesOcclude);
     // Bilinear: the four nearest texels' transmittances, each against its
     // own nearest hair (z0-relative values cannot be filtered by the
@@ -152,6 +153,9 @@ float shadowTransmittanceFrom(int i, vec3 point, bool meshesOcclude) {
     float t01 = shadowTransmittanceAt(i, base + ivec2(0, 1), z, meshesOcclude);
     float t11 = shadowTransmittanceAt(i, base + ivec2(1, 1), z, meshesOcclude);
     return mix(mix(t00, t10, w.x), mix(t01, t11, w.x), w.y);
+#else
+    return shadowTransmittanceAt(i, ivec2(floor(position)), z, meshesOcclude);  // shadowFilter=nearest
+#endif
 #endif
 }
 

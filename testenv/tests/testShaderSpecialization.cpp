@@ -35,6 +35,7 @@ std::vector<SpecializationCase> specializationCases() {
     const std::string domeLit = "examples/dome_lit_strands.usda";
     return {
         {"KajiyaKayWithDeepOpacity", shadowed, {"shadowMapResolution=128"}},
+        {"NearestDeepOpacity", shadowed, {"shadowFilter=nearest", "shadowMapResolution=128"}},
         {"ReferenceShadows", shadowed, {"shadowMode=reference", "shadowMapResolution=128"}},
         {"LocalLightsInBatchesUnderAnAmbientDome", "testenv/cases/lights_9/stage.usda",
          {"domeLighting=ambient", "shadowMapResolution=128"}},

@@ -125,6 +125,9 @@ TEST(ShadingFeatures, EachUniformConditionTurnsOnItsFeature) {
     EXPECT_EQ(deep.features(), only({ShadingFeature::Shade, ShadingFeature::DeepOpacity}));
     deep.shadows.occluders.x = 1;
     EXPECT_EQ(deep.features(), only({ShadingFeature::Shade, ShadingFeature::DeepOpacity, ShadingFeature::MeshOccluders}));
+    deep.shadows.mode.z = 1;  // shadowFilter=bilinear
+    EXPECT_EQ(deep.features(), only({ShadingFeature::Shade, ShadingFeature::DeepOpacity, ShadingFeature::MeshOccluders,
+                                     ShadingFeature::BilinearShadows}));
 
     Draw reference;
     reference.shadows.mode.x = kShadowModeReference;
