@@ -9,7 +9,7 @@
 // tessellation view is the camera's (or the camera the shadow maps were built
 // with, hdHair/render/TessellationView.h) in every pass, light views
 // included, so each view draws the same curve. Culling is per view: spans
-// wholly outside this pass's frustum get level 0, which discards them.
+// wholly outside this pass's frustum get no line (outer level 0), which discards them.
 #include "include/frameUniforms.glsl"
 
 layout(vertices = 4) out;
@@ -142,12 +142,8 @@ void main() {
     }
     if (culled) level = 0.0;
 
-    // Quad domain: u runs along the span (outer 1 and 3, inner 0), v across
-    // the strand's width, one quad wide (outer 0 and 2, inner 1).
+    // Isolines: one line (outer 0) of `level` segments along the span
+    // (outer 1); strand.geom widens each segment into a quad.
     gl_TessLevelOuter[0] = culled ? 0.0 : 1.0;
     gl_TessLevelOuter[1] = level;
-    gl_TessLevelOuter[2] = culled ? 0.0 : 1.0;
-    gl_TessLevelOuter[3] = level;
-    gl_TessLevelInner[0] = level;
-    gl_TessLevelInner[1] = 1.0;
 }

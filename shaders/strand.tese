@@ -1,8 +1,13 @@
 #version 450 core
 #extension GL_GOOGLE_include_directive : require
-// Evaluates the Catmull-Rom span at u and offsets across the strand's width
-// (a world-space diameter) perpendicular to both the tangent and the view:
-// a camera-facing ribbon.
+// Evaluates the Catmull-Rom span at u, one point of its centre-line
+// polyline (isolines), with the vector across the strand's width (a
+// world-space diameter) perpendicular to both the tangent and the view;
+// strand.geom widens each segment of the polyline into a camera-facing quad.
+// Isolines rather than a quad domain: a quad domain rounds the across-strand
+// inner level 1 up to 2, which made about 4n triangles and 3n evaluations
+// of n segments; this makes 2n triangles from n + 1 evaluations, and on
+// llvmpipe, which tessellates on one thread, the geometry is the serial part.
 //
 // Sub-pixel coverage (Svoboda 2012, section 1.2.3): a strand whose projected
 // width is below frame.minPixelWidth is drawn that wide instead, with its
@@ -12,21 +17,21 @@
 #include "include/catmullRom.glsl"
 #include "include/strandGeometry.glsl"
 
-layout(quads, equal_spacing, ccw) in;
+layout(isolines, equal_spacing) in;
 
 layout(location = 0) in vec4 tcsPositionWidth[];
 layout(location = 1) in vec4 tcsColorOpacity[];
 layout(location = 2) flat in int tcsSegment[];
 
-layout(location = 0) out vec3 worldPosition;
-layout(location = 1) out vec3 worldTangent;
-layout(location = 2) out vec4 colorAlpha;  // displayColor, opacity x coverage
-layout(location = 3) flat out ivec4 ids;   // primId, elementId, material, segment
-layout(location = 4) out float spanU;      // where on the span: per-point hair parameters
-layout(location = 5) out vec3 strandCentre;  // the centre line under this point: where shadows are looked up
+layout(location = 0) out vec3 tesCentre;    // the centre line at u
+layout(location = 1) out vec3 tesAcross;    // from one edge of the ribbon to the other
+layout(location = 2) out vec3 tesTangent;
+layout(location = 3) out vec4 tesColorAlpha;  // displayColor, opacity x coverage
+layout(location = 4) flat out ivec4 tesIds;   // primId, elementId, material, segment
+layout(location = 5) out float tesSpanU;
 
 void main() {
-    float u = gl_TessCoord.x, v = gl_TessCoord.y;
+    float u = gl_TessCoord.x;
     vec4 w = catmullRomWeights(u);
     vec4 dw = catmullRomDerivativeWeights(u);
 
@@ -61,14 +66,11 @@ void main() {
             opacity *= widthPixels / frame.minPixelWidth;
         }
     }
-    vec3 position = positionWidth.xyz + side * ((v - 0.5) * drawnWidth);
-
-    worldPosition = position;
-    worldTangent = tangent;
-    colorAlpha = vec4(max(shade.rgb, vec3(0.0)), opacity);
+    tesCentre = positionWidth.xyz;
+    tesAcross = side * drawnWidth;
+    tesTangent = tangent;
+    tesColorAlpha = vec4(max(shade.rgb, vec3(0.0)), opacity);
     int segment = tcsSegment[0];
-    ids = ivec4(segmentPrimAndInstance(segment).x, segmentCurve[segment], segmentMaterial(segment), segment);
-    spanU = u;
-    strandCentre = positionWidth.xyz;
-    gl_Position = frame.viewProjection * vec4(position, 1.0);
+    tesIds = ivec4(segmentPrimAndInstance(segment).x, segmentCurve[segment], segmentMaterial(segment), segment);
+    tesSpanU = u;
 }

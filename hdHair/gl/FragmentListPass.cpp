@@ -13,7 +13,7 @@ constexpr GLint kResolveIds = 0;  // uniform location in shaders/fragmentListRes
 }  // namespace
 
 FragmentListPass::FragmentListPass()
-    : listPrograms_({"strand.vert", "strand.tesc", "strand.tese", "strandFragmentList.frag"}),
+    : listPrograms_({"strand.vert", "strand.tesc", "strand.tese", "strand.geom", "strandFragmentList.frag"}),
       resolveProgram_(createProgram({"fullscreen.vert", "fragmentListResolve.frag"})),
       emptyVertexArray_(createVertexArray()),
       counter_(createBuffer(nullptr, 2 * sizeof(uint32_t), GL_DYNAMIC_STORAGE_BIT | GL_MAP_READ_BIT, "fragmentLists")),

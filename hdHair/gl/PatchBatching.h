@@ -4,8 +4,10 @@
 // vertices (long spikes across the image, and 50x slower frames) once one
 // draw's tessellator emits too many vertices: examples/dense_clump.usda
 // broke at 22+ segments per span in single draws of 27,900 patches. There,
-// draws of at most 2,048 emitted vertices (2 (level + 1) a patch at the
-// highest level) render correctly at every level; other drivers get whole
+// draws of at most 2,048 emitted vertices (counted as 2 (level + 1) a patch
+// at the highest level, as when the strands were a quad domain; since they
+// are isolines the tessellator emits level + 1) render correctly at every
+// level; other drivers get whole
 // ranges. The drawBatching setting overrides the choice (tests compare both).
 //
 // llvmpipe also bins every submitted draw before its threads rasterise it,

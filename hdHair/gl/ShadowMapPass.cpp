@@ -3,8 +3,8 @@
 namespace hdhair::gl {
 
 ShadowMapPass::ShadowMapPass()
-    : depthProgram_(createProgram({"strand.vert", "strand.tesc", "strand.tese", "shadowDepth.frag"})),
-      opacityProgram_(createProgram({"strand.vert", "strand.tesc", "strand.tese", "deepOpacity.frag"})) {
+    : depthProgram_(createProgram({"strand.vert", "strand.tesc", "strand.tese", "strand.geom", "shadowDepth.frag"})),
+      opacityProgram_(createProgram({"strand.vert", "strand.tesc", "strand.tese", "strand.geom", "deepOpacity.frag"})) {
     checkGlError("setting up the shadow map passes");
 }
 

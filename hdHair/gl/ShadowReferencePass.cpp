@@ -13,7 +13,7 @@ constexpr GLuint kListEnd = 0xffffffffu;  // HDHAIR_SHADOW_LIST_END
 }  // namespace
 
 ShadowReferencePass::ShadowReferencePass()
-    : program_(createProgram({"strand.vert", "strand.tesc", "strand.tese", "shadowFragmentList.frag"})),
+    : program_(createProgram({"strand.vert", "strand.tesc", "strand.tese", "strand.geom", "shadowFragmentList.frag"})),
       unusedPool_(createBuffer(nullptr, kShadowNodeBytes, GL_DYNAMIC_STORAGE_BIT, "shadowReference")),
       counter_(createBuffer(nullptr, 2 * sizeof(uint32_t), GL_DYNAMIC_STORAGE_BIT | GL_MAP_READ_BIT, "shadowReference")) {
     pools_.push_back(createBuffer(nullptr, kShadowNodeBytes, GL_DYNAMIC_STORAGE_BIT, "shadowReference"));

@@ -8,7 +8,7 @@
 namespace hdhair::gl {
 
 StrandPass::StrandPass()
-    : programs_({"strand.vert", "strand.tesc", "strand.tese", "strand.frag"}),
+    : programs_({"strand.vert", "strand.tesc", "strand.tese", "strand.geom", "strand.frag"}),
       emptyVertexArray_(createVertexArray()),
       frameBlock_(createBuffer(nullptr, sizeof(FrameUniforms), GL_DYNAMIC_STORAGE_BIT)),
       lightBlock_(createBuffer(nullptr, sizeof(LightUniforms), GL_DYNAMIC_STORAGE_BIT)),

@@ -160,7 +160,7 @@ TEST(ShadingFeatures, EveryProgramOneSwitchFromAllOrWithOneAloneCompiles) {
             sets.push_back(only({ShadingFeature::Shade, entry.feature}));
         }
         for (const char* fragment : {"strand.frag", "strandFragmentList.frag"}) {
-            ShadingPrograms programs({"strand.vert", "strand.tesc", "strand.tese", fragment});
+            ShadingPrograms programs({"strand.vert", "strand.tesc", "strand.tese", "strand.geom", fragment});
             for (const ShadingFeatures& features : sets)
                 EXPECT_NO_THROW(programs.get(features)) << fragment << " with " << features.describe();
             EXPECT_EQ(programs.compiled(), sets.size());

@@ -180,7 +180,7 @@ TEST(UniformBlocks, CopiesMatchTheLayoutGlGivesEveryProgram) {
             {"shadowFragmentList.frag", 3},
         };
         for (const auto& [fragment, blockCount] : programs) {
-            Program program = createProgram({"strand.vert", "strand.tesc", "strand.tese", fragment});
+            Program program = createProgram({"strand.vert", "strand.tesc", "strand.tese", "strand.geom", fragment});
             int found = 0;
             expectBlocksMatch(program.get(), fragment, &found);
             EXPECT_EQ(found, blockCount) << fragment << " uses the blocks it should";

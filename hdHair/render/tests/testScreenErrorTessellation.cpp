@@ -91,7 +91,7 @@ std::vector<CapturedVertex> tessellate(const PreparedCurves& curves, const Camer
                                        int maxSegmentsPerSpan) {
     gl::GlRenderThread thread(gl::GlBackend::Egl);
     return thread.run([&] {
-        gl::Program program = gl::createProgram({"strand.vert", "strand.tesc", "strand.tese"}, {},
+        gl::Program program = gl::createProgram({"strand.vert", "strand.tesc", "strand.tese", "strand.geom"}, {},
                                                 {"strandCentre", "spanU", "ids"});
         gl::StrandGeometry geometry;
         geometry.reserve(curves.segmentCount(), curves.controlPoints.size());
