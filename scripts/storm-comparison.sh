@@ -5,16 +5,18 @@
 #   usdrecord --renderer HdHair --disableGpu   (the plugin),
 #   hdhair-record                     (its default reader),
 # at the same camera and width, each timed by /usr/bin/time (wall seconds and
-# peak RSS), with the frame's own time where the renderer reports it. Writes
-# results.csv and results.md (a Markdown table with hdHair/Storm ratios per
-# row: single runs on a shared machine are noisy, ratios from one run are what
-# we report; and a memory table: hdhair-record's peak RSS beside the GPU
+# peak RSS), with the frame's own time where the renderer reports it, --runs
+# times each in turn (the three renderers one after the other, then again),
+# reporting medians. Writes results.csv (a row a run) and results.md (a
+# Markdown table with hdHair/Storm ratios per row: runs on a shared machine
+# are noisy, so ratios of medians measured side by side are what we report;
+# and a memory table: hdhair-record's peak RSS beside the GPU
 # memory its --stats report, per authored control vertex) into the output
 # folder, and prints the tables.
 #
 #   scripts/storm-comparison.sh [--build-dir DIR] [--openusd PREFIX] [--assets DIR] [--out DIR]
 #                               [--data DIR] [--width N] [--complexities "low medium high veryhigh"]
-#                               [--stages "ratboy bear"] [--display DISPLAY]
+#                               [--stages "ratboy bear"] [--display DISPLAY] [--runs N]
 # --build-dir: an hdHair build with the plugin (scripts/build.sh --openusd ...; default build/):
 #   bin/hdhair-record, bin/hdhair-convert and plugin/usd/hdHair/resources are used from it.
 # --openusd: the OpenUSD prefix whose bin/usdrecord runs (default $PXR_ROOT, else scripts/find-openusd.sh).
@@ -22,6 +24,8 @@
 #   once with hdhair-convert, reused while newer than their .tfx.
 # --out: results, logs and images (default BUILD/storm-comparison).
 # --data: the TressFX samples (default ../shared/data/tressfx beside the repository).
+# --runs: runs of each renderer per stage and complexity, interleaved (default 1); the table
+#   gives the median of each figure.
 # --display: an X display for Storm (one on a GPU's driver) instead of a fresh Xvfb per run, whose
 #   GLX is Mesa's llvmpipe: on a headless GPU machine Storm under Xvfb renders in software.
 set -euo pipefail
@@ -33,6 +37,7 @@ width=1280
 complexities="low medium high veryhigh"
 stages="ratboy bear"
 display=""
+runs=1
 while [[ $# -gt 0 ]]; do
   case "$1" in
     --build-dir) build="$2"; shift 2 ;;
@@ -44,7 +49,8 @@ while [[ $# -gt 0 ]]; do
     --complexities) complexities="$2"; shift 2 ;;
     --stages) stages="$2"; shift 2 ;;
     --display) display="$2"; shift 2 ;;
-    -h|--help) sed -n '2,27p' "$0"; exit 0 ;;
+    --runs) runs="$2"; shift 2 ;;
+    -h|--help) sed -n '2,30p' "$0"; exit 0 ;;
     *) echo "storm-comparison: error: unknown option '$1' (see --help)" >&2; exit 2 ;;
   esac
 done
@@ -68,6 +74,7 @@ for level in $complexities; do
   case "$level" in low|medium|high|veryhigh) ;; *) fail "--complexities: '$level' is not low, medium, high or veryhigh" ;; esac
 done
 [[ "$width" =~ ^[0-9]+$ ]] || fail "--width must be a number of pixels, not '$width'"
+[[ "$runs" =~ ^[1-9][0-9]*$ ]] || fail "--runs must be a whole number of runs, at least 1, not '$runs'"
 
 # The TressFX sample of each stage name.
 tfxOf() {
@@ -92,7 +99,7 @@ done
 export PYTHONPATH="$prefix/lib/python${PYTHONPATH:+:$PYTHONPATH}"
 export HOME="${HOME:-/tmp}"
 csv="$out/results.csv"
-echo "stage,spans,complexity,renderer,seconds,peak_kb,frame_ms,status,gpu_bytes,strand_bytes,authored_points" >"$csv"
+echo "stage,spans,complexity,renderer,seconds,peak_kb,frame_ms,status,gpu_bytes,strand_bytes,authored_points,run" >"$csv"
 failures=()
 
 # run NAME LOG -- COMMAND...: times COMMAND's whole process; sets seconds, peakKb, status.
@@ -109,8 +116,9 @@ loadStart="$(cut -d' ' -f1-3 /proc/loadavg)"
 glRenderer=""
 for stage in $stages; do
   for level in $complexities; do
+   for ((rep = 1; rep <= runs; ++rep)); do
     name="$stage-$level"
-    echo "storm-comparison: $name" >&2
+    echo "storm-comparison: $name (run $rep of $runs)" >&2
     # hdhair-record first: its --stats give the span count and the GL renderer.
     stats="$out/logs/$name.hdhair-record.json"
     run "$name.hdhair-record" "$out/logs/$name.hdhair-record.log" -- \
@@ -133,7 +141,7 @@ frame = json.load(open(sys.argv[1]))["frames"][0]
 gpu = frame.get("gpuMemory", {})
 print(",".join(str(v) for v in (gpu.get("total", ""), gpu.get("strandGeometry", ""),
                                  frame.get("authoredPoints", ""))))' "$stats" 2>/dev/null || echo ",,")"
-    echo "$stage,$spans,$level,hdhair-record,$seconds,$peakKb,$frame,$status,$memory" >>"$csv"
+    echo "$stage,$spans,$level,hdhair-record,$seconds,$peakKb,$frame,$status,$memory,$rep" >>"$csv"
 
     log="$out/logs/$name.usdrecord-hdhair.log"
     run "$name.usdrecord-hdhair" "$log" -- \
@@ -141,7 +149,7 @@ print(",".join(str(v) for v in (gpu.get("total", ""), gpu.get("strandGeometry", 
       --camera /World/main_cam --imageWidth "$width" --complexity "$level" "$assets/$stage.usda" \
       "$out/images/$name.usdrecord-hdhair.png"
     frame="$(sed -n 's/^hdHair: rendered a frame: .*, \([0-9.]*\) ms$/\1/p' "$log" | tail -n 1)"
-    echo "$stage,$spans,$level,usdrecord-hdhair,$seconds,$peakKb,$frame,$status,,," >>"$csv"
+    echo "$stage,$spans,$level,usdrecord-hdhair,$seconds,$peakKb,$frame,$status,,,,$rep" >>"$csv"
 
     # Storm needs an X display for its GL context: --display's, or one that
     # xvfb-run starts, with /usr/bin/time inside it timing usdrecord alone,
@@ -155,15 +163,28 @@ print(",".join(str(v) for v in (gpu.get("total", ""), gpu.get("strandGeometry", 
         xvfb-run -a -s "-screen 0 1920x1080x24" /usr/bin/time -f '%e %M' -o "$out/logs/$name.storm.time" "${storm[@]}"
       [[ "$status" == ok ]] && read -r seconds peakKb < <(tail -n 1 "$out/logs/$name.storm.time")
     fi
-    echo "$stage,$spans,$level,usdrecord-storm,$seconds,$peakKb,,$status,,," >>"$csv"
+    echo "$stage,$spans,$level,usdrecord-storm,$seconds,$peakKb,,$status,,,,$rep" >>"$csv"
+   done
   done
 done
 loadEnd="$(cut -d' ' -f1-3 /proc/loadavg)"
 
-/usr/bin/python3 - "$csv" "$out/results.md" "$started" "$loadStart" "$loadEnd" "$width" "$glRenderer" <<'EOF'
-import csv, os, platform, sys
-path, markdown, started, loadStart, loadEnd, width, gl = sys.argv[1:8]
-rows = list(csv.DictReader(open(path)))
+/usr/bin/python3 - "$csv" "$out/results.md" "$started" "$loadStart" "$loadEnd" "$width" "$glRenderer" "$runs" <<'EOF'
+import csv, os, platform, statistics, sys
+path, markdown, started, loadStart, loadEnd, width, gl, runCount = sys.argv[1:9]
+# One row per stage, complexity and renderer: the median of its runs' time,
+# peak RSS and frame (a run that failed fails the row).
+grouped = {}
+for r in csv.DictReader(open(path)):
+    grouped.setdefault((r["stage"], r["complexity"], r["renderer"]), []).append(r)
+rows = []
+for group in grouped.values():
+    row = dict(group[0])
+    row["status"] = "ok" if all(r["status"] == "ok" for r in group) else "failed"
+    for key in ("seconds", "peak_kb", "frame_ms"):
+        values = [float(r[key]) for r in group if r[key] not in ("", "nan")]
+        row[key] = str(statistics.median(values)) if values else ""
+    rows.append(row)
 cpu = next((l.split(":", 1)[1].strip() for l in open("/proc/cpuinfo") if l.startswith("model name")), "?")
 runs = {}
 for r in rows:
@@ -172,7 +193,7 @@ for r in rows:
 def cell(r, frame=False):
     if r is None or r["status"] != "ok":
         return "failed"
-    text = f'{float(r["seconds"]):.2f} s, {int(r["peak_kb"]) / 1024:.0f} MB'
+    text = f'{float(r["seconds"]):.2f} s, {float(r["peak_kb"]) / 1024:.0f} MB'
     if frame and r["frame_ms"]:
         text += f' ({float(r["frame_ms"]) / 1000:.2f} s frame)'
     return text
@@ -184,7 +205,8 @@ def ratio(r, storm, key):
 
 lines = [
     f"Measured {started} on {os.cpu_count()} cores ({cpu}), GL {gl or '?'}; load average "
-    f"{loadStart} at the start, {loadEnd} at the end; {width} px wide, one run each.",
+    f"{loadStart} at the start, {loadEnd} at the end; {width} px wide, "
+    + ("one run each." if runCount == "1" else f"the median of {runCount} runs each, the renderers in turn."),
     "",
     "| stage (spans) | complexity | Storm via usdrecord | HdHair via usdrecord | hdhair-record "
     "| time HdHair/Storm (usdrecord, hdhair-record) | peak RSS HdHair/Storm (usdrecord, hdhair-record) |",
@@ -216,7 +238,7 @@ for stage, complexity in seen:
         lines.append(f"| {stage} | {complexity} | - | - | - | - |")
         continue
     points, gpu, strands = int(r["authored_points"]), int(r["gpu_bytes"]), int(r["strand_bytes"] or 0)
-    rss = int(r["peak_kb"]) * 1024
+    rss = float(r["peak_kb"]) * 1024
     lines.append(
         f"| {stage} ({points:,}) | {complexity} | {rss / 2**20:.0f} MB | {gpu / 2**20:.1f} MB ({strands / 2**20:.1f} MB) "
         f"| {gpu / points:.0f} ({strands / points:.0f}) | {rss / points:.0f} |")
