@@ -49,9 +49,6 @@ public:
     // none ran. Waits for those draws: call it after the frame's readback.
     uint64_t takeTriangles();
 
-    // The strand programs compiled so far, one a set of features.
-    size_t compiledPrograms() const { return programs_.compiled(); }
-
 private:
     ShadingPrograms programs_;
     const Program* program_ = nullptr;  // setUniforms()'s
