@@ -6,10 +6,10 @@
 // SIMD and pays for every branch whether a fragment takes it or not, so a
 // Kajiya-Kay frame with one deep-opacity light ran the Marschner, SRBF and
 // reference-shadow code too (on the TressFX bear at 1280 px the strand pass
-// took twice as long, and the ids pass three times as long, as with only
-// the code the frame reaches). A feature is on whenever the draw could
-// take its branch, so a specialised program draws exactly what the
-// complete one draws (testShadingFeatures).
+// took 13.0 s and the ids pass 5.7 s, against 2.4 s and 0.9 s with only the
+// code the frame reaches). A feature is on whenever the draw could take its
+// branch, so a specialised program draws exactly what the complete one
+// draws (testShaderSpecialization).
 
 #include <cstdint>
 #include <string>

@@ -8,7 +8,7 @@
 // a frame cannot reach is cut out here rather than branched around. Each
 // switch removes code only where its runtime condition is always false, so
 // a program with a switch on draws exactly what one without it draws
-// (testShadingFeatures).
+// (testShaderSpecialization).
 #ifndef HDHAIR_SHADING_FEATURES
 #define HDHAIR_SHADING_FEATURES 1
 #define HDHAIR_FEATURE_SHADE 1                // 0: the ids pass (drawMode 2) shades nothing
