@@ -4,7 +4,8 @@
 #              share/hdhair/ocio/config.ocio (hdhair-record's OCIO config, found beside bin/)
 #   usdPlugin  plugin/usd/plugInfo.json            (includes */resources/, as OpenUSD's own)
 #              plugin/usd/hdHairSchema/resources/  the HdHairAPI schema (no library)
-#              plugin/usd/hdHair.so, plugin/usd/hdHair/resources/plugInfo.json  (with OpenUSD)
+#              plugin/usd/hdHair.so, plugin/usd/hdHairImageReader.so (dome textures,
+#              loaded on first use), plugin/usd/hdHair/resources/plugInfo.json  (with OpenUSD)
 #
 # so that PXR_PLUGINPATH_NAME=<prefix>/plugin/usd is all a host needs. The
 # engine's static libraries and headers are not installed: hdHair is used

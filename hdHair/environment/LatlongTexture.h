@@ -1,7 +1,8 @@
 #pragma once
-// Reads a DomeLight's latlong texture through OpenImageIO straight onto the
-// coarse grid the SRBF fit uses (RadianceGrid.h), a band of rows at a time:
-// a 16k map never sits in memory whole, only its grid and one band.
+// Reads a DomeLight's latlong texture through OpenImageIO (ImageBandReader.h;
+// the plugin loads it on first use) straight onto the coarse grid the SRBF
+// fit uses (RadianceGrid.h), a band of rows at a time: a 16k map never sits
+// in memory whole, only its grid and one band.
 //
 // - Formats: whatever OpenImageIO reads (EXR, HDR, TIFF, PNG, ...); the
 //   first subimage, its full-resolution level, its data window.
