@@ -7,6 +7,8 @@
 #include "pxr/base/gf/vec4f.h"
 #include "pxr/base/tf/diagnostic.h"
 
+#include "hdHair/hydra/DeferredIds.h"
+
 PXR_NAMESPACE_OPEN_SCOPE
 
 HdHairRenderBuffer::HdHairRenderBuffer(SdfPath const& id) : HdRenderBuffer(id) {}
@@ -30,6 +32,7 @@ bool HdHairRenderBuffer::Allocate(GfVec3i const& dimensions, HdFormat format, bo
 }
 
 void HdHairRenderBuffer::_Deallocate() {
+    SetDeferredIds(nullptr, TfToken(), {});
     _width = _height = 0;
     _format = HdFormatInvalid;
     _data.clear();
@@ -39,8 +42,30 @@ void HdHairRenderBuffer::_Deallocate() {
 }
 
 void* HdHairRenderBuffer::Map() {
+    Resolve();
     ++_mappers;
     return _data.data();
+}
+
+void HdHairRenderBuffer::Resolve() {
+    std::shared_ptr<DeferredIds> deferred;
+    {
+        std::lock_guard<std::mutex> lock(_deferredMutex);
+        deferred = std::move(_deferred);
+        _deferred.reset();
+    }
+    if (!deferred) return;
+    // Left as cleared (-1: nothing) when the ids could not be rendered.
+    hdhair::hydra::writeIdsToBuffer(deferred->Ids(_deferredAov), _deferredWindow, int(_width), int(_height),
+                                    _data.data());
+}
+
+void HdHairRenderBuffer::SetDeferredIds(std::shared_ptr<DeferredIds> deferred, TfToken const& aov,
+                                        hdhair::hydra::DataWindow const& window) {
+    std::lock_guard<std::mutex> lock(_deferredMutex);
+    _deferred = std::move(deferred);
+    _deferredAov = aov;
+    _deferredWindow = window;
 }
 
 void HdHairRenderBuffer::Unmap() { --_mappers; }

@@ -12,11 +12,11 @@
 
 #include "hdHair/hydra/CompositeOver.h"
 #include "hdHair/hydra/DebugCodes.h"
+#include "hdHair/hydra/DeferredIds.h"
 #include "hdHair/hydra/HydraCamera.h"
 #include "hdHair/hydra/RenderBuffer.h"
 #include "hdHair/hydra/RenderDelegate.h"
 #include "hdHair/hydra/RenderParam.h"
-#include "hdHair/render/ProgressiveRenderer.h"
 
 PXR_NAMESPACE_OPEN_SCOPE
 
@@ -94,6 +94,7 @@ void HdHairRenderPass::_Execute(HdRenderPassStateSharedPtr const& renderPassStat
     }
     frame.renderTags = renderTags;
 
+    if (_deferredIds && _deferredIds->WereRead()) _idsRead = true;
     if (!_hasLastFrame || !(frame == _lastFrame)) {
         _lastFrame = frame;
         _hasLastFrame = true;
@@ -110,15 +111,17 @@ void HdHairRenderPass::_Execute(HdRenderPassStateSharedPtr const& renderPassStat
             request.settings.setComplexity(hdhair::hydra::complexityFromRefineLevel(refineLevel));
             request.camera = hdhair::hydra::cameraViewFromHydra(frame.view.data(), frame.projection.data(),
                                                                 dataWindow.GetWidth(), dataWindow.GetHeight());
-            request.ids = wantsIds(bindings);
+            Requested requested{frame.layout, std::nullopt};
+            request.ids = wantsIds(bindings) && _idsRead;
+            if (wantsIds(bindings) && !request.ids) requested.deferredIdsRequest = request;
             _newestRequest = _renderer->submit(std::move(request));
-            _requestLayouts[_newestRequest] = frame.layout;
+            _requests[_newestRequest] = std::move(requested);
         } catch (std::exception const& error) {
             // No GL, say: reported once per change and the buffers left
             // cleared; hosts must not hang waiting for a frame that cannot come.
             TF_RUNTIME_ERROR("hdHair: the frame could not be rendered: %s", error.what());
             _newestRequest = 0;
-            _requestLayouts.clear();
+            _requests.clear();
             _Write(nullptr, bindings);
             _shown = "failed";
             _renderParam->SetProgress({_shown, false, 0, 0, 0, 0, 0});
@@ -140,9 +143,11 @@ void HdHairRenderPass::_TakeFinished(Layout const& current, HdRenderPassAovBindi
     if (!finished) return;
     // Requests older than this one will send nothing more (this one may
     // still send its full frame after a preview).
-    auto layout = _requestLayouts.find(finished->request);
-    const bool fits = layout != _requestLayouts.end() && layout->second == current;
-    _requestLayouts.erase(_requestLayouts.begin(), _requestLayouts.lower_bound(finished->request));
+    auto requested = _requests.find(finished->request);
+    const bool fits = requested != _requests.end() && requested->second.layout == current;
+    std::optional<hdhair::FrameRequest> deferredIdsRequest;
+    if (fits) deferredIdsRequest = std::move(requested->second.deferredIdsRequest);
+    _requests.erase(_requests.begin(), _requests.lower_bound(finished->request));
     // An older view's image is shown while the newest renders, unless the
     // buffers changed since it was asked for.
     if (!fits) return;
@@ -152,7 +157,7 @@ void HdHairRenderPass::_TakeFinished(Layout const& current, HdRenderPassAovBindi
         _Write(nullptr, bindings);
         _shown = "failed";
     } else {
-        hdhair::RenderResult const& result = finished->result;
+        hdhair::RenderResult& result = finished->result;
         // testUsdview reads the full frame's line: keep its form.
         std::string const what =
             final ? std::string("frame")
@@ -164,7 +169,12 @@ void HdHairRenderPass::_TakeFinished(Layout const& current, HdRenderPassAovBindi
                  static_cast<unsigned long long>(result.stats.segments), result.stats.transparency.c_str(),
                  finished->milliseconds);
         if (final) _renderParam->SetLastFrame(result.stats.toJson().dump(), result.plan.describe());
-        _Write(&result, bindings);
+        _deferredIds = nullptr;
+        if (deferredIdsRequest && result.primIds.empty())
+            _deferredIds = std::make_shared<DeferredIds>(_renderParam->GetRenderer(), _renderParam->GetRendererMutex(),
+                                                         _renderParam->GetDiagnostics(),
+                                                         std::move(*deferredIdsRequest));
+        _Write(&result, bindings, _deferredIds);
         _shown = hdhair::toString(finished->quality);
         if (!final) _shownPreview = {finished->previewDivisor, finished->previewCurveStride};
     }
@@ -176,7 +186,8 @@ void HdHairRenderPass::_Settle(HdRenderPassAovBindingVector const& bindings) {
     _converged = true;
 }
 
-void HdHairRenderPass::_Write(hdhair::RenderResult const* result, HdRenderPassAovBindingVector const& bindings) {
+void HdHairRenderPass::_Write(hdhair::RenderResult* result, HdRenderPassAovBindingVector const& bindings,
+                              std::shared_ptr<DeferredIds> const& deferredIds) {
     HdHairRenderBuffer* colorBuffer = colorBufferOf(bindings);
     const int bufferWidth = int(colorBuffer->GetWidth()), bufferHeight = int(colorBuffer->GetHeight());
     GfRect2i const& dataWindow = _lastFrame.layout.dataWindow;
@@ -188,15 +199,18 @@ void HdHairRenderPass::_Write(hdhair::RenderResult const* result, HdRenderPassAo
         hdhair::hydra::BufferFormat format;
         if (!buffer->GetWritableFormat(&format)) continue;
         buffer->Clear(binding.clearValue);
+        buffer->SetDeferredIds(nullptr, TfToken(), window);
         if (!result) continue;
         if (binding.aovName == HdAovTokens->color) {
             // Empty pixels show the host's clear colour (usdview's
             // background): the frame is composited over it.
             GfVec4f clear = binding.clearValue.IsHolding<GfVec4f>() ? binding.clearValue.UncheckedGet<GfVec4f>()
                                                                      : GfVec4f(0.0f);
-            hdhair::Image color = result->color;
-            hdhair::hydra::compositeOver(color, {clear[0], clear[1], clear[2], clear[3]});
-            hdhair::hydra::writeImageToBuffer(color, format, window, bufferWidth, bufferHeight, buffer->GetData());
+            // In place: the result is this pass's to consume, and a copy of
+            // a 1280-pixel frame's colour is 19 MB of memory touched afresh.
+            hdhair::hydra::compositeOver(result->color, {clear[0], clear[1], clear[2], clear[3]});
+            hdhair::hydra::writeImageToBuffer(result->color, format, window, bufferWidth, bufferHeight,
+                                              buffer->GetData());
         } else if (binding.aovName == HdAovTokens->depth) {
             hdhair::hydra::writeImageToBuffer(result->depth, format, window, bufferWidth, bufferHeight,
                                               buffer->GetData());
@@ -205,7 +219,9 @@ void HdHairRenderPass::_Write(hdhair::RenderResult const* result, HdRenderPassAo
                                               : binding.aovName == HdAovTokens->instanceId ? &result->instanceIds
                                               : binding.aovName == HdAovTokens->elementId  ? &result->elementIds
                                                                                            : nullptr;
-            if (ids) hdhair::hydra::writeIdsToBuffer(*ids, window, bufferWidth, bufferHeight, buffer->GetData());
+            if (!ids) continue;
+            if (ids->empty() && deferredIds) buffer->SetDeferredIds(deferredIds, binding.aovName, window);
+            else hdhair::hydra::writeIdsToBuffer(*ids, window, bufferWidth, bufferHeight, buffer->GetData());
         }
     }
 }

@@ -9,11 +9,13 @@
 // copied into the bound render buffers, on the host's thread, so a buffer
 // only ever holds a complete image. The pass and its buffers report
 // converged once the full frame of the newest view is in. A frame whose
-// inputs did not change is not asked for again.
+// inputs did not change is not asked for again. Bound id AOVs are rendered
+// only once a host reads them (DeferredIds.h).
 
 #include <cstdint>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <tuple>
 #include <vector>
@@ -22,13 +24,11 @@
 #include "pxr/base/gf/rect2i.h"
 #include "pxr/imaging/hd/renderPass.h"
 
-namespace hdhair {
-class ProgressiveRenderer;
-struct RenderResult;
-}  // namespace hdhair
+#include "hdHair/render/ProgressiveRenderer.h"
 
 PXR_NAMESPACE_OPEN_SCOPE
 
+class DeferredIds;
 class HdHairRenderDelegate;
 class HdHairRenderParam;
 
@@ -68,8 +68,11 @@ private:
     // they are (`current`), and settles when it is the newest view's full frame.
     void _TakeFinished(Layout const& current, HdRenderPassAovBindingVector const& bindings);
     // Clears the bound buffers and copies a frame's images into them
-    // (nothing more when `result` is null: a failed frame).
-    void _Write(hdhair::RenderResult const* result, HdRenderPassAovBindingVector const& bindings);
+    // (nothing more when `result` is null: a failed frame), compositing its
+    // colour over the host's clear colour in place; id buffers the frame has
+    // no ids for are left to `deferredIds`, when there is one.
+    void _Write(hdhair::RenderResult* result, HdRenderPassAovBindingVector const& bindings,
+                std::shared_ptr<DeferredIds> const& deferredIds = nullptr);
     // The pass and its buffers report converged: the newest view is in.
     void _Settle(HdRenderPassAovBindingVector const& bindings);
 
@@ -79,9 +82,19 @@ private:
     FrameKey _lastFrame;  // the newest request's
     bool _hasLastFrame = false;
     uint64_t _newestRequest = 0;
-    // The layouts of requests whose images may still come: an older view's
-    // image is shown while the newer one renders, if it fits the buffers.
-    std::map<uint64_t, Layout> _requestLayouts;
+    // Requests whose images may still come: an older view's image is shown
+    // while the newer one renders, if it fits the buffers.
+    struct Requested {
+        Layout layout;
+        // The request again, for DeferredIds: when id AOVs are bound and the
+        // frame was asked for without them.
+        std::optional<hdhair::FrameRequest> deferredIdsRequest;
+    };
+    std::map<uint64_t, Requested> _requests;
+    // Whether a host has read the ids of a frame: from then on every frame
+    // renders them with its colour.
+    bool _idsRead = false;
+    std::shared_ptr<DeferredIds> _deferredIds;  // the newest frame's, if deferred
     bool _converged = false;
     std::string _shown = "none";  // what the buffers hold (RenderParam's Progress)
     std::pair<int, int> _shownPreview{0, 0};  // the last preview shown: pixel divisor, curve stride

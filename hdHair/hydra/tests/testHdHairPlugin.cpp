@@ -101,6 +101,7 @@ struct Frame {
     std::vector<int> primIds, instanceIds, elementIds;
     VtDictionary syncCounts;
     std::string frameStats;  // the plugin's last full frame (RenderStats.h), JSON
+    std::string plan;        // and its plan (FrameGraph::describe)
 
     float alpha(int x, int y) const { return color[4 * size_t(y * width + x) + 3]; }
     int instanceId(int x, int y) const { return instanceIds[size_t(y * width + x)]; }
@@ -142,7 +143,9 @@ public:
     // usdview's complexity (1.0 low to 1.3 veryhigh): Storm's refine levels 0 to 3.
     void setComplexity(float complexity) { _complexity = complexity; }
 
-    Frame render(double time = 0.0) {
+    // `readIds`: read the id AOVs too, as a picking host does (the plugin
+    // renders them only once a host reads them).
+    Frame render(double time = 0.0, bool readIds = true) {
         UsdImagingGLRenderParams params;
         params.frame = UsdTimeCode(time);
         params.complexity = _complexity;
@@ -160,13 +163,19 @@ public:
             frame.color.push_back(float(pixels[i]));
         color->Unmap();
         frame.depth = readDepth(_engine.GetAovRenderBuffer(HdAovTokens->depth));
-        frame.primIds = readIds(_engine.GetAovRenderBuffer(HdAovTokens->primId));
-        frame.instanceIds = readIds(_engine.GetAovRenderBuffer(HdAovTokens->instanceId));
-        frame.elementIds = readIds(_engine.GetAovRenderBuffer(HdAovTokens->elementId));
+        if (readIds) readAllIds(frame);
         VtDictionary stats = _engine.GetRenderStats();
         if (stats.count("hdHairSyncCounts")) frame.syncCounts = stats["hdHairSyncCounts"].Get<VtDictionary>();
         if (stats.count("hdHairFrameStats")) frame.frameStats = stats["hdHairFrameStats"].Get<std::string>();
+        if (stats.count("hdHairPlan")) frame.plan = stats["hdHairPlan"].Get<std::string>();
         return frame;
+    }
+
+    // The id AOVs of the frame the buffers hold, read now.
+    void readAllIds(Frame& frame) {
+        frame.primIds = readIds(_engine.GetAovRenderBuffer(HdAovTokens->primId));
+        frame.instanceIds = readIds(_engine.GetAovRenderBuffer(HdAovTokens->instanceId));
+        frame.elementIds = readIds(_engine.GetAovRenderBuffer(HdAovTokens->elementId));
     }
 
     // A render setting, as usdview's Hydra Settings set it.
@@ -248,6 +257,43 @@ TEST_F(HdHairPlugin, OpenImageIOLoadsOnlyForADomeTexture) {
     const nlohmann::json stats = nlohmann::json::parse(domed.frameStats);
     EXPECT_EQ(stats["warnings"].get<int>(), 0);
     EXPECT_GT(totalColor(domed), 1.05 * totalColor(plain));
+}
+
+// Whether the frame rendered ids, as its plan says (RenderPlan.cpp's
+// idsPass: a pass of their own, or written by the strand pass).
+bool renderedIds(Frame const& frame) {
+    EXPECT_NE(frame.plan.find("ids"), std::string::npos) << "no plan: " << frame.plan;
+    return frame.plan.find("no ids asked for") == std::string::npos;
+}
+
+// usdrecord and usdview bind the id AOVs but read them only to pick or to
+// highlight a selection: the plugin renders them when a host first reads
+// them (DeferredIds.h), with the frame's own view, and with every frame after.
+TEST_F(HdHairPlugin, IdsAreRenderedWhenAHostFirstReadsThem) {
+    UsdStageRefPtr stage = twoStrandsStage();
+    Recorder recorder(stage);
+    Frame frame = recorder.render(0.0, /*readIds=*/false);
+    EXPECT_FALSE(renderedIds(frame));
+    recorder.readAllIds(frame);
+    // Every covered pixel of the middle row names the strand over it: /A on
+    // the left half, /B on the right; empty pixels name nothing.
+    const int row = 24;
+    int named = 0;
+    for (int x = 0; x < frame.width; ++x) {
+        const int id = frame.primIds[size_t(row * frame.width + x)];
+        if (frame.alpha(x, row) <= 0.0f) continue;
+        EXPECT_EQ(recorder.primPath(id), SdfPath(x < frame.width / 2 ? "/A" : "/B")) << "pixel " << x;
+        ++named;
+    }
+    EXPECT_GT(named, 2);
+    int empty = 0;
+    for (int id : frame.primIds) empty += id == -1 ? 1 : 0;
+    EXPECT_GT(empty, 0);
+
+    // Read once, the ids come with every frame: the next view renders them.
+    stage->GetPrimAtPath(SdfPath("/Camera")).GetAttribute(TfToken("xformOp:translate")).Set(GfVec3d(0.1, 0, 10));
+    const Frame moved = recorder.render(0.0, /*readIds=*/false);
+    EXPECT_TRUE(renderedIds(moved));
 }
 
 TEST_F(HdHairPlugin, LoadsThroughTheRegistryWithoutBecomingTheDefault) {
