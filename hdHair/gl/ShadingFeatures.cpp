@@ -36,6 +36,7 @@ std::string ShadingFeatures::glsl() const {
     std::string text = "#ifndef HDHAIR_SHADING_FEATURES\n#define HDHAIR_SHADING_FEATURES 1\n";
     for (const ShadingFeatureSwitch& entry : shadingFeatureSwitches())
         text += std::string("#define ") + entry.macro + (has(entry.feature) ? " 1\n" : " 0\n");
+    if (shadowLayers_ > 0) text += "#define HDHAIR_SHADOW_LAYERS " + std::to_string(shadowLayers_) + "\n";
     return text + "#endif\n";
 }
 
@@ -43,7 +44,9 @@ std::string ShadingFeatures::describe() const {
     std::string text;
     for (const ShadingFeatureSwitch& entry : shadingFeatureSwitches())
         if (has(entry.feature)) text += (text.empty() ? "" : " ") + std::string(entry.name);
-    return text.empty() ? "none" : text;
+    if (text.empty()) text = "none";
+    if (shadowLayers_ > 0) text += " shadowLayers=" + std::to_string(shadowLayers_);
+    return text;
 }
 
 ShadingFeatures materialShadingFeatures(const std::vector<GpuHairMaterial>& materials) {
@@ -81,6 +84,7 @@ ShadingFeatures strandShadingFeatures(const FrameUniforms& frame, const LightUni
         // shadows.glsl: no shadow with mode off or a light without a map.
         if (mode == kShadowModeOff || shadows.lightMap[i].x < 0.0f) continue;
         features.add(mode == kShadowModeReference ? ShadingFeature::ShadowReference : ShadingFeature::DeepOpacity);
+        if (mode != kShadowModeReference) features.setShadowLayers(shadows.mode.y);
         if (shadows.occluders.x != 0) features.add(ShadingFeature::MeshOccluders);
         if (shadows.mode.z != 0) features.add(ShadingFeature::BilinearShadows);
         if (srbf)

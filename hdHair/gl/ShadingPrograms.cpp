@@ -7,10 +7,10 @@ namespace hdhair::gl {
 ShadingPrograms::ShadingPrograms(std::vector<std::string> shaderNames) : shaderNames_(std::move(shaderNames)) {}
 
 const Program& ShadingPrograms::get(ShadingFeatures features) {
-    auto found = programs_.find(features.bits());
+    auto found = programs_.find(features.key());
     if (found != programs_.end()) return found->second;
     Program program = createProgram(shaderNames_, {{"include/shadingFeatures.glsl", features.glsl()}});
-    return programs_.emplace(features.bits(), std::move(program)).first->second;
+    return programs_.emplace(features.key(), std::move(program)).first->second;
 }
 
 }  // namespace hdhair::gl

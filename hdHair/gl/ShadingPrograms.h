@@ -24,7 +24,7 @@ public:
 
 private:
     std::vector<std::string> shaderNames_;
-    std::map<uint32_t, Program> programs_;
+    std::map<uint64_t, Program> programs_;  // by ShadingFeatures::key()
 };
 
 }  // namespace hdhair::gl

@@ -8,7 +8,9 @@
 // a frame cannot reach is cut out here rather than branched around. Each
 // switch removes code only where its runtime condition is always false, so
 // a program with a switch on draws exactly what one without it draws
-// (testShaderSpecialization).
+// (testShaderSpecialization). The replacement may also define
+// HDHAIR_SHADOW_LAYERS, the deep opacity maps' layer count, as a constant
+// (shadows.glsl); this file leaves it to the uniform.
 #ifndef HDHAIR_SHADING_FEATURES
 #define HDHAIR_SHADING_FEATURES 1
 #define HDHAIR_FEATURE_SHADE 1                // 0: the ids pass (drawMode 2) shades nothing

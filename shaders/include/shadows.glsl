@@ -43,12 +43,24 @@ int shadowSlot(int i) { return int(shadows.lightMap[i].x); }
 
 float shadowLayerBoundary(int layer) { return shadows.layerBoundaries[layer / 4][layer % 4]; }
 
+// The layer count (mode.y) and the vec4s holding the layers: constants in a
+// program specialised for its frame (HDHAIR_SHADOW_LAYERS, written by
+// hdHair/gl/ShadingFeatures.h), so that up to 4 layers take the straight
+// code below, in registers; the uniform, and room for 32 layers, otherwise.
+#ifdef HDHAIR_SHADOW_LAYERS
+int shadowLayerCount() { return HDHAIR_SHADOW_LAYERS; }
+#define HDHAIR_SHADOW_LAYER_VECTORS ((HDHAIR_SHADOW_LAYERS + 3) / 4)
+#else
+int shadowLayerCount() { return shadows.mode.y; }
+#define HDHAIR_SHADOW_LAYER_VECTORS 8
+#endif
+
 // Opacity at depth d (> 0) behind the nearest hair, from the layers'
 // opacities (4 a vec4, up to 32): linear between layers, the last layer's
 // beyond it. `scale`: d_K, the last layer's depth (lightMap.y).
-float opacityBehindNearestHair(float d, float scale, vec4 targets[8]) {
+float opacityBehindNearestHair(float d, float scale, vec4 targets[HDHAIR_SHADOW_LAYER_VECTORS]) {
     float previousDepth = 0.0, previousOpacity = 0.0;
-    for (int layer = 0; layer < shadows.mode.y; ++layer) {
+    for (int layer = 0; layer < shadowLayerCount(); ++layer) {
         float boundary = shadowLayerBoundary(layer) * scale;
         float opacity = targets[layer / 4][layer % 4];
         if (d < boundary)
@@ -59,16 +71,42 @@ float opacityBehindNearestHair(float d, float scale, vec4 targets[8]) {
     return previousOpacity;
 }
 
+#if HDHAIR_SHADOW_LAYER_VECTORS == 1
+// The same for at most 4 layers in one vec4 (a specialised program), as
+// straight code: no array, whose indexing goes through memory, and no loop.
+// Layers are tried from the last to the first, so the first whose boundary
+// lies beyond d is the one kept; the arithmetic is the loop's above.
+float opacityBehindNearestHair(float d, float scale, vec4 layers) {
+    vec4 boundaries = shadows.layerBoundaries[0] * scale;
+    float opacity = layers[HDHAIR_SHADOW_LAYERS - 1];
+#if HDHAIR_SHADOW_LAYERS > 3
+    if (d < boundaries.w) opacity = mix(layers.z, layers.w, (d - boundaries.z) / max(boundaries.w - boundaries.z, 1e-30));
+#endif
+#if HDHAIR_SHADOW_LAYERS > 2
+    if (d < boundaries.z) opacity = mix(layers.y, layers.z, (d - boundaries.y) / max(boundaries.z - boundaries.y, 1e-30));
+#endif
+#if HDHAIR_SHADOW_LAYERS > 1
+    if (d < boundaries.y) opacity = mix(layers.x, layers.y, (d - boundaries.x) / max(boundaries.y - boundaries.x, 1e-30));
+#endif
+    if (d < boundaries.x) opacity = mix(0.0, layers.x, (d - 0.0) / max(boundaries.x - 0.0, 1e-30));
+    return opacity;
+}
+#endif
+
 // Opacity in front of linear depth z at one texel of light i's deep opacity
 // map: 0 in front of the nearest hair (or where there is none).
 float deepOpacityAt(int i, ivec2 texel, float z) {
     int slot = shadowSlot(i);
     float d = z - texelFetch(shadowDepths, ivec3(texel, slot), 0).r;
     if (d <= 0.0) return 0.0;
-    int targets = (shadows.mode.y + 3) / 4;
-    vec4 layers[8];
+#if HDHAIR_SHADOW_LAYER_VECTORS == 1
+    return opacityBehindNearestHair(d, shadows.lightMap[i].y, texelFetch(shadowOpacity, ivec3(texel, slot), 0));
+#else
+    int targets = (shadowLayerCount() + 3) / 4;
+    vec4 layers[HDHAIR_SHADOW_LAYER_VECTORS];
     for (int t = 0; t < targets; ++t) layers[t] = texelFetch(shadowOpacity, ivec3(texel, slot * targets + t), 0);
     return opacityBehindNearestHair(d, shadows.lightMap[i].y, layers);
+#endif
 }
 
 // The convolution optical depth map of Ren et al. 2010 §5 (digest §4.3-4.4),
@@ -83,12 +121,16 @@ float convolvedOpacityAt(int i, vec2 position, ivec2 texel, float z, float radiu
     int slot = shadowSlot(i);
     float d = z - texelFetch(shadowDepths, ivec3(texel, slot), 0).r;
     if (d <= 0.0) return 0.0;
-    int targets = (shadows.mode.y + 3) / 4;
     float lod = log2(2.0 * radius);
     vec2 uv = position / float(shadows.mode.w);
-    vec4 layers[8];
+#if HDHAIR_SHADOW_LAYER_VECTORS == 1
+    return opacityBehindNearestHair(d, shadows.lightMap[i].y, textureLod(shadowOpacity, vec3(uv, float(slot)), lod));
+#else
+    int targets = (shadowLayerCount() + 3) / 4;
+    vec4 layers[HDHAIR_SHADOW_LAYER_VECTORS];
     for (int t = 0; t < targets; ++t) layers[t] = textureLod(shadowOpacity, vec3(uv, float(slot * targets + t)), lod);
     return opacityBehindNearestHair(d, shadows.lightMap[i].y, layers);
+#endif
 }
 
 // The reference: every fragment of the texel nearer than z, exactly what

@@ -36,6 +36,10 @@ std::vector<SpecializationCase> specializationCases() {
     return {
         {"KajiyaKayWithDeepOpacity", shadowed, {"shadowMapResolution=128"}},
         {"NearestDeepOpacity", shadowed, {"shadowFilter=nearest", "shadowMapResolution=128"}},
+        // The layer count compiled in: one vec4 (1 to 4 layers) and arrays of them.
+        {"OneShadowLayer", shadowed, {"shadowLayers=1", "shadowMapResolution=128"}},
+        {"SevenShadowLayers", shadowed, {"shadowLayers=7", "shadowMapResolution=128"}},
+        {"SevenLayersUnderSrbfLobes", domeLit, {"shadowLayers=7", "shadowMapResolution=128"}},
         {"ReferenceShadows", shadowed, {"shadowMode=reference", "shadowMapResolution=128"}},
         {"LocalLightsInBatchesUnderAnAmbientDome", "testenv/cases/lights_9/stage.usda",
          {"domeLighting=ambient", "shadowMapResolution=128"}},

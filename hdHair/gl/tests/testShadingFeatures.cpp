@@ -148,6 +148,29 @@ TEST(ShadingFeatures, EachUniformConditionTurnsOnItsFeature) {
                                        ShadingFeature::DeepOpacity, ShadingFeature::SrbfShadowMipmap}));
 }
 
+// Where a deep opacity map is read, its layer count is compiled in: a
+// program of its own per count, named in the stats.
+TEST(ShadingFeatures, ADeepOpacityLookupCompilesItsLayerCountIn) {
+    Draw deep;
+    deep.shadows.mode = glm::ivec4(kShadowModeDeepOpacity, 3, 1, 512);
+    deep.shadows.lightMap[0].x = 0.0f;
+    const ShadingFeatures three = deep.features();
+    EXPECT_EQ(three.shadowLayers(), 3);
+    EXPECT_NE(three.glsl().find("#define HDHAIR_SHADOW_LAYERS 3\n"), std::string::npos);
+    EXPECT_EQ(three.describe(), "shade deepOpacity bilinearShadows shadowLayers=3");
+    deep.shadows.mode.y = 7;
+    EXPECT_NE(deep.features(), three);
+    EXPECT_NE(deep.features().key(), three.key());
+
+    Draw reference = deep;  // the fragment lists have no layers
+    reference.shadows.mode.x = kShadowModeReference;
+    EXPECT_EQ(reference.features().shadowLayers(), 0);
+    Draw off = deep;
+    off.shadows.mode.x = kShadowModeOff;
+    EXPECT_EQ(off.features().shadowLayers(), 0);
+    EXPECT_EQ(ShadingFeatures::all().glsl().find("HDHAIR_SHADOW_LAYERS"), std::string::npos);
+}
+
 TEST(ShadingFeatures, EveryProgramOneSwitchFromAllOrWithOneAloneCompiles) {
     GlRenderThread thread(GlBackend::Egl);
     thread.run([] {
@@ -158,6 +181,13 @@ TEST(ShadingFeatures, EveryProgramOneSwitchFromAllOrWithOneAloneCompiles) {
                 if (other.feature != entry.feature) allBut.add(other.feature);
             sets.push_back(allBut);
             sets.push_back(only({ShadingFeature::Shade, entry.feature}));
+        }
+        // Layer counts compiled in: one vec4, its edges, and arrays of them.
+        for (int layers : {1, 2, 3, 4, 5, 8, 32}) {
+            sets.push_back(ShadingFeatures::all().setShadowLayers(layers));
+            sets.push_back(only({ShadingFeature::Shade, ShadingFeature::KajiyaKay, ShadingFeature::DeepOpacity,
+                                 ShadingFeature::BilinearShadows})
+                               .setShadowLayers(layers));
         }
         for (const char* fragment : {"strand.frag", "strandFragmentList.frag"}) {
             ShadingPrograms programs({"strand.vert", "strand.tesc", "strand.tese", "strand.geom", fragment});
