@@ -146,7 +146,9 @@ void HdHairRenderPass::_TakeFinished(Layout const& current, HdRenderPassAovBindi
     auto requested = _requests.find(finished->request);
     const bool fits = requested != _requests.end() && requested->second.layout == current;
     std::optional<hdhair::FrameRequest> deferredIdsRequest;
-    if (fits) deferredIdsRequest = std::move(requested->second.deferredIdsRequest);
+    // Copied, not moved: a preview and its full frame share the request
+    // (the scene's prims are shared, so the copy is cheap).
+    if (fits) deferredIdsRequest = requested->second.deferredIdsRequest;
     _requests.erase(_requests.begin(), _requests.lower_bound(finished->request));
     // An older view's image is shown while the newest renders, unless the
     // buffers changed since it was asked for.

@@ -104,12 +104,14 @@ public:
     }
 
     // Renders until converged, pausing between renders as usdview does.
-    Images renderUntilConverged() {
+    // `readIds`: read the primId AOV too, as a picking host does (the plugin
+    // renders ids only once a host reads them).
+    Images renderUntilConverged(bool readIds = true) {
         while (!step()) std::this_thread::sleep_for(std::chrono::milliseconds(5));
-        return read();
+        return read(readIds);
     }
 
-    Images read() {
+    Images read(bool readIds = true) {
         Images images;
         HdRenderBuffer* color = buffer(HdAovTokens->color);
         GfHalf const* pixels = static_cast<GfHalf const*>(color->Map());
@@ -120,6 +122,7 @@ public:
         float const* depths = static_cast<float const*>(depth->Map());
         images.depth.assign(depths, depths + size_t(depth->GetWidth()) * depth->GetHeight());
         depth->Unmap();
+        if (!readIds) return images;
         HdRenderBuffer* primId = buffer(HdAovTokens->primId);
         int const* ids = static_cast<int const*>(primId->Map());
         images.primIds.assign(ids, ids + size_t(primId->GetWidth()) * primId->GetHeight());
@@ -200,6 +203,30 @@ TEST_F(HydraProgressiveRendering, ANewViewConvergesOnlyWithItsFullFrameWhichFoll
     EXPECT_TRUE(host.step());
     EXPECT_EQ(host.count("hdHairFullFrames"), 2);
     EXPECT_EQ(host.count("hdHairPreviews"), 1);
+}
+
+// Ids read only after a new view's preview and full frame are in (a host
+// that picks once the view has settled) are the full frame's, as a host
+// without previews renders them.
+TEST_F(HydraProgressiveRendering, IdsReadAfterAPreviewAreThoseOfTheFullFrame) {
+    UsdStageRefPtr stage = wavyFieldStage(300);
+    GfVec2i const size(160, 120);
+    GfVec3d const first(0, 0, 10), second(0.2, 0.1, 10);
+    // The same two views, as the test above renders them.
+    Images expected;
+    {
+        Host withoutPreviews(stage, 0, size);
+        withoutPreviews.renderUntilConverged();
+        placeCamera(stage, second);
+        expected = withoutPreviews.renderUntilConverged();
+    }
+    placeCamera(stage, first);
+    Host host(stage, 1, size);
+    host.renderUntilConverged(/*readIds=*/false);
+    placeCamera(stage, second);
+    host.renderUntilConverged(/*readIds=*/false);
+    EXPECT_EQ(host.count("hdHairPreviews"), 1);
+    expectIdentical(host.read(), expected);
 }
 
 TEST_F(HydraProgressiveRendering, ACameraMoveStopsTheFullFrameInFlightAndEndsOnTheNewView) {
