@@ -167,6 +167,60 @@ float shadowTransmittanceAt(int i, ivec2 texel, float z, bool meshesOcclude) {
     return exp(-shadows.extinction.x * opacity);
 }
 
+#if HDHAIR_SHADOW_LAYER_VECTORS == 1 && !HDHAIR_FEATURE_SHADOW_REFERENCE
+// opacityBehindNearestHair for four texels at once: the same arithmetic,
+// lane by lane.
+vec4 opacityBehindNearestHair(vec4 d, float scale, vec4 layer0, vec4 layer1, vec4 layer2, vec4 layer3) {
+    vec4 boundaries = shadows.layerBoundaries[0] * scale;
+    vec4 layers[4] = vec4[4](layer0, layer1, layer2, layer3);
+    vec4 opacity = layers[HDHAIR_SHADOW_LAYERS - 1];
+#if HDHAIR_SHADOW_LAYERS > 3
+    opacity = mix(opacity, mix(layer2, layer3, (d - boundaries.z) / max(boundaries.w - boundaries.z, 1e-30)),
+                  lessThan(d, vec4(boundaries.w)));
+#endif
+#if HDHAIR_SHADOW_LAYERS > 2
+    opacity = mix(opacity, mix(layer1, layer2, (d - boundaries.y) / max(boundaries.z - boundaries.y, 1e-30)),
+                  lessThan(d, vec4(boundaries.z)));
+#endif
+#if HDHAIR_SHADOW_LAYERS > 1
+    opacity = mix(opacity, mix(layer0, layer1, (d - boundaries.x) / max(boundaries.y - boundaries.x, 1e-30)),
+                  lessThan(d, vec4(boundaries.y)));
+#endif
+    opacity = mix(opacity, mix(vec4(0.0), layer0, (d - 0.0) / max(boundaries.x - 0.0, 1e-30)),
+                  lessThan(d, vec4(boundaries.x)));
+    return opacity;
+}
+
+// shadowTransmittanceAt (deep opacity maps) at the 2 x 2 texels from
+// `base`, in textureGather's order: (0,1), (1,1), (1,0), (0,0). One gather
+// fetches the four texels' nearest hair and one each layer, where the
+// texel-by-texel lookup fetches 8 times (its bilinear filter is a third of
+// the bear's strand pass on llvmpipe); the values and arithmetic are the
+// same. Gathered at the corner the four texels share, where the gather's
+// footprint is exactly them whatever its rounding; texels off the map,
+// which the edge clamp repeats, get no shadow.
+vec4 gatheredTransmittances(int i, ivec2 base, float z, bool meshesOcclude) {
+    float slot = float(shadowSlot(i));
+    vec3 at = vec3(vec2(base + 1) / float(shadows.mode.w), slot);
+    ivec4 x = base.x + ivec4(0, 1, 1, 0), y = base.y + ivec4(1, 1, 0, 0);
+    int last = shadows.mode.w - 1;
+    bvec4 outside = greaterThan(ivec4(notEqual(clamp(x, 0, last), x)) + ivec4(notEqual(clamp(y, 0, last), y)), ivec4(0));
+    vec4 d = z - textureGather(shadowDepths, at, 0);
+    vec4 layer0 = textureGather(shadowOpacity, at, 0);
+    vec4 layer1 = HDHAIR_SHADOW_LAYERS > 1 ? textureGather(shadowOpacity, at, 1) : vec4(0.0);
+    vec4 layer2 = HDHAIR_SHADOW_LAYERS > 2 ? textureGather(shadowOpacity, at, 2) : vec4(0.0);
+    vec4 layer3 = HDHAIR_SHADOW_LAYERS > 3 ? textureGather(shadowOpacity, at, 3) : vec4(0.0);
+    vec4 opacity = opacityBehindNearestHair(d, shadows.lightMap[i].y, layer0, layer1, layer2, layer3);
+    opacity = mix(opacity, vec4(0.0), lessThanEqual(d, vec4(0.0)));
+    vec4 transmittance = exp(-shadows.extinction.x * opacity);
+#if HDHAIR_FEATURE_MESH_OCCLUDERS
+    if (meshesOcclude && shadows.occluders.x != 0)
+        transmittance = mix(transmittance, vec4(0.0), greaterThan(vec4(z), textureGather(shadowMeshDepths, at, 0)));
+#endif
+    return mix(transmittance, vec4(1.0), outside);
+}
+#endif
+
 // The fraction of light i that reaches `point`: a point on a strand's
 // centre line (`meshesOcclude` true) or on a mesh (false). Bias: one texel's
 // world size, so that where the camera's tessellation and the light's
@@ -190,11 +244,16 @@ float shadowTransmittanceFrom(int i, vec3 point, bool meshesOcclude) {
     vec2 corner = position - 0.5;
     ivec2 base = ivec2(floor(corner));
     vec2 w = corner - vec2(base);
+#if HDHAIR_SHADOW_LAYER_VECTORS == 1 && !HDHAIR_FEATURE_SHADOW_REFERENCE
+    vec4 t = gatheredTransmittances(i, base, z, meshesOcclude);  // (0,1), (1,1), (1,0), (0,0)
+    return mix(mix(t.w, t.z, w.x), mix(t.x, t.y, w.x), w.y);
+#else
     float t00 = shadowTransmittanceAt(i, base, z, meshesOcclude);
     float t10 = shadowTransmittanceAt(i, base + ivec2(1, 0), z, meshesOcclude);
     float t01 = shadowTransmittanceAt(i, base + ivec2(0, 1), z, meshesOcclude);
     float t11 = shadowTransmittanceAt(i, base + ivec2(1, 1), z, meshesOcclude);
     return mix(mix(t00, t10, w.x), mix(t01, t11, w.x), w.y);
+#endif
 #else
     return shadowTransmittanceAt(i, ivec2(floor(position)), z, meshesOcclude);  // shadowFilter=nearest
 #endif
