@@ -27,8 +27,10 @@ void main() {
     float z0 = texelFetch(shadowDepths, ivec3(ivec2(gl_FragCoord.xy), slot), 0).r;
     float d = shadowLinearDepth(0, worldPosition) - z0;
     float scale = shadows.lightMap[0].y;
-    int layers = shadows.mode.y;
-    for (int target = 0; target < 8; ++target) {
+    // A constant in the program ShadowMapPass compiles (shadows.glsl), so
+    // that only the targets there are get written.
+    int layers = shadowLayerCount();
+    for (int target = 0; target < HDHAIR_SHADOW_LAYER_VECTORS; ++target) {
         vec4 value = vec4(0.0);
         for (int c = 0; c < 4; ++c) {
             int layer = 4 * target + c;

@@ -3,7 +3,9 @@
 // section 2.7 implemented them) into its slot of gl::ShadowMapStorage: the
 // nearest hair per texel (shadowDepth.frag, min-blended linear depth), then
 // every fragment's alpha added into the layers behind it (deepOpacity.frag,
-// additive blending into up to 8 RGBA16F draw buffers). Both passes draw the
+// additive blending into up to 8 RGBA16F draw buffers; its program is
+// compiled for the layer count, so that it adds into only the layers there
+// are). Both passes draw the
 // strands the camera draws, through the light's view (LightViewDraw). Meshes
 // add a third: the nearest mesh per texel (meshShadowDepth.frag), the opaque
 // occluders strands test against.
@@ -15,6 +17,7 @@
 #include "hdHair/gl/MeshGeometry.h"
 #include "hdHair/gl/MeshPass.h"
 #include "hdHair/gl/SegmentRange.h"
+#include "hdHair/gl/ShadingPrograms.h"
 #include "hdHair/gl/ShadowMapStorage.h"
 #include "hdHair/gl/StrandGeometry.h"
 #include "hdHair/gl/UniformBlocks.h"
@@ -23,7 +26,9 @@ namespace hdhair::gl {
 
 class ShadowMapPass {
 public:
-    ShadowMapPass();  // compiles both programs; throws on driver errors
+    // Compiles the depth program, the opacity program on first use for each
+    // layer count; both throw on driver errors.
+    ShadowMapPass();
 
     // `light` names the light as entry 0 (its slot, view and layers).
     void renderDepth(ShadowMapStorage& storage, const StrandGeometry& geometry, const std::vector<SegmentRange>& ranges,
@@ -36,7 +41,8 @@ public:
                          const ShadowUniforms& light);
 
 private:
-    Program depthProgram_, opacityProgram_;
+    Program depthProgram_;
+    ShadingPrograms opacityPrograms_;  // every part, with the layer count compiled in
     LightViewDraw draw_;
 };
 
