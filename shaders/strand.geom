@@ -4,6 +4,7 @@
 // camera-facing quad, two triangles: its ends are the tessellated points
 // offset half the drawn width to either side.
 #include "include/frameUniforms.glsl"
+#include "include/shadingFeatures.glsl"
 
 layout(lines) in;
 layout(triangle_strip, max_vertices = 4) out;
@@ -21,6 +22,10 @@ layout(location = 2) out vec4 colorAlpha;  // displayColor, opacity x coverage
 layout(location = 3) flat out ivec4 ids;   // primId, elementId, material, segment
 layout(location = 4) out float spanU;      // where on the span: per-point hair parameters
 layout(location = 5) out vec3 strandCentre;  // the centre line under this point: where shadows are looked up
+#ifdef HDHAIR_VERTEX_SHADOWS
+layout(location = 6) in vec4 tesTransmittance[][HDHAIR_VERTEX_SHADOW_VECTORS];
+layout(location = 6) out vec4 vertexTransmittance[HDHAIR_VERTEX_SHADOW_VECTORS];  // strandShading.glsl
+#endif
 
 void main() {
     for (int end = 0; end < 2; ++end) {
@@ -32,6 +37,9 @@ void main() {
             ids = tesIds[end];
             spanU = tesSpanU[end];
             strandCentre = tesCentre[end];
+#ifdef HDHAIR_VERTEX_SHADOWS
+            vertexTransmittance = tesTransmittance[end];
+#endif
             gl_Position = frame.viewProjection * vec4(position, 1.0);
             EmitVertex();
         }

@@ -8,7 +8,8 @@
 // Both follow projected size: strands far away or seen end-on cost few. The
 // tessellation view is the camera's (or the camera the shadow maps were built
 // with, hdHair/render/TessellationView.h) in every pass, light views
-// included, so each view draws the same curve. Culling is per view: spans
+// included, so each view draws the same curve (vertex shadows cut the
+// camera's long spans finer, below). Culling is per view: spans
 // wholly outside this pass's frustum get no line (outer level 0), which discards them.
 #include "include/frameUniforms.glsl"
 
@@ -139,6 +140,14 @@ void main() {
             level = ceil(pixels / frame.pixelsPerSegment);
         }
         level = clamp(level, 1.0, frame.maxSegmentsPerSpan);
+        // Vertex shadows: no segment longer than frame.shadowSegmentLength,
+        // bounded by the control polygon's length, which bounds the span's;
+        // beyond maxSegmentsPerSpan if need be, up to 64 (the least
+        // GL_MAX_TESS_GEN_LEVEL GL allows).
+        if (frame.shadowSegmentLength > 0.0) {
+            float polygon = distance(hull[0], hull[1]) + distance(hull[1], hull[2]) + distance(hull[2], hull[3]);
+            level = max(level, min(ceil(polygon / frame.shadowSegmentLength), 64.0));
+        }
     }
     if (culled) level = 0.0;
 

@@ -9,6 +9,14 @@
 // of n segments; this makes 2n triangles from n + 1 evaluations, and on
 // llvmpipe, which tessellates on one thread, the geometry is the serial part.
 //
+// With vertex shadows (shadowSampling=vertex; HDHAIR_VERTEX_SHADOWS, which
+// only the camera's strand programs define, is how many of the pass's lights
+// have a map, counted to the last) it also looks up their deep opacity maps
+// at the point: every lookup is taken
+// on the centre line, so across the ribbon it is the same anyway, and along
+// the segment the fragments interpolate it. One lookup a point instead of
+// one a fragment, which on llvmpipe was most of the strand pass's shading.
+//
 // Sub-pixel coverage (Svoboda 2012, section 1.2.3): a strand whose projected
 // width is below frame.minPixelWidth is drawn that wide instead, with its
 // alpha scaled by true width / drawn width, so thin hair fades with distance
@@ -16,6 +24,12 @@
 #include "include/frameUniforms.glsl"
 #include "include/catmullRom.glsl"
 #include "include/strandGeometry.glsl"
+#include "include/shadingFeatures.glsl"
+#ifdef HDHAIR_VERTEX_SHADOWS
+#include "include/lights.glsl"
+#include "include/shadowFragmentLists.glsl"
+#include "include/shadows.glsl"
+#endif
 
 layout(isolines, equal_spacing) in;
 
@@ -29,6 +43,9 @@ layout(location = 2) out vec3 tesTangent;
 layout(location = 3) out vec4 tesColorAlpha;  // displayColor, opacity x coverage
 layout(location = 4) flat out ivec4 tesIds;   // primId, elementId, material, segment
 layout(location = 5) out float tesSpanU;
+#ifdef HDHAIR_VERTEX_SHADOWS
+layout(location = 6) out vec4 tesTransmittance[HDHAIR_VERTEX_SHADOW_VECTORS];  // 4 lights a vec4, at the centre line
+#endif
 
 void main() {
     float u = gl_TessCoord.x;
@@ -73,4 +90,10 @@ void main() {
     int segment = tcsSegment[0];
     tesIds = ivec4(segmentPrimAndInstance(segment).x, segmentCurve[segment], segmentMaterial(segment), segment);
     tesSpanU = u;
+#ifdef HDHAIR_VERTEX_SHADOWS
+    for (int v = 0; v < HDHAIR_VERTEX_SHADOW_VECTORS; ++v) tesTransmittance[v] = vec4(1.0);
+    for (int i = 0; i < HDHAIR_VERTEX_SHADOWS; ++i)
+        tesTransmittance[i / 4][i % 4] =
+            isSrbfLight(i) ? srbfShadowTransmittance(i, tesCentre) : shadowTransmittance(i, tesCentre);
+#endif
 }

@@ -7,6 +7,7 @@
 
 #include <array>
 
+#include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
 
 #include "hdHair/curves/PreparedCurves.h"
@@ -30,6 +31,17 @@ inline std::array<float, 4> catmullRomDerivativeWeights(float u) {
             4.5f * u2 - 5.0f * u,
             -4.5f * u2 + 4.0f * u + 0.5f,
             1.5f * u2 - 1.0f * u};
+}
+
+// The length of a segment's Bezier control polygon B0 = C1,
+// B1 = C1 + (C2 - C0)/6, B2 = C2 - (C3 - C1)/6, B3 = C2, which bounds the
+// segment's length (the curve lies in the polygon's hull; strand.tesc cuts
+// by the same bound).
+inline float bezierPolygonLength(const StrandControlPoint* controls) {
+    const glm::vec3 b0 = controls[1].position, b3 = controls[2].position;
+    const glm::vec3 b1 = b0 + (controls[2].position - controls[0].position) / 6.0f;
+    const glm::vec3 b2 = b3 - (controls[3].position - controls[1].position) / 6.0f;
+    return glm::length(b1 - b0) + glm::length(b2 - b1) + glm::length(b3 - b2);
 }
 
 // Position, width, colour and opacity of a segment (4 consecutive controls) at u.

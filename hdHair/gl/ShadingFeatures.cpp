@@ -37,6 +37,10 @@ std::string ShadingFeatures::glsl() const {
     for (const ShadingFeatureSwitch& entry : shadingFeatureSwitches())
         text += std::string("#define ") + entry.macro + (has(entry.feature) ? " 1\n" : " 0\n");
     if (shadowLayers_ > 0) text += "#define HDHAIR_SHADOW_LAYERS " + std::to_string(shadowLayers_) + "\n";
+    if (vertexShadowLights_ > 0) {
+        text += "#define HDHAIR_VERTEX_SHADOWS " + std::to_string(vertexShadowLights_) + "\n";
+        text += "#define HDHAIR_VERTEX_SHADOW_VECTORS " + std::to_string((vertexShadowLights_ + 3) / 4) + "\n";
+    }
     return text + "#endif\n";
 }
 
@@ -46,6 +50,7 @@ std::string ShadingFeatures::describe() const {
         if (has(entry.feature)) text += (text.empty() ? "" : " ") + std::string(entry.name);
     if (text.empty()) text = "none";
     if (shadowLayers_ > 0) text += " shadowLayers=" + std::to_string(shadowLayers_);
+    if (vertexShadowLights_ > 0) text += " vertexShadows=" + std::to_string(vertexShadowLights_);
     return text;
 }
 
@@ -91,6 +96,20 @@ ShadingFeatures strandShadingFeatures(const FrameUniforms& frame, const LightUni
             features.add(shadows.occluders.y != 0 ? ShadingFeature::SrbfShadowMipmap : ShadingFeature::SrbfShadowTaps);
     }
     return features;
+}
+
+}  // namespace hdhair::gl
+
+namespace hdhair::gl {
+
+int vertexShadowLights(const LightUniforms& lights, const ShadowUniforms& shadows) {
+    if (shadows.mode.x != kShadowModeDeepOpacity) return 0;
+    const int count = std::min(std::max(lights.lightCount.x, 0), kMaxLightsPerPass);
+    int looked = 0;
+    for (int i = 0; i < count; ++i) {
+        if (shadows.lightMap[i].x >= 0.0f) looked = i + 1;
+    }
+    return looked;
 }
 
 }  // namespace hdhair::gl

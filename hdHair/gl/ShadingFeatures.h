@@ -66,23 +66,49 @@ public:
     }
     int shadowLayers() const { return shadowLayers_; }
 
-    // What tells one program from another: the switches and the layer count.
-    uint64_t key() const { return uint64_t(bits_) | (uint64_t(uint32_t(shadowLayers_)) << 32); }
+    // Deep opacity lookups at the tessellated points instead of per fragment
+    // (shadowSampling=vertex): strand.tese looks up the pass's first
+    // `lights` lights (0: none, per fragment) at each point of the centre
+    // line, where the fragment lookup is taken too, and the fragments
+    // interpolate the transmittance along the segment. Not a switch cutting
+    // out a branch: it changes what is drawn, so the complete program takes
+    // it as well. Compiled in as HDHAIR_VERTEX_SHADOWS, the light count (and
+    // HDHAIR_VERTEX_SHADOW_VECTORS, the vec4s holding them), which the file
+    // as it stands leaves undefined: the light views, which write the maps,
+    // never read them.
+    ShadingFeatures& setVertexShadowLights(int lights) {
+        vertexShadowLights_ = lights;
+        return *this;
+    }
+    int vertexShadowLights() const { return vertexShadowLights_; }
+
+    // What tells one program from another: the switches, the layer count and
+    // where shadows are looked up.
+    uint64_t key() const {
+        return uint64_t(bits_) | (uint64_t(uint32_t(shadowLayers_)) << 32) |
+               (uint64_t(uint32_t(vertexShadowLights_)) << 48);
+    }
     bool operator==(const ShadingFeatures& other) const { return key() == other.key(); }
     bool operator!=(const ShadingFeatures& other) const { return key() != other.key(); }
 
     // The replacement of include/shadingFeatures.glsl: every switch defined,
-    // 1 for the features held and 0 for the rest, and HDHAIR_SHADOW_LAYERS
-    // when the layer count is set.
+    // 1 for the features held and 0 for the rest, HDHAIR_SHADOW_LAYERS when
+    // the layer count is set and HDHAIR_VERTEX_SHADOWS with vertex shadows.
     std::string glsl() const;
     // The features held, by name ("kajiyaKay deepOpacity"), or "none"; then
-    // "shadowLayers=N" when the count is set.
+    // "shadowLayers=N" when the count is set and "vertexShadows=N".
     std::string describe() const;
 
 private:
     uint32_t bits_ = 0;
     int shadowLayers_ = 0;
+    int vertexShadowLights_ = 0;
 };
+
+// How many lights of a strand draw with these uniforms vertex shadows look
+// up: up to the last that reads a deep opacity map (0: none; a draw of
+// reference shadows, whose lookups are always per fragment, neither).
+int vertexShadowLights(const LightUniforms& lights, const ShadowUniforms& shadows);
 
 // Every switch: its feature, its GLSL macro and the name describe() uses.
 struct ShadingFeatureSwitch {

@@ -40,8 +40,15 @@ struct FrameUniforms {  // binding 0, shaders/include/frameUniforms.glsl
     // columns: screenError tessellation measures colour in the space colours
     // are authored in, so the geometry does not depend on renderingSpace.
     glm::vec4 colorToRec709[3] = {{1, 0, 0, 0}, {0, 1, 0, 0}, {0, 0, 1, 0}};
+    // Vertex shadows (shadowSampling=vertex): the longest a segment may be,
+    // world units, in the camera's passes, so that the transmittance
+    // interpolated along it resolves the finest shadow map
+    // (vertexShadowSegmentLength in hdHair/render/ShadowPassUniforms.h); 0:
+    // no limit, and in the light views.
+    float shadowSegmentLength = 0.0f;
+    float padding[3] = {0.0f, 0.0f, 0.0f};
 };
-static_assert(sizeof(FrameUniforms) == 256, "std140 layout of FrameUniforms");
+static_assert(sizeof(FrameUniforms) == 272, "std140 layout of FrameUniforms");
 
 struct LightUniforms {  // binding 1, shaders/include/lights.glsl
     glm::vec4 lightVector[kMaxLightsPerPass]{};

@@ -95,13 +95,16 @@ void meshUpload(FrameContext& context) {
 
 // The parts of the strand shading a draw with these uniforms can reach
 // (hdHair/gl/ShadingFeatures.h); all of them with specializeShaders off.
-// Each set the frame uses is named once in the stats.
+// Either way its deep opacity lookups are taken per point with
+// shadowSampling=vertex. Each set the frame uses is named once in the stats.
 gl::ShadingFeatures strandFeatures(FrameContext& context, const gl::FrameUniforms& frame,
                                    const gl::LightUniforms& lights, const gl::ShadowUniforms& shadows) {
-    const gl::ShadingFeatures features =
+    gl::ShadingFeatures features =
         context.inputs.settings->getBool("specializeShaders")
             ? gl::strandShadingFeatures(frame, lights, shadows, context.resources.materials.features())
             : gl::ShadingFeatures::all();
+    if (context.plan.shadows.perVertex && frame.drawMode != 2)
+        features.setVertexShadowLights(gl::vertexShadowLights(lights, shadows));
     std::vector<std::string>& named = context.result.stats.strandShaders;
     const std::string name = features.describe();
     if (std::find(named.begin(), named.end(), name) == named.end()) named.push_back(name);

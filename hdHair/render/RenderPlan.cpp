@@ -15,6 +15,16 @@
 
 namespace hdhair {
 
+double StrandSummary::meanSegmentsOfAtMost(double length) const {
+    double cut = 0.0;
+    uint64_t spans = 0;
+    for (const std::vector<float>* lengths : spanLengths) {
+        for (float span : *lengths) cut += std::isfinite(span) ? std::max(1.0, std::ceil(span / length)) : 1.0;
+        spans += lengths->size();
+    }
+    return spans > 0 ? cut / double(spans) : 0.0;
+}
+
 const char* toString(TransparencyPath path) {
     switch (path) {
     case TransparencyPath::Opaque: return "opaque";
@@ -89,6 +99,48 @@ std::vector<FrameResource> strandReads(TransparencyPath path, std::vector<FrameR
     return reads;
 }
 
+// Where the deep opacity maps are looked up (shadowSampling). Vertex shadows
+// interpolate each light's transmittance along a segment, and a map
+// resolves it to a texel: what matters is how far apart the points are in
+// the finest map's texels (a texel at the casters' nearest depth for a
+// perspective light), so spans longer than kVertexShadowTexels of it are cut
+// to that length (FrameUniforms::shadowSegmentLength), beyond the error
+// rule's cut. vertex always does this, which on stages of long spans costs
+// many segments; auto only when that cut alone would average at most
+// kVertexShadowSegmentsPerSpan segments a span (real grooms: the TressFX
+// bear's and Ratboy's spans, which the error rule cuts about as finely
+// anyway), else looks up per fragment; fragment, and reference shadows,
+// always per fragment.
+void planShadowSampling(ShadowPlan& shadows, const std::string& sampling, const StrandSummary& strands) {
+    double finestTexel = 0.0;
+    for (const PlannedShadow& shadow : shadows.lights) {
+        if (!shadow.view.valid) continue;
+        const double texel =
+            shadow.view.texelSize * (shadow.view.orthographic ? 1.0 : std::max(shadow.view.nearDepth, 1e-6));
+        if (texel > 0.0 && (finestTexel == 0.0 || texel < finestTexel)) finestTexel = texel;
+    }
+    const double longest = kVertexShadowTexels * finestTexel;
+    shadows.perVertex = false;
+    shadows.vertexSegmentLength = 0.0;
+    shadows.sampling.clear();
+    if (shadows.mode != ShadowMode::DeepOpacity || longest <= 0.0) return;
+    const double segments = strands.meanSegmentsOfAtMost(longest);
+    const std::string counted = fmt::format("spans cut to {} texels of the finest map ({:.3g}) would average {:.2f} "
+                                            "segments",
+                                            kVertexShadowTexels, longest, segments);
+    if (sampling == "fragment") {
+        shadows.sampling = "shadows looked up per fragment (shadowSampling=fragment)";
+    } else if (sampling == "vertex" || segments <= kVertexShadowSegmentsPerSpan) {
+        shadows.perVertex = true;
+        shadows.vertexSegmentLength = longest;
+        shadows.sampling = fmt::format("shadows looked up per tessellated point: {} (shadowSampling={})", counted,
+                                       sampling);
+    } else {
+        shadows.sampling = fmt::format("shadows looked up per fragment: {}, over {} (shadowSampling=auto)", counted,
+                                       kVertexShadowSegmentsPerSpan);
+    }
+}
+
 // The shadow settings, and a planned shadow for every light that casts one
 // (its view fitted to the casters, or why it cannot be).
 void planShadows(RenderPlan& plan, const RenderSettings& settings, const StrandSummary& strands, bool anyMeshes) {
@@ -128,6 +180,7 @@ void planShadows(RenderPlan& plan, const RenderSettings& settings, const StrandS
         }
         shadows.lights.push_back(std::move(shadow));
     }
+    planShadowSampling(shadows, settings.getToken("shadowSampling"), strands);
     if (shadows.mode == ShadowMode::DeepOpacity && settings.getToken("domeShadowFilter") == "mipmap")
         for (size_t i = 0; i < plan.lights.lights.size() && !shadows.convolvedOpacity; ++i)
             shadows.convolvedOpacity = plan.lights.lights[i].isSrbf() && shadows.shadowOf(i) >= 0;
@@ -440,6 +493,7 @@ RenderPlan makeRenderPlan(const Scene& scene, const RenderSettings& settings, co
                                                          plan.cameraLight ? " incl. the camera light" : "");
     if (!plan.flatShading)
         for (const PlannedDome& dome : plan.domes) shading += "; " + dome.describe(perPass);
+    if (!plan.flatShading && !plan.shadows.sampling.empty()) shading += "; " + plan.shadows.sampling;
     std::string multisampling =
         plan.msaaSamples > 0 ? fmt::format(", {}x MSAA", plan.msaaSamples) : std::string();
     // The strand pass writes ids itself where it can keep the nearest

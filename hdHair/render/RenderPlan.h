@@ -41,11 +41,22 @@ struct StrandSummary {
     size_t perPointPrims = 0;    // prims whose hair parameters vary per curve or vertex
     size_t analyticPrims = 0;    // Marschner prims shaded with per-fragment azimuthal terms
     CasterBounds casters;        // what casts shadows: every drawn strand
+    // Each drawn prim's span lengths (Bezier control polygons).
+    std::vector<const std::vector<float>*> spanLengths;
+    // The segments a span would get on average if each were cut into pieces
+    // no longer than `length` by its control polygon (at least 1 each).
+    double meanSegmentsOfAtMost(double length) const;
 };
 
 // How lights shadow the hair (the shadowMode setting).
 enum class ShadowMode { DeepOpacity, Reference, Off };
 const char* toString(ShadowMode mode);
+
+// shadowSampling: vertex shadows' points at most this many texels of the
+// finest map apart, and the most segments a span that cut may average for
+// auto to take vertex shadows (planShadowSampling).
+constexpr double kVertexShadowTexels = 2.0;
+constexpr double kVertexShadowSegmentsPerSpan = 4.0;
 
 // A light that casts shadows (ShadingLight::castsShadow) in this frame.
 struct PlannedShadow {
@@ -64,6 +75,12 @@ struct ShadowPlan {
     std::vector<float> boundaries;  // d_k / d_K (DeepOpacityLayers.h)
     double layerDepth = 1.0;       // shadowLayerDepth: d_K over the casters' depth range
     bool bilinear = true;          // shadowFilter
+    // Deep opacity lookups at the tessellated points (shadowSampling), and
+    // the longest a segment may be for them (world units; 0: the error
+    // rule's cut): planShadows decides both.
+    bool perVertex = false;
+    double vertexSegmentLength = 0.0;
+    std::string sampling;  // which, and why, for --explain; empty without deep opacity maps
     int resolution = 512;          // shadowMapResolution
     double minPixelWidth = 1.0;    // the coverage rule in the light's pixels, whatever the camera's path
     int capacity = 0;              // map slots the storage holds (set by the renderer)

@@ -127,6 +127,13 @@ const std::vector<SettingDescriptor>& RenderSettings::descriptors() {
          "Shadow lookup: nearest (one texel, as in the thesis) or bilinear (transmittance of the four nearest "
          "texels, each against its own nearest depth, weighted bilinearly)",
          0, 0, {"nearest", "bilinear"}},
+        {"shadowSampling", SettingType::Token, "auto",
+         "Where deep opacity maps are looked up: vertex (each light's transmittance at the tessellated points of "
+         "the strand's centre line, where every lookup is taken, interpolated along each segment; spans cut to "
+         "2 texels of the finest map, up to 64 segments), fragment (at every fragment), or auto (vertex when "
+         "every span is within 2 texels of the finest map, as in real grooms, else fragment). Reference shadows "
+         "are always looked up per fragment (README, Shadows)",
+         0, 0, {"auto", "vertex", "fragment"}},
         {"domeLighting", SettingType::Token, "srbf",
          "How DomeLights light the frame: srbf (a textured dome as domeLights Gaussian SRBF lights, each "
          "convolved with the fibre model by table, Ren et al. 2010; an untextured dome as the exact integral of "

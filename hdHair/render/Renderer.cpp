@@ -14,6 +14,7 @@
 #include <tbb/parallel_for.h>
 
 #include "hdHair/base/Diagnostics.h"
+#include "hdHair/curves/CatmullRomEvaluation.h"
 #include "hdHair/gl/GlRenderThread.h"
 #include "hdHair/gl/GpuMemory.h"
 #include "hdHair/render/BinSort.h"
@@ -22,6 +23,7 @@
 #include "hdHair/render/InteractivePreview.h"
 #include "hdHair/render/NearestStrandRule.h"
 #include "hdHair/render/SettingOrigins.h"
+#include "hdHair/render/ShadowPassUniforms.h"
 #include "hdHair/render/SupersampleResolve.h"
 #include "hdHair/scene/Scene.h"
 #include "hdHair/scene/MeshPrim.h"
@@ -59,6 +61,7 @@ gl::FrameUniforms frameUniforms(const CameraView& camera, const RenderSettings& 
     frame.tessellationViewProjection = glm::mat4(tessellation.viewProjection);
     const glm::mat3 toRec709 = glm::inverse(rec709To(settings.renderingSpace()));
     for (int column = 0; column < 3; ++column) frame.colorToRec709[column] = glm::vec4(toRec709[column], 0.0f);
+    frame.shadowSegmentLength = float(plan.shadows.vertexSegmentLength);
     return frame;
 }
 
@@ -68,7 +71,7 @@ std::string shadowSettingsKey(const RenderSettings& settings) {
     std::string key;
     for (const char* name : {"shadowMode", "shadowLayers", "shadowMapResolution", "shadowLayerSpacing",
                              "shadowLayerDepth", "minPixelWidth", "tessellation", "tessellationTolerance",
-                             "pixelsPerSegment", "maxSegmentsPerSpan"})
+                             "pixelsPerSegment", "maxSegmentsPerSpan", "shadowSampling"})
         key += settings.getToken(name) + ";";
     return key;
 }
@@ -188,9 +191,12 @@ void Renderer::prepareChangedCurves(const Scene& scene, const RenderSettings& se
             cached.fullyOpaque = cached.fullyOpaque && point.opacity == 1.0f;
             if (std::isfinite(point.width)) cached.maxWidth = std::max(cached.maxWidth, point.width);
         }
+        cached.spanLengths.clear();
+        cached.spanLengths.reserve(prepared->segmentCount());
         for (size_t s = 0; s < prepared->segmentCount(); ++s) {
             const StrandControlPoint* controls = prepared->spanControls(s);
             cached.minSpanWidth = std::min({cached.minSpanWidth, controls[1].width, controls[2].width});
+            cached.spanLengths.push_back(bezierPolygonLength(controls));
         }
         cached.sortHashes = segmentSortHashes(*prepared);
         cached.prepared = std::move(prepared);
@@ -504,6 +510,7 @@ RenderResult Renderer::renderSamples(const Scene& scene, const CameraView& camer
         casters.min = first ? low : glm::min(casters.min, low);
         casters.max = first ? high : glm::max(casters.max, high);
         casters.maxWidth = std::max(casters.maxWidth, double(cached.maxWidth));
+        summary.spanLengths.push_back(&cached.spanLengths);
         curveCount += cached.prepared->curveCount;
         stats.authoredPoints += entry.prim->points.size();
     }

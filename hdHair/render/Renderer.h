@@ -151,6 +151,9 @@ private:
         std::shared_ptr<const PreparedCurves> prepared;
         float minSpanWidth = 0.0f;  // thinnest width at any span end
         float maxWidth = 0.0f;      // widest control point (shadow views' margins)
+        // Every span's Bezier control polygon length, which bounds the span's
+        // (shadowSampling=auto).
+        std::vector<float> spanLengths;
         bool fullyOpaque = true;    // every control point's opacity is exactly 1
         // The prim's material, resolved once per version and material
         // settings (hairMaterialSettingsKey), and its per-point parameters.

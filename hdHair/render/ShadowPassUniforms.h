@@ -16,4 +16,5 @@ gl::ShadowUniforms lightShadowUniforms(const RenderPlan& plan, size_t shadow);
 // the coverage rule at plan.shadows.minPixelWidth, unordered.
 gl::FrameUniforms lightViewFrameUniforms(const RenderPlan& plan, size_t shadow, const gl::FrameUniforms& camera);
 
+
 }  // namespace hdhair

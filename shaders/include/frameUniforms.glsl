@@ -31,6 +31,9 @@ layout(std140, binding = 0) uniform FrameUniforms {
     // From the rendering space back to linear Rec.709: screenError
     // tessellation measures colour as authored, whatever renderingSpace.
     mat3 colorToRec709;
+    // Vertex shadows: the longest a segment may be, world units, in the
+    // camera's passes (strand.tesc); 0: no limit (and in the light views).
+    float shadowSegmentLength;
 } frame;
 
 // Whether a blended fragment of this alpha may give its pixel depth and ids.

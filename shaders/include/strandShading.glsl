@@ -5,14 +5,35 @@
 // (first pass only) the dome's ambient or uniform term. SRBF lights of a
 // dome read their material's convolution table (srbfLighting.glsl). Each
 // light's irradiance is scaled by its shadow transmittance at the strand's
-// centre line `centre` (the same for Kajiya-Kay and Marschner; the ambient
-// and uniform dome terms are not shadowed). `segment`
-// and `u` locate the fragment on its span, for parameters that vary along
-// the prim.
+// centre line `centre`, or as strand.tese looked it up there with vertex
+// shadows (the same for Kajiya-Kay and Marschner; the ambient and uniform
+// dome terms are not shadowed). `segment` and `u` locate the fragment on its
+// span, for parameters that vary along the prim.
 // Needs frameUniforms.glsl, lights.glsl, kajiyaKay.glsl, marschner.glsl,
 // marschnerAnalytic.glsl, catmullRom.glsl, hairMaterials.glsl,
 // shadowFragmentLists.glsl, shadows.glsl and srbfLighting.glsl, after
 // shadingFeatures.glsl, whose switches cut out what the frame does not use.
+#ifdef HDHAIR_VERTEX_SHADOWS
+// The pass's first HDHAIR_VERTEX_SHADOWS lights as strand.tese looked them
+// up at the segment's ends, 4 a vec4, interpolated along it
+// (shadowSampling=vertex); the lights after them have no map. Selected, not
+// indexed, and no per-fragment lookup compiled at all: llvmpipe would run it
+// masked anyway.
+layout(location = 6) in vec4 vertexTransmittance[HDHAIR_VERTEX_SHADOW_VECTORS];
+float strandShadowTransmittance(int i, vec3 centre) {
+#if HDHAIR_VERTEX_SHADOW_VECTORS == 1
+    vec4 four = vertexTransmittance[0];
+#else
+    vec4 four = vertexTransmittance[clamp(i / 4, 0, HDHAIR_VERTEX_SHADOW_VECTORS - 1)];
+#endif
+    return i < HDHAIR_VERTEX_SHADOWS ? dot(four, vec4(equal(ivec4(i % 4), ivec4(0, 1, 2, 3)))) : 1.0;
+}
+float strandSrbfShadowTransmittance(int i, vec3 centre) { return strandShadowTransmittance(i, centre); }
+#else
+float strandShadowTransmittance(int i, vec3 centre) { return shadowTransmittance(i, centre); }
+float strandSrbfShadowTransmittance(int i, vec3 centre) { return srbfShadowTransmittance(i, centre); }
+#endif
+
 vec3 strandRadiance(vec3 worldPosition, vec3 centre, vec3 worldTangent, vec3 hairColor, int materialIndex, int segment,
                     float u) {
     HairShading shading = hairShadingAt(materialIndex, segment, u);
@@ -40,14 +61,14 @@ vec3 strandRadiance(vec3 worldPosition, vec3 centre, vec3 worldTangent, vec3 hai
 #if HDHAIR_FEATURE_SRBF_LIGHTS
         if (isSrbfLight(i)) {
             vec3 lobe = srbfLightRadiance(i, materialIndex, shading, absorption, t, e, hairColor);
-            if (any(greaterThan(lobe, vec3(0.0)))) radiance += lobe * srbfShadowTransmittance(i, centre);
+            if (any(greaterThan(lobe, vec3(0.0)))) radiance += lobe * strandSrbfShadowTransmittance(i, centre);
             continue;
         }
 #endif
         vec3 l;
         vec3 irradiance = lightIrradiance(i, worldPosition, l);
         if (all(equal(irradiance, vec3(0.0)))) continue;  // unlit here: no shadow lookup
-        irradiance *= shadowTransmittance(i, centre);
+        irradiance *= strandShadowTransmittance(i, centre);
 #if HDHAIR_FEATURE_MARSCHNER_TABLED || HDHAIR_FEATURE_MARSCHNER_ANALYTIC
 #if HDHAIR_FEATURE_KAJIYA_KAY
         if (shading.model == 2) {

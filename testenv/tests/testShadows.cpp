@@ -31,15 +31,17 @@ Primvar constant(const std::string& name, std::vector<float> values) {
     return authoredPrimvar(name, Interpolation::Constant, tupleSize, std::move(values));
 }
 
-// Straight white strands along X from x = -0.95 to 0.95, at (y, z) each.
-CurvesPrim strandsAlongX(const std::string& path, const std::vector<glm::vec2>& yz, float width, float opacity) {
+// Straight white strands along X from x = `from` to `to` (one span each), at
+// (y, z) each.
+CurvesPrim strandsAlongX(const std::string& path, const std::vector<glm::vec2>& yz, float width, float opacity,
+                         float from = -0.95f, float to = 0.95f) {
     CurvesPrim prim;
     prim.path = path;
     prim.type = CurveType::Linear;
     for (const glm::vec2& p : yz) {
         prim.curveVertexCounts.push_back(2);
-        prim.points.push_back({-0.95f, p.x, p.y});
-        prim.points.push_back({0.95f, p.x, p.y});
+        prim.points.push_back({from, p.x, p.y});
+        prim.points.push_back({to, p.x, p.y});
     }
     prim.primvars["widths"] = constant("widths", {width});
     prim.primvars["displayColor"] = constant("displayColor", {1.0f, 1.0f, 1.0f});
@@ -284,6 +286,95 @@ TEST(Shadows, KajiyaKayAndMarschnerAreShadowedAlike) {
     }
     EXPECT_LT(transmittances[0], 0.6);
     EXPECT_NEAR(transmittances[0], transmittances[1], 1e-3);
+}
+
+// Vertex shadows (shadowSampling=vertex, the default) look each light up at
+// the tessellated points and interpolate along the segment. A long straight
+// strand is one segment by the error rule, so its points are cut no more
+// than a texel of the map apart: here half of it lies under a block of hair
+// that shadows the light from above, the other half in the open, and it must
+// show the same edge per fragment and per point. A second light from below
+// reaches all of it: each light keeps its own transmittance.
+TEST(Shadows, VertexShadowsFollowAShadowsEdgeAlongALongStraightStrand) {
+    Scene scene;
+    std::vector<glm::vec2> block;
+    // 10 layers in y, each of 41 strands 0.02 wide every 0.01 in z: every
+    // texel column over the strand meets hair in every layer.
+    for (int i = 0; i < 410; ++i)
+        block.push_back({0.3f + 0.7f * float(i % 10) / 9.0f, -0.2f + 0.4f * float(i / 10) / 40.0f});
+    scene.setCurves(strandsAlongX("/block", block, 0.02f, 0.6f, -0.95f, 0.0f));
+    scene.setCurves(strandsAlongX("/strand", {{-0.5f, 0.0f}}, 0.08f, 1.0f));
+    scene.setLight(distantLightFrom({0.0, 1.0, 0.0}, "/above"));
+    scene.setLight(distantLightFrom({0.0, -1.0, 0.0}, "/below", 1.0f));
+    const CameraView camera = orthographicView(2.4, 64);
+    const RenderResult perPoint = render(scene, camera, {"shadowSampling=vertex", "shadowMapResolution=128"});
+    const RenderResult perFragment = render(scene, camera, {"shadowSampling=fragment", "shadowMapResolution=128"});
+    const RenderResult unshadowed = render(scene, camera, {"shadowMode=off"});
+    ASSERT_FALSE(perPoint.stats.strandShaders.empty());
+    ASSERT_FALSE(perFragment.stats.strandShaders.empty());
+    EXPECT_NE(perPoint.stats.strandShaders.front().find("vertexShadows"), std::string::npos);
+    EXPECT_EQ(perFragment.stats.strandShaders.front().find("vertexShadows"), std::string::npos);
+
+    // The strand's rows (y = -0.5, 2 pixels wide): its colour per column
+    // over its colour unshadowed.
+    auto transmittanceAt = [&](const RenderResult& result, int column) {
+        double shadowed = 0.0, lit = 0.0;
+        for (int row = 0; row < 64; ++row) {
+            if (std::abs(rowHeight(row, 64) + 0.5) > 0.05) continue;
+            for (int c = 0; c < 3; ++c) {
+                shadowed += result.color.at(column, row, c);
+                lit += unshadowed.color.at(column, row, c);
+            }
+        }
+        return lit > 0.0 ? shadowed / lit : -1.0;
+    };
+    int checked = 0;
+    double worst = 0.0;
+    for (int column = 4; column < 60; ++column) {
+        const double x = -1.2 + (column + 0.5) * 2.4 / 64.0;
+        // The edge: the block's end at x = 0, blurred by a texel (0.016) of
+        // the bilinear lookup either way, and 3 pixels of margin.
+        if (std::abs(x) < 0.12 || std::abs(x) > 0.9) continue;
+        const double fragment = transmittanceAt(perFragment, column), vertex = transmittanceAt(perPoint, column);
+        ASSERT_GE(fragment, 0.0) << "column " << column << " misses the strand";
+        if (x < -0.2) {
+            EXPECT_LT(fragment, 0.75) << "x " << x << ": the block shadows the light from above";
+        } else if (x > 0.2) {
+            EXPECT_NEAR(fragment, 1.0, 1e-3) << "x " << x << ": both lights reach the strand";
+        }
+        EXPECT_NEAR(vertex, fragment, 0.01) << "x " << x;
+        worst = std::max(worst, std::abs(vertex - fragment));
+        ++checked;
+    }
+    std::printf("largest |T per point - T per fragment| along the strand: %.4f over %d columns\n", worst, checked);
+    EXPECT_GT(checked, 30);
+}
+
+// shadowSampling=auto takes vertex shadows where cutting every span to 2
+// texels of the map would average at most 4 segments a span, as on real
+// grooms, and looks up per fragment where the spans are long: the slab's
+// strands are one span each across the whole map; the same strands as 200
+// spans each are short. The frame says which, and why.
+TEST(Shadows, AutoSamplingTakesVertexShadowsOnlyWhereTheSpansAreShort) {
+    const CameraView camera = orthographicView(2.4, 48);
+    auto sampledPerPoint = [&](const Scene& scene) {
+        const RenderResult result = render(scene, camera, {"shadowMapResolution=128"});
+        EXPECT_NE(result.stats.plan.dump().find("shadowSampling=auto"), std::string::npos);
+        return !result.stats.strandShaders.empty() &&
+               result.stats.strandShaders.front().find("vertexShadows") != std::string::npos;
+    };
+    EXPECT_FALSE(sampledPerPoint(slabScene(200))) << "one span across the map";
+    Scene shortSpans = slabScene(200);
+    CurvesPrim slab = *shortSpans.curves().at("/slab").prim;
+    CurvesPrim split = slab;
+    split.curveVertexCounts.assign(slab.curveVertexCounts.size(), 201);
+    split.points.clear();
+    for (size_t curve = 0; curve < slab.curveVertexCounts.size(); ++curve) {
+        const glm::vec3 from = slab.points[2 * curve], to = slab.points[2 * curve + 1];
+        for (int k = 0; k <= 200; ++k) split.points.push_back(from + (to - from) * (float(k) / 200.0f));
+    }
+    shortSpans.setCurves(split);
+    EXPECT_TRUE(sampledPerPoint(shortSpans)) << "200 spans a strand";
 }
 
 TEST(Shadows, LightsBeyondTheFirstBatchKeepTheirMaps) {

@@ -171,6 +171,42 @@ TEST(ShadingFeatures, ADeepOpacityLookupCompilesItsLayerCountIn) {
     EXPECT_EQ(ShadingFeatures::all().glsl().find("HDHAIR_SHADOW_LAYERS"), std::string::npos);
 }
 
+// Vertex shadows (shadowSampling=vertex) are asked for by the frame, not
+// read from the uniforms: a program of their own per count of lights looked
+// up (to the last with a deep opacity map), named in the stats.
+TEST(ShadingFeatures, VertexShadowsAreAProgramOfTheirOwn) {
+    Draw deep;
+    deep.shadows.mode = glm::ivec4(kShadowModeDeepOpacity, 3, 1, 512);
+    deep.shadows.lightMap[0].x = 0.0f;
+    EXPECT_EQ(vertexShadowLights(deep.lights, deep.shadows), 1);
+    const ShadingFeatures perFragment = deep.features();
+    ShadingFeatures perPoint = perFragment;
+    perPoint.setVertexShadowLights(1);
+    EXPECT_NE(perPoint.key(), perFragment.key());
+    EXPECT_NE(perPoint.key(), ShadingFeatures(perFragment).setVertexShadowLights(2).key());
+    EXPECT_NE(perPoint.glsl().find("#define HDHAIR_VERTEX_SHADOWS 1\n"), std::string::npos);
+    EXPECT_EQ(perFragment.glsl().find("HDHAIR_VERTEX_SHADOWS"), std::string::npos);
+    EXPECT_EQ(ShadingFeatures::all().glsl().find("HDHAIR_VERTEX_SHADOWS"), std::string::npos);
+    EXPECT_EQ(perPoint.describe(), "shade deepOpacity bilinearShadows shadowLayers=3 vertexShadows=1");
+
+    Draw six;  // six lights, the fifth (index 4) the last with a map
+    six.shadows.mode = deep.shadows.mode;
+    six.lights.lightCount.x = 6;
+    for (glm::vec4& map : six.shadows.lightMap) map.x = -1.0f;
+    six.shadows.lightMap[1].x = 0.0f;
+    six.shadows.lightMap[4].x = 1.0f;
+    EXPECT_EQ(vertexShadowLights(six.lights, six.shadows), 5);
+    ShadingFeatures five = perFragment;
+    five.setVertexShadowLights(5);
+    EXPECT_NE(five.glsl().find("#define HDHAIR_VERTEX_SHADOW_VECTORS 2\n"), std::string::npos);
+    Draw none = deep;  // no light with a map: nothing to look up
+    none.shadows.lightMap[0].x = -1.0f;
+    EXPECT_EQ(vertexShadowLights(none.lights, none.shadows), 0);
+    Draw reference = deep;  // the reference is looked up per fragment
+    reference.shadows.mode.x = kShadowModeReference;
+    EXPECT_EQ(vertexShadowLights(reference.lights, reference.shadows), 0);
+}
+
 TEST(ShadingFeatures, EveryProgramOneSwitchFromAllOrWithOneAloneCompiles) {
     GlRenderThread thread(GlBackend::Egl);
     thread.run([] {
@@ -188,6 +224,14 @@ TEST(ShadingFeatures, EveryProgramOneSwitchFromAllOrWithOneAloneCompiles) {
             sets.push_back(only({ShadingFeature::Shade, ShadingFeature::KajiyaKay, ShadingFeature::DeepOpacity,
                                  ShadingFeature::BilinearShadows})
                                .setShadowLayers(layers));
+        }
+        // Vertex shadows for 1 to 16 lights, over every part and over one light's.
+        for (int lights : {1, 2, 3, 4, 5, 8, 9, 16}) {
+            sets.push_back(ShadingFeatures::all().setVertexShadowLights(lights));
+            sets.push_back(only({ShadingFeature::Shade, ShadingFeature::KajiyaKay, ShadingFeature::DeepOpacity,
+                                 ShadingFeature::BilinearShadows})
+                               .setShadowLayers(3)
+                               .setVertexShadowLights(lights));
         }
         for (const char* fragment : {"strand.frag", "strandFragmentList.frag"}) {
             ShadingPrograms programs({"strand.vert", "strand.tesc", "strand.tese", "strand.geom", fragment});

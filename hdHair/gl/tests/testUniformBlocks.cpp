@@ -60,6 +60,7 @@ const std::vector<Block>& blocks() {
              {"tessellationViewport", offsetof(FrameUniforms, tessellationViewport)},
              {"tessellationViewProjection", offsetof(FrameUniforms, tessellationViewProjection), 0, 1, kVec4},
              {"colorToRec709", offsetof(FrameUniforms, colorToRec709), 0, 1, kVec4},
+             {"shadowSegmentLength", offsetof(FrameUniforms, shadowSegmentLength)},
          }},
         {GL_UNIFORM_BLOCK, GL_UNIFORM, "LightUniforms", "LightUniforms.", sizeof(LightUniforms), false,
          {
