@@ -9,13 +9,13 @@
 // of n segments; this makes 2n triangles from n + 1 evaluations, and on
 // llvmpipe, which tessellates on one thread, the geometry is the serial part.
 //
-// With vertex shadows (shadowSampling=vertex; HDHAIR_VERTEX_SHADOWS, which
-// only the camera's strand programs define, is how many of the pass's lights
-// have a map, counted to the last) it also looks up their deep opacity maps
-// at the point: every lookup is taken
-// on the centre line, so across the ribbon it is the same anyway, and along
-// the segment the fragments interpolate it. One lookup a point instead of
-// one a fragment, which on llvmpipe was most of the strand pass's shading.
+// With vertex shadows (shadowSampling; HDHAIR_VERTEX_SHADOWS, which only the
+// camera's strand programs define, is how many of the pass's lights have a
+// map, counted to the last) it also looks up their deep opacity maps at the
+// point: every lookup is taken on the centre line, so across the ribbon it
+// is the same anyway, and along the segment the fragments interpolate it.
+// One lookup a point instead of one a fragment, which on llvmpipe was most
+// of the strand pass's shading.
 //
 // Sub-pixel coverage (Svoboda 2012, section 1.2.3): a strand whose projected
 // width is below frame.minPixelWidth is drawn that wide instead, with its

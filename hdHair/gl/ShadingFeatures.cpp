@@ -98,17 +98,12 @@ ShadingFeatures strandShadingFeatures(const FrameUniforms& frame, const LightUni
     return features;
 }
 
-}  // namespace hdhair::gl
-
-namespace hdhair::gl {
-
 int vertexShadowLights(const LightUniforms& lights, const ShadowUniforms& shadows) {
     if (shadows.mode.x != kShadowModeDeepOpacity) return 0;
     const int count = std::min(std::max(lights.lightCount.x, 0), kMaxLightsPerPass);
     int looked = 0;
-    for (int i = 0; i < count; ++i) {
+    for (int i = 0; i < count; ++i)
         if (shadows.lightMap[i].x >= 0.0f) looked = i + 1;
-    }
     return looked;
 }
 

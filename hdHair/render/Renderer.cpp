@@ -23,7 +23,6 @@
 #include "hdHair/render/InteractivePreview.h"
 #include "hdHair/render/NearestStrandRule.h"
 #include "hdHair/render/SettingOrigins.h"
-#include "hdHair/render/ShadowPassUniforms.h"
 #include "hdHair/render/SupersampleResolve.h"
 #include "hdHair/scene/Scene.h"
 #include "hdHair/scene/MeshPrim.h"
@@ -562,6 +561,7 @@ RenderResult Renderer::renderSamples(const Scene& scene, const CameraView& camer
     for (const auto& [path, cached] : curves_) {
         stats.cpuBytes["preparedCurves"] += cached.prepared ? cached.prepared->heldBytes() : 0;
         stats.cpuBytes["sortHashes"] += cached.sortHashes.capacity() * sizeof(uint16_t);
+        stats.cpuBytes["spanLengths"] += cached.spanLengths.capacity() * sizeof(float);
         stats.cpuBytes["hairParameterPoints"] += cached.parameterPoints.capacity() * sizeof(glm::vec4);
     }
     std::string failure;

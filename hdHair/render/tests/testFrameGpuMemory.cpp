@@ -98,11 +98,12 @@ TEST(FrameGpuMemory, ACatmullRomGroomTakesAtMost64BytesAnAuthoredPoint) {
         EXPECT_LE(bytes, 64u * stats.authoredPoints) << points << " points a strand";
         // The same on the CPU beyond the parsed stage: the prepared curves
         // (controls, and per segment its first control and curve), the sort
-        // hashes and the frame's draw order.
+        // hashes, the span lengths and the frame's draw order.
         const uint64_t segments = 50u * uint64_t(points - 3);
         const auto cpu = [&](const char* use) { return stats.cpuBytes.count(use) ? stats.cpuBytes.at(use) : 0u; };
         EXPECT_EQ(cpu("preparedCurves"), kControlPointBytes * 50u * uint64_t(points) + 8u * segments);
         EXPECT_EQ(cpu("sortHashes"), 2u * segments);
+        EXPECT_EQ(cpu("spanLengths"), 4u * segments);
         EXPECT_EQ(cpu("drawOrder"), 4u * segments);
         EXPECT_EQ(cpu("hairParameterPoints"), 0u);
         EXPECT_LE(stats.toJson()["cpuMemory"]["total"].get<uint64_t>(), 64u * stats.authoredPoints);
