@@ -5,8 +5,8 @@
 // (world units along the light's viewing direction), min-blended into an
 // R32F layer cleared to HDHAIR_NO_HAIR, so drawing order does not matter.
 // The strands come through strand.vert/.tesc/.tese with the light view's
-// frame uniforms: ribbons facing the light, the camera's tessellation, the
-// same sub-pixel coverage rule in the light's pixels. The light is entry 0
+// frame uniforms: ribbons facing the light, tessellated and covered by the
+// same rules in the light's pixels. The light is entry 0
 // of the shadow uniforms.
 #include "include/shadingFeatures.glsl"
 #include "include/frameUniforms.glsl"

@@ -5,12 +5,12 @@
 // polyline within frame.tessellationTolerance pixels of the curve, so a
 // straight span is one quad however long it is and only bends cost segments;
 // or (projectedLength) one segment every pixelsPerSegment projected pixels.
-// Both follow projected size: strands far away or seen end-on cost few. The
-// tessellation view is the camera's (or the camera the shadow maps were built
-// with, hdHair/render/TessellationView.h) in every pass, light views
-// included, so each view draws the same curve (vertex shadows cut the
-// camera's long spans finer, below). Culling is per view: spans
-// wholly outside this pass's frustum get no line (outer level 0), which discards them.
+// Both follow projected size in the pass's own view: strands far away or
+// seen end-on cost few, and a light view cuts by its map's texels
+// (lightViewFrameUniforms, hdHair/render/ShadowPassUniforms.cpp). Vertex
+// shadows cut the camera's long spans finer (below). Culling is per view:
+// spans wholly outside this pass's frustum get no line (outer level 0),
+// which discards them.
 #include "include/frameUniforms.glsl"
 
 layout(vertices = 4) out;
@@ -22,9 +22,9 @@ layout(location = 0) out vec4 tcsPositionWidth[];
 layout(location = 1) out vec4 tcsColorOpacity[];
 layout(location = 2) flat out int tcsSegment[];
 
-vec2 toTessellationPixels(vec4 clip) { return (clip.xy / clip.w * 0.5 + 0.5) * frame.tessellationViewport; }
+vec2 toPixels(vec4 clip) { return (clip.xy / clip.w * 0.5 + 0.5) * frame.viewportSize; }
 
-// The largest factor by which the tessellation view stretches a world-space
+// The largest factor by which the pass's view stretches a world-space
 // length anywhere in the convex hull whose clip positions are `clip` (all in
 // front: w > 0), in pixels a world unit. At a point, pixels move by
 // J = diag(viewport / 2) * (A_xy - ndc (x) A_w) / w for a world step, A the
@@ -33,10 +33,10 @@ vec2 toTessellationPixels(vec4 clip) { return (clip.xy / clip.w * 0.5 + 0.5) * f
 // map of a convex polytope), and |J| is convex in ndc: its largest value is at
 // a corner of that box, over the least w.
 float hullStretch(vec4 clip[4]) {
-    mat4 m = frame.tessellationViewProjection;
+    mat4 m = frame.viewProjection;
     vec3 rowX = vec3(m[0][0], m[1][0], m[2][0]), rowY = vec3(m[0][1], m[1][1], m[2][1]);
     vec3 rowW = vec3(m[0][3], m[1][3], m[2][3]);
-    vec2 halfViewport = 0.5 * frame.tessellationViewport;
+    vec2 halfViewport = 0.5 * frame.viewportSize;
     float minW = clip[0].w;
     vec2 ndcMin = clip[0].xy / clip[0].w, ndcMax = ndcMin;
     for (int i = 1; i < 4; ++i) {
@@ -66,6 +66,10 @@ const float kAttributeTolerance = 1.0 / 2048.0;
 // most h^2 / 8 * max|C''| from it; a cubic Bezier's C''(t) = 6((1 - t) d0 + t d1)
 // with d0 = B0 - 2 B1 + B2 and d1 = B1 - 2 B2 + B3, so n equal steps stray at
 // most 0.75 max(|d0|, |d1|) / n^2 world units, at most `stretch` pixels each.
+// The world-unit bound holds in every direction, depth included: a light
+// view's polyline stays within the tolerance of a texel's world size of the
+// curve along the light too, where its map's depths are (shadows.glsl's bias
+// relies on it, and the camera's points lie on the same curve).
 float screenErrorLevel(vec3 hull[4], float widthHull[4], vec4 clip[4]) {
     // The ribbon's edges lie half a width to either side of the centre line:
     // their chords stray by at most the centre's error plus half the width's.
@@ -110,15 +114,12 @@ void main() {
         culled = allBelow || allAbove;
     }
 
-    vec4 tessellationClip[4];
-    for (int i = 0; i < 4; ++i) tessellationClip[i] = frame.tessellationViewProjection * vec4(hull[i], 1.0);
     float level = frame.maxSegmentsPerSpan;
-    bool inFront = tessellationClip[0].w > 0.0 && tessellationClip[1].w > 0.0 && tessellationClip[2].w > 0.0 &&
-                   tessellationClip[3].w > 0.0;
+    bool inFront = clip[0].w > 0.0 && clip[1].w > 0.0 && clip[2].w > 0.0 && clip[3].w > 0.0;
     if (inFront) {
         float pixels = 0.0;
         for (int i = 0; i < 3; ++i)
-            pixels += distance(toTessellationPixels(tessellationClip[i]), toTessellationPixels(tessellationClip[i + 1]));
+            pixels += distance(toPixels(clip[i]), toPixels(clip[i + 1]));
         if (frame.tessellationTolerance > 0.0) {
             // Colour and opacity are interpolated linearly between the
             // polyline's vertices: cut finely enough that they stay within
@@ -135,7 +136,7 @@ void main() {
             vec4 d = max(d0, d1);
             float attributeBend = max(max(d.r, d.g), max(d.b, d.a));
             float attributeLevel = min(ceil(sqrt(0.75 * attributeBend / kAttributeTolerance)), ceil(pixels));
-            level = max(screenErrorLevel(hull, widthHull, tessellationClip), attributeLevel);
+            level = max(screenErrorLevel(hull, widthHull, clip), attributeLevel);
         } else {
             level = ceil(pixels / frame.pixelsPerSegment);
         }

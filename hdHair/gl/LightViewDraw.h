@@ -2,8 +2,8 @@
 // Draws the frame's strands through a light's view, for the passes that
 // build shadows (ShadowMapPass, ShadowReferencePass): the strand stages
 // (strand.vert/.tesc/.tese) with the light view's frame uniforms (ribbons
-// facing the light, the shared tessellation view, the coverage rule in the
-// light's pixels) and the shadow uniforms naming the light (entry 0), under
+// facing the light, tessellated and covered by the rules in the light's
+// pixels) and the shadow uniforms naming the light (entry 0), under
 // whatever fragment shader and GL state the caller set up.
 
 #include <vector>

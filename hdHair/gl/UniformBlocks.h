@@ -28,14 +28,10 @@ struct FrameUniforms {  // binding 0, shaders/include/frameUniforms.glsl
     // may give its pixel depth and ids (hdHair/render/NearestStrandRule.h).
     float nearestStrandMinAlpha = 0.0f;
     // screenError tessellation: the most a centre line may stray from its
-    // curve, in tessellation-view pixels; 0 selects projectedLength
-    // (pixelsPerSegment) instead.
+    // curve, in this pass's pixels (a light view's texels); 0 selects
+    // projectedLength (pixelsPerSegment) instead.
     float tessellationTolerance = 0.0f;
-    // The view every pass takes its tessellation levels from
-    // (hdHair/render/TessellationView.h): the camera, or the camera the
-    // shadow maps were built with.
-    glm::vec2 tessellationViewport{1.0f};
-    glm::mat4 tessellationViewProjection{1.0f};
+    float padding0[2] = {0.0f, 0.0f};  // std140: the mat3 below starts on 16 bytes
     // From the rendering space back to linear Rec.709, as std140 mat3
     // columns: screenError tessellation measures colour in the space colours
     // are authored in, so the geometry does not depend on renderingSpace.
@@ -48,7 +44,7 @@ struct FrameUniforms {  // binding 0, shaders/include/frameUniforms.glsl
     float shadowSegmentLength = 0.0f;
     float padding[3] = {0.0f, 0.0f, 0.0f};
 };
-static_assert(sizeof(FrameUniforms) == 272, "std140 layout of FrameUniforms");
+static_assert(sizeof(FrameUniforms) == 208, "std140 layout of FrameUniforms");
 
 struct LightUniforms {  // binding 1, shaders/include/lights.glsl
     glm::vec4 lightVector[kMaxLightsPerPass]{};

@@ -38,8 +38,7 @@ double millisecondsSince(Clock::time_point start) {
     return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
 }
 
-gl::FrameUniforms frameUniforms(const CameraView& camera, const RenderSettings& settings, const RenderPlan& plan,
-                                const TessellationView& tessellation) {
+gl::FrameUniforms frameUniforms(const CameraView& camera, const RenderSettings& settings, const RenderPlan& plan) {
     gl::FrameUniforms frame;
     frame.viewProjection = glm::mat4(camera.projection * camera.view);
     frame.cameraPosition = glm::vec4(glm::vec3(camera.position()), camera.orthographic ? 0.0f : 1.0f);
@@ -56,16 +55,14 @@ gl::FrameUniforms frameUniforms(const CameraView& camera, const RenderSettings& 
     frame.drawMode = opaque ? 0 : 1;
     frame.orderedDraw = plan.transparency == TransparencyPath::BinSorted ? 1 : 0;
     frame.nearestStrandMinAlpha = kNearestStrandMinAlpha;
-    frame.tessellationViewport = glm::vec2(tessellation.viewport);
-    frame.tessellationViewProjection = glm::mat4(tessellation.viewProjection);
     const glm::mat3 toRec709 = glm::inverse(rec709To(settings.renderingSpace()));
     for (int column = 0; column < 3; ++column) frame.colorToRec709[column] = glm::vec4(toRec709[column], 0.0f);
     frame.shadowSegmentLength = float(plan.shadows.vertexSegmentLength);
     return frame;
 }
 
-// Everything a shadow map depends on besides its light view, the casters and
-// the tessellation view: the settings that shape it.
+// Everything a shadow map depends on besides its light view and the
+// casters: the settings that shape it.
 std::string shadowSettingsKey(const RenderSettings& settings) {
     std::string key;
     for (const char* name : {"shadowMode", "shadowLayers", "shadowMapResolution", "shadowLayerSpacing",
@@ -290,9 +287,8 @@ MeshUpload Renderer::meshUpload(const Scene& scene, MeshSummary& summary) {
     return upload;
 }
 
-TessellationView Renderer::decideShadowMaps(RenderPlan& plan, const StrandSummary& summary, const CameraView& camera,
-                                            const RenderSettings& settings, Diagnostics& diagnostics,
-                                            RenderStats& stats) {
+void Renderer::decideShadowMaps(RenderPlan& plan, const StrandSummary& summary, const RenderSettings& settings,
+                                Diagnostics& diagnostics, RenderStats& stats) {
     ShadowPlan& shadows = plan.shadows;
     std::vector<ShadowMapRequest> requests;
     std::vector<size_t> requested;  // index into shadows.lights
@@ -326,8 +322,8 @@ TessellationView Renderer::decideShadowMaps(RenderPlan& plan, const StrandSummar
                                                shadows.overBudget));
     // A mip chain added or dropped reallocates the opacity layers, losing every map.
     const std::string storageKey = shadowSettingsKey(settings) + (shadows.convolvedOpacity ? "mipmapped;" : "");
-    const ShadowFrame frame = shadowMaps_.update(requests, storageKey, castersVersion_, camera,
-                                                 summary.casters, shadows.mode == ShadowMode::Reference);
+    const ShadowFrame frame =
+        shadowMaps_.update(requests, storageKey, castersVersion_, shadows.mode == ShadowMode::Reference);
     shadows.capacity = frame.capacity;
     for (size_t r = 0; r < requests.size(); ++r) {
         const ShadowMapDecision& decision = frame.maps[r];
@@ -343,7 +339,6 @@ TessellationView Renderer::decideShadowMaps(RenderPlan& plan, const StrandSummar
                                                       : !shadow.view.valid ? shadow.view.fallback
                                                                            : std::string("nothing reads it")}});
     }
-    return frame.tessellation;
 }
 
 std::optional<MaterialUpload> Renderer::materialUpload(const std::vector<HairMaterial>& materials,
@@ -546,12 +541,9 @@ RenderResult Renderer::renderSamples(const Scene& scene, const CameraView& camer
     inputs.depthRequested = outputs.depth;
     inputs.gpuDisplay = outputs.gpuDisplay;
     inputs.displayOverBlack = outputs.displayOverBlack;
-    // A preview leaves the shadow maps to the full frames; its levels
-    // follow its own camera.
-    inputs.frame = frameUniforms(camera, settings, plan,
-                                 control.preview
-                                     ? tessellationViewOf(camera, 0)
-                                     : decideShadowMaps(plan, summary, camera, settings, diagnostics, stats));
+    // A preview leaves the shadow maps to the full frames.
+    if (!control.preview) decideShadowMaps(plan, summary, settings, diagnostics, stats);
+    inputs.frame = frameUniforms(camera, settings, plan);
     inputs.fragmentListCapacity = size_t(settings.getInt("exactMemoryMB")) * 1024 * 1024 / gl::kFragmentNodeBytes;
     const gl::PassTiming timing = settings.getBool("passTimings") ? passTiming_ : gl::PassTiming::Off;
 

@@ -77,9 +77,8 @@ struct FrameControl {
     size_t strandPieceSegments = kStrandPieceSegments;
     // A preview (InteractivePreview.h): its settings and image size are not
     // those of the frames before and after it, so it keeps the shadow maps
-    // and their tessellation view as the last full frame left them (building
-    // and dropping none: its settings must have shadowMode=off) and
-    // tessellates for its own camera.
+    // as the last full frame left them (building and dropping none: its
+    // settings must have shadowMode=off).
     bool preview = false;
     // A preview draws every this-many-th curve of each prim only
     // (keepEveryNthCurve, InteractivePreview.h); 1 for every other frame.
@@ -170,9 +169,9 @@ private:
                                                  const std::vector<DrawnPrim>& drawn, const StrandUploadPlan& uploads,
                                                  bool srbfTables, Diagnostics& diagnostics);
     // Which shadow maps the frame rebuilds and which it keeps (ShadowMapCache),
-    // written into the plan; returns the tessellation view every pass uses.
-    TessellationView decideShadowMaps(RenderPlan& plan, const StrandSummary& summary, const CameraView& camera,
-                                      const RenderSettings& settings, Diagnostics& diagnostics, RenderStats& stats);
+    // written into the plan.
+    void decideShadowMaps(RenderPlan& plan, const StrandSummary& summary, const RenderSettings& settings,
+                          Diagnostics& diagnostics, RenderStats& stats);
 
     std::unique_ptr<gl::GlRenderThread> glThread_;
     std::unique_ptr<FrameResources> resources_;  // created and destroyed on the GL thread

@@ -5,13 +5,10 @@
 
 #include <fmt/format.h>
 
-#include "hdHair/render/CameraView.h"
-
 namespace hdhair {
 
 ShadowFrame ShadowMapCache::update(const std::vector<ShadowMapRequest>& requests, const std::string& settingsKey,
-                                   uint64_t castersVersion, const CameraView& camera, const CasterBounds& casters,
-                                   bool rebuildTogether) {
+                                   uint64_t castersVersion, bool rebuildTogether) {
     // Lights that no longer cast give their slots back.
     std::set<std::string> keys;
     for (const ShadowMapRequest& request : requests) keys.insert(request.key);
@@ -42,7 +39,7 @@ ShadowFrame ShadowMapCache::update(const std::vector<ShadowMapRequest>& requests
         capacity_ = capacity;
     }
 
-    // Why each map would be rebuilt with the tessellation view as it is.
+    // Why each map is rebuilt (empty: kept).
     std::vector<std::string> why(requests.size());
     for (size_t i = 0; i < requests.size(); ++i) {
         const ShadowMapRequest& request = requests[i];
@@ -57,19 +54,7 @@ ShadowFrame ShadowMapCache::update(const std::vector<ShadowMapRequest>& requests
             why[i] = "the hair changed";
         } else if (it->second.view != request.view) {
             why[i] = request.followsCamera ? "the camera moved, and the camera light with it" : "the light moved";
-        } else if (it->second.tessellationId != tessellation_.id) {
-            why[i] = "the tessellation view changed";
         }
-    }
-    const bool anyKept = std::any_of(why.begin(), why.end(), [](const std::string& w) { return w.empty(); });
-    if (!anyKept) {
-        // Nothing to lose: the levels follow the current camera exactly.
-        tessellation_ = tessellationViewOf(camera, nextTessellationId_++);
-    } else if (std::optional<std::string> drift = tessellationDrift(tessellation_, camera, casters)) {
-        tessellation_ = tessellationViewOf(camera, nextTessellationId_++);
-        for (std::string& reason : why)
-            if (reason.empty())
-                reason = "the camera left the tessellation tolerance (" + *drift + "): the levels follow it again";
     }
     if (rebuildTogether) {
         auto rebuilt = std::find_if(why.begin(), why.end(), [](const std::string& w) { return !w.empty(); });
@@ -81,17 +66,16 @@ ShadowFrame ShadowMapCache::update(const std::vector<ShadowMapRequest>& requests
     }
 
     ShadowFrame frame;
-    frame.tessellation = tessellation_;
     frame.capacity = capacity_;
     for (size_t i = 0; i < requests.size(); ++i) {
         ShadowMapDecision decision;
         decision.slot = slots[i];
         decision.rebuild = !why[i].empty();
         decision.reason = decision.rebuild ? "rebuilt: " + why[i]
-                                           : "kept: light, hair, settings and tessellation unchanged since it was built";
+                                           : "kept: light, hair and settings unchanged since it was built";
         frame.maps.push_back(decision);
         Held& held = held_[requests[i].key];
-        held = Held{slots[i], requests[i].view, settingsKey, castersVersion, tessellation_.id};
+        held = Held{slots[i], requests[i].view, settingsKey, castersVersion};
     }
     return frame;
 }

@@ -9,12 +9,11 @@
 //     and the casters' bounds it is fitted to; the camera light's view
 //     follows the camera, so its map does too);
 //   - the casters: any change of the strands on the GPU (castersVersion);
-//   - the shadow and tessellation settings (settingsKey);
-//   - the tessellation view (TessellationView.h), re-based when the camera
-//     leaves its tolerance.
+//   - the shadow and tessellation settings (settingsKey).
 // Intensity, colour and other shading-only edits keep the map. Otherwise
-// the map is kept: moving only the camera (within the tessellation
-// tolerance) rebuilds nothing but the camera light's map.
+// the map is kept: a light view tessellates the strands by its own texels
+// (ShadowPassUniforms.h), not the camera's pixels, so moving only the
+// camera rebuilds nothing but the camera light's map.
 
 #include <cstdint>
 #include <map>
@@ -22,11 +21,8 @@
 #include <vector>
 
 #include "hdHair/render/ShadowLightView.h"
-#include "hdHair/render/TessellationView.h"
 
 namespace hdhair {
-
-struct CameraView;
 
 struct ShadowMapRequest {
     std::string key;            // the light's path, or "camera light"
@@ -42,7 +38,6 @@ struct ShadowMapDecision {
 
 struct ShadowFrame {
     std::vector<ShadowMapDecision> maps;  // one per request, in order
-    TessellationView tessellation;        // what every pass's levels come from this frame
     int capacity = 0;                     // slots the storage must hold
 };
 
@@ -51,8 +46,7 @@ public:
     // rebuildTogether: the maps share storage that cannot be rebuilt light by
     // light (shadowMode=reference's fragment pool): any rebuild rebuilds all.
     ShadowFrame update(const std::vector<ShadowMapRequest>& requests, const std::string& settingsKey,
-                       uint64_t castersVersion, const CameraView& camera, const CasterBounds& casters,
-                       bool rebuildTogether);
+                       uint64_t castersVersion, bool rebuildTogether);
     // Drops a light's map (it could not be built): the next frame builds it again.
     void forget(const std::string& key) { held_.erase(key); }
 
@@ -61,12 +55,10 @@ private:
         int slot = 0;
         ShadowLightView view;
         std::string settingsKey;
-        uint64_t castersVersion = 0, tessellationId = 0;
+        uint64_t castersVersion = 0;
     };
     std::map<std::string, Held> held_;
     int capacity_ = 0;
-    TessellationView tessellation_;
-    uint64_t nextTessellationId_ = 1;
 };
 
 }  // namespace hdhair

@@ -68,10 +68,16 @@ gl::FrameUniforms lightViewFrameUniforms(const RenderPlan& plan, size_t shadow, 
     frame.minPixelWidth = float(plan.shadows.minPixelWidth);
     frame.drawMode = 1;
     frame.orderedDraw = 0;
-    // The light views read no shadows: their spans are cut by the error rule
-    // alone (a straight span cut finer is the same line; a bent one stays
-    // within the tolerance either way), which on stages of long spans saves
-    // them most of the segments vertex shadows add.
+    // The levels follow the light's texels, not the camera's pixels
+    // (strand.tesc reads viewProjection and viewportSize): a map holds each
+    // curve within the tolerance of a texel, in depth too, well inside the
+    // one-texel bias every lookup takes (shadows.glsl), so the camera's
+    // points on the same curve do not shadow their own strand. A map a few
+    // hundred texels across needs fewer segments than a camera image
+    // thousands of pixels wide (the TressFX bear at low: the two light views
+    // took about a quarter less time), and does not change when only the
+    // camera moves. The light views read no shadows: their spans are not cut
+    // for vertex shadows either.
     frame.shadowSegmentLength = 0.0f;
     return frame;
 }

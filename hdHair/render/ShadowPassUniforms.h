@@ -11,9 +11,10 @@ namespace hdhair {
 gl::ShadowUniforms batchShadowUniforms(const RenderPlan& plan, size_t batch);
 gl::ShadowUniforms lightShadowUniforms(const RenderPlan& plan, size_t shadow);
 
-// The camera's frame seen from a light: its tessellation view and settings
-// kept, the light's projection, eye and pixels, ribbons facing the light,
-// the coverage rule at plan.shadows.minPixelWidth, unordered.
+// The camera's frame seen from a light: its settings kept, the light's
+// projection, eye and pixels (which the tessellation levels follow: the
+// tolerance is in the map's texels), ribbons facing the light, the coverage
+// rule at plan.shadows.minPixelWidth, unordered.
 gl::FrameUniforms lightViewFrameUniforms(const RenderPlan& plan, size_t shadow, const gl::FrameUniforms& camera);
 
 

@@ -20,14 +20,9 @@ layout(std140, binding = 0) uniform FrameUniforms {
     // (hdHair/render/NearestStrandRule.h).
     float nearestStrandMinAlpha;
     // screenError tessellation: the most a strand's centre line may stray
-    // from its curve, in tessellation-view pixels; 0: projectedLength, one
-    // segment every pixelsPerSegment pixels.
+    // from its curve, in this pass's pixels (a light view's texels); 0:
+    // projectedLength, one segment every pixelsPerSegment pixels.
     float tessellationTolerance;
-    // The view the tessellation levels come from (hdHair/render/TessellationView.h):
-    // the same for the camera and every light view, so shadows hold the curve
-    // the camera draws.
-    vec2 tessellationViewport;
-    mat4 tessellationViewProjection;
     // From the rendering space back to linear Rec.709: screenError
     // tessellation measures colour as authored, whatever renderingSpace.
     mat3 colorToRec709;

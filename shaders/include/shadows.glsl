@@ -223,9 +223,10 @@ vec4 gatheredTransmittances(int i, ivec2 base, float z, bool meshesOcclude) {
 
 // The fraction of light i that reaches `point`: a point on a strand's
 // centre line (`meshesOcclude` true) or on a mesh (false). Bias: one texel's
-// world size, so that where the camera's tessellation and the light's
-// rasterisation of the same strand disagree by less than a texel the strand
-// does not shadow itself.
+// world size, so that where the camera's polyline and the light's (each
+// within its view's tessellation tolerance of the curve, a fraction of a
+// pixel or texel) and the light's rasterisation of the same strand disagree
+// by less than a texel, the strand does not shadow itself.
 float shadowTransmittanceFrom(int i, vec3 point, bool meshesOcclude) {
 #if !HDHAIR_FEATURE_DEEP_OPACITY && !HDHAIR_FEATURE_SHADOW_REFERENCE
     return 1.0;  // shadows off, or no light of the pass has a map

@@ -57,8 +57,6 @@ const std::vector<Block>& blocks() {
              {"orderedDraw", offsetof(FrameUniforms, orderedDraw)},
              {"nearestStrandMinAlpha", offsetof(FrameUniforms, nearestStrandMinAlpha)},
              {"tessellationTolerance", offsetof(FrameUniforms, tessellationTolerance)},
-             {"tessellationViewport", offsetof(FrameUniforms, tessellationViewport)},
-             {"tessellationViewProjection", offsetof(FrameUniforms, tessellationViewProjection), 0, 1, kVec4},
              {"colorToRec709", offsetof(FrameUniforms, colorToRec709), 0, 1, kVec4},
              {"shadowSegmentLength", offsetof(FrameUniforms, shadowSegmentLength)},
          }},

@@ -163,7 +163,7 @@ void expectIdentical(Images const& actual, Images const& expected) {
 TEST_F(HydraProgressiveRendering, ANewViewConvergesOnlyWithItsFullFrameWhichFollowsItsPreview) {
     UsdStageRefPtr stage = wavyFieldStage(300);
     GfVec2i const size(160, 120);
-    GfVec3d const first(0, 0, 10), second(0.2, 0.1, 10);  // within the tessellation tolerance
+    GfVec3d const first(0, 0, 10), second(0.2, 0.1, 10);  // a small move
     // A host without previews sees the same two views.
     Images expected;
     {
@@ -234,7 +234,7 @@ TEST_F(HydraProgressiveRendering, ACameraMoveStopsTheFullFrameInFlightAndEndsOnT
     // on llvmpipe; previews off: this is about stopping full frames.
     UsdStageRefPtr stage = wavyFieldStage(4000);
     GfVec2i const size(320, 240);
-    GfVec3d const moved(0.0, 0.0, 14.0);  // beyond the tessellation tolerance: nothing of the first view is kept
+    GfVec3d const moved(0.0, 0.0, 14.0);  // farther: the first view's image would not pass for it
     Images expected;
     {
         placeCamera(stage, moved);

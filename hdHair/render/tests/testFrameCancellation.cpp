@@ -77,8 +77,7 @@ TEST(FrameCancellation, StrandPiecesGiveTheSingleDrawsImageOnEveryPath) {
 
 TEST(FrameCancellation, AFrameStoppedAtAnyPointLeavesTheRendererAsIfItNeverRan) {
     // The stopped frame changes the hair (one prim moves: its upload and
-    // every shadow map are in that frame) and the camera, by more than the
-    // tessellation tolerance (so the maps would be rebuilt for it anyway).
+    // every shadow map are in that frame) and turns the camera.
     const Scene before = hairTuft(30);
     Scene after = before;
     after.setCurves(tuftStrands("/tuft/b", 2, 30, 1.5f));

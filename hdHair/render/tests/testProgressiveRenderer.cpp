@@ -52,9 +52,8 @@ FinishedFrame waitForFinal(ProgressiveRenderer& progressive, uint64_t request) {
 
 TEST(ProgressiveRenderer, APreviewPrecedesASlowFullFrameWhichIsTheSynchronousImage) {
     const Scene scene = hairTuft(30);
-    // A turn within the tessellation tolerance: the full frame keeps the
-    // first view's shadow maps and tessellation, which a preview must leave
-    // alone (it draws neither).
+    // A turn of the camera: the full frame keeps the first view's shadow
+    // maps, which a preview must leave alone (it draws none).
     const CameraView first = tuftCamera(0.0, 192), second = tuftCamera(5.0, 192);
     // Every full frame takes longer than 1 ms (a GL frame with a readback),
     // so once one is in, every new view gets a preview first.

@@ -103,8 +103,7 @@ std::vector<CapturedVertex> tessellate(const PreparedCurves& curves, const Camer
 
         gl::FrameUniforms frame;
         frame.viewProjection = glm::mat4(camera.projection * camera.view);
-        frame.tessellationViewProjection = frame.viewProjection;
-        frame.viewportSize = frame.tessellationViewport = glm::vec2(camera.imageWidth, camera.imageHeight);
+        frame.viewportSize = glm::vec2(camera.imageWidth, camera.imageHeight);
         frame.cameraPosition = glm::vec4(glm::vec3(camera.position()), camera.orthographic ? 0.0f : 1.0f);
         frame.cameraForward = glm::vec4(glm::vec3(camera.forward()), 0.0f);
         frame.pixelsPerUnit = float(camera.pixelsPerUnit());

@@ -1,11 +1,11 @@
-// Which shadow maps a frame rebuilds (ShadowMapCache.h), the tessellation
-// view they share with the camera (TessellationView.h), and the deep opacity
-// layer boundaries (DeepOpacityLayers.h): all decided on the CPU.
+// Which shadow maps a frame rebuilds (ShadowMapCache.h) and the deep opacity
+// layer boundaries (DeepOpacityLayers.h): both decided on the CPU. That a
+// camera move keeps the maps is checked on whole frames (testShadows,
+// Shadows.MovingOnlyTheCameraKeepsEveryMapButTheCameraLights).
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
 
-#include "hdHair/render/CameraView.h"
 #include "hdHair/render/DeepOpacityLayers.h"
 #include "hdHair/render/ShadowMapCache.h"
 
@@ -20,14 +20,6 @@ CasterBounds unitBox() {
     return bounds;
 }
 
-CameraView cameraAt(glm::dvec3 eye, int width = 200) {
-    CameraView camera;
-    camera.view = glm::lookAt(eye, glm::dvec3(0.0), glm::dvec3(0, 1, 0));
-    camera.projection = glm::perspective(glm::radians(40.0), 1.0, 0.1, 100.0);
-    camera.imageWidth = camera.imageHeight = width;
-    return camera;
-}
-
 ShadowMapRequest request(const std::string& key, glm::vec3 towardsLight) {
     ShadingLight light;
     light.directionOrPosition = glm::normalize(towardsLight);
@@ -38,16 +30,15 @@ ShadowMapRequest request(const std::string& key, glm::vec3 towardsLight) {
 
 TEST(ShadowMapCache, OnlyWhatChangedIsRebuilt) {
     ShadowMapCache cache;
-    const CameraView camera = cameraAt({0, 0, 10});
     std::vector<ShadowMapRequest> lights = {request("/key", {0, 1, 0}), request("/fill", {1, 0, 1})};
-    ShadowFrame first = cache.update(lights, "s", 1, camera, unitBox(), false);
+    ShadowFrame first = cache.update(lights, "s", 1, false);
     ASSERT_EQ(first.maps.size(), 2u);
     EXPECT_TRUE(first.maps[0].rebuild && first.maps[1].rebuild);
     EXPECT_NE(first.maps[0].slot, first.maps[1].slot);
     EXPECT_GE(first.capacity, 2);
 
     // Nothing changed: both kept, in their slots.
-    ShadowFrame same = cache.update(lights, "s", 1, camera, unitBox(), false);
+    ShadowFrame same = cache.update(lights, "s", 1, false);
     EXPECT_FALSE(same.maps[0].rebuild);
     EXPECT_FALSE(same.maps[1].rebuild);
     EXPECT_EQ(same.maps[0].slot, first.maps[0].slot);
@@ -55,72 +46,41 @@ TEST(ShadowMapCache, OnlyWhatChangedIsRebuilt) {
 
     // One light moves: its map alone.
     lights[1] = request("/fill", {1, 0.2f, 1});
-    ShadowFrame moved = cache.update(lights, "s", 1, camera, unitBox(), false);
+    ShadowFrame moved = cache.update(lights, "s", 1, false);
     EXPECT_FALSE(moved.maps[0].rebuild);
     EXPECT_TRUE(moved.maps[1].rebuild);
     EXPECT_EQ(moved.maps[1].reason, "rebuilt: the light moved");
 
     // The hair or the settings change: all of them.
-    ShadowFrame hair = cache.update(lights, "s", 2, camera, unitBox(), false);
+    ShadowFrame hair = cache.update(lights, "s", 2, false);
     EXPECT_TRUE(hair.maps[0].rebuild && hair.maps[1].rebuild);
     EXPECT_EQ(hair.maps[0].reason, "rebuilt: the hair changed");
-    ShadowFrame settings = cache.update(lights, "t", 2, camera, unitBox(), false);
+    ShadowFrame settings = cache.update(lights, "t", 2, false);
     EXPECT_TRUE(settings.maps[0].rebuild && settings.maps[1].rebuild);
 
     // Sharing one pool (the reference): one change rebuilds all.
     lights[0] = request("/key", {0.1f, 1, 0});
-    ShadowFrame together = cache.update(lights, "t", 2, camera, unitBox(), true);
+    ShadowFrame together = cache.update(lights, "t", 2, true);
     EXPECT_TRUE(together.maps[0].rebuild && together.maps[1].rebuild);
-}
-
-TEST(ShadowMapCache, MovingOnlyTheCameraKeepsMapsWithinTheTessellationTolerance) {
-    ShadowMapCache cache;
-    const std::vector<ShadowMapRequest> lights = {request("/key", {0, 1, 0})};
-    ShadowFrame first = cache.update(lights, "s", 1, cameraAt({0, 0, 10}), unitBox(), false);
-    // A small step: the scale changes by 2 %, the view turns by 2 degrees.
-    ShadowFrame nudged = cache.update(lights, "s", 1, cameraAt({0.35, 0, 10.2}), unitBox(), false);
-    EXPECT_FALSE(nudged.maps[0].rebuild) << nudged.maps[0].reason;
-    EXPECT_EQ(nudged.tessellation.id, first.tessellation.id) << "levels stay those the map was built with";
-    // Twice as close: the levels would change, so the view re-bases and the map follows.
-    ShadowFrame closer = cache.update(lights, "s", 1, cameraAt({0, 0, 5}), unitBox(), false);
-    EXPECT_TRUE(closer.maps[0].rebuild);
-    EXPECT_NE(closer.maps[0].reason.find("tessellation tolerance"), std::string::npos) << closer.maps[0].reason;
-    EXPECT_NE(closer.tessellation.id, first.tessellation.id);
-    // Orbiting 30 degrees at the same distance re-bases too.
-    ShadowFrame orbit =
-        cache.update(lights, "s", 1, cameraAt({5 * std::sin(0.52), 0, 5 * std::cos(0.52)}), unitBox(), false);
-    EXPECT_TRUE(orbit.maps[0].rebuild);
-    EXPECT_NE(orbit.maps[0].reason.find("turned"), std::string::npos) << orbit.maps[0].reason;
-}
-
-TEST(ShadowMapCache, WithNothingKeptTheLevelsFollowTheCamera) {
-    ShadowMapCache cache;
-    const CameraView camera = cameraAt({0, 0, 10});
-    ShadowFrame none = cache.update({}, "s", 1, camera, unitBox(), false);
-    EXPECT_EQ(none.tessellation.viewProjection, camera.projection * camera.view);
-    const CameraView other = cameraAt({0, 3, 4});
-    EXPECT_EQ(cache.update({}, "s", 1, other, unitBox(), false).tessellation.viewProjection,
-              other.projection * other.view);
 }
 
 TEST(ShadowMapCache, NewLightsTakeFreeSlotsAndGrowingStorageRebuildsAll) {
     ShadowMapCache cache;
-    const CameraView camera = cameraAt({0, 0, 10});
     std::vector<ShadowMapRequest> lights = {request("/a", {0, 1, 0})};
-    EXPECT_EQ(cache.update(lights, "s", 1, camera, unitBox(), false).capacity, 1);
+    EXPECT_EQ(cache.update(lights, "s", 1, false).capacity, 1);
     lights.push_back(request("/b", {1, 1, 0}));
-    ShadowFrame grown = cache.update(lights, "s", 1, camera, unitBox(), false);
+    ShadowFrame grown = cache.update(lights, "s", 1, false);
     EXPECT_EQ(grown.capacity, 2);
     EXPECT_EQ(grown.maps[0].reason, "rebuilt: the map storage grew to 2 lights");
     // /a goes: its slot is free for /c, with no growth and /b kept.
     lights = {request("/b", {1, 1, 0}), request("/c", {0, 1, 1})};
-    ShadowFrame swapped = cache.update(lights, "s", 1, camera, unitBox(), false);
+    ShadowFrame swapped = cache.update(lights, "s", 1, false);
     EXPECT_EQ(swapped.capacity, 2);
     EXPECT_FALSE(swapped.maps[0].rebuild);
     EXPECT_EQ(swapped.maps[1].slot, grown.maps[0].slot);
     // A map that could not be built is forgotten and built again.
     cache.forget("/b");
-    EXPECT_TRUE(cache.update(lights, "s", 1, camera, unitBox(), false).maps[0].rebuild);
+    EXPECT_TRUE(cache.update(lights, "s", 1, false).maps[0].rebuild);
 }
 
 TEST(DeepOpacityLayers, LinearSpacingGrowsItsGapsLinearly) {
