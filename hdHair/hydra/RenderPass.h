@@ -4,10 +4,10 @@
 // snapshot of the scene, hands them to its hdhair::ProgressiveRenderer (the
 // engine renders on threads of its own, never the host's, whose GL context
 // must stay current) and returns at once. Whenever the host executes the
-// pass again (usdview every 5 ms, usdrecord every 10 to 100 ms while it is
-// not converged) the newest finished image, a preview or the full frame, is
-// copied into the bound render buffers, on the host's thread, so a buffer
-// only ever holds a complete image. The pass and its buffers report
+// pass again (usdview every 5 ms, usdrecord and hdhair-record between short
+// sleeps, while it is not converged) the newest finished image, a preview
+// or the full frame, is copied into the bound render buffers, on the host's
+// thread, so a buffer only ever holds a complete image. The pass and its buffers report
 // converged once the full frame of the newest view is in. A frame whose
 // inputs did not change is not asked for again. Bound id AOVs are rendered
 // only once a host reads them (DeferredIds.h).

@@ -84,7 +84,8 @@ void ProgressiveRenderer::loop() {
         }
         const int budget = request.settings.getInt("interactiveBudgetMs");
         bool superseded = false;
-        if (budget > 0 && lastFinalMilliseconds_ && *lastFinalMilliseconds_ > double(budget)) {
+        const bool slow = lastFinalMilliseconds_ && *lastFinalMilliseconds_ > double(budget);
+        if (budget > 0 && (slow || lastFinalStopped_)) {
             renderFrame(number, request, FrameQuality::Preview);
             std::lock_guard<std::mutex> lock(mutex_);
             // The view changed again while the preview rendered: its full
@@ -92,7 +93,7 @@ void ProgressiveRenderer::loop() {
             // what the host wants next.
             superseded = pending_.has_value() || stopping_;
         }
-        if (!superseded) renderFrame(number, request, FrameQuality::Final);
+        if (!superseded) lastFinalStopped_ = !renderFrame(number, request, FrameQuality::Final);
         std::lock_guard<std::mutex> lock(mutex_);
         rendering_ = 0;
     }

@@ -7,8 +7,11 @@
 //
 // For each request, in order:
 //  1. a preview (InteractivePreview.h), when the last full frame took longer
-//     than the request's interactiveBudgetMs (0: never). The first frame has
-//     none: until one full frame is in, how long frames take is unknown.
+//     than the request's interactiveBudgetMs (0: never), or was stopped by a
+//     newer view: a view that changes faster than full frames finish would
+//     otherwise show nothing until it stops, even with full frames a little
+//     under the budget. The first frame has none: until one full frame is
+//     in (or stopped), how long frames take is unknown.
 //     Previews are not cancelled: they are made to fit the budget, and a view
 //     that keeps changing is shown by them, one after another;
 //  2. the full frame, unless a newer request came in meanwhile. A request
@@ -116,6 +119,7 @@ private:
     // This thread's own: how long the last full frame took, and how small
     // previews have to be to fit the budget.
     std::optional<double> lastFinalMilliseconds_;
+    bool lastFinalStopped_ = false;  // the last full frame begun was stopped by a newer view
     PreviewBudget previewBudget_;
 
     std::thread thread_;  // last: starts after everything above exists
