@@ -21,6 +21,17 @@
 // width is below frame.minPixelWidth is drawn that wide instead, with its
 // alpha scaled by true width / drawn width, so thin hair fades with distance
 // instead of breaking up into dashes or vanishing.
+//
+// Strand lines (HDHAIR_STRAND_LINES, the light views' shadowStrandLines when
+// every strand is at most a pixel wide there): no geometry shader; the
+// isolines are rasterised as one-pixel lines, with the fragment stage's
+// inputs written here. A line lights one pixel per step along its major
+// axis: m pixels per pixel of its length, m = max(|dx|, |dy|) / |(dx, dy)|
+// of its screen direction (1 along an axis, 1/sqrt(2) diagonally), where a
+// ribbon of the true width covers `width in pixels` of area. So each pixel
+// takes alpha opacity x width in pixels / m, and the opacity the pixels sum
+// is the ribbon's at every angle: above 1 for a strand wider than the line
+// (RenderPlan.cpp's kMaxStrandLineTexels bounds how much wider).
 #include "include/frameUniforms.glsl"
 #include "include/catmullRom.glsl"
 #include "include/strandGeometry.glsl"
@@ -37,12 +48,25 @@ layout(location = 0) in vec4 tcsPositionWidth[];
 layout(location = 1) in vec4 tcsColorOpacity[];
 layout(location = 2) flat in int tcsSegment[];
 
+#if defined(HDHAIR_STRAND_LINES) && defined(HDHAIR_VERTEX_SHADOWS)
+#error "strand lines are for the light views, which read no shadows"
+#endif
+#ifdef HDHAIR_STRAND_LINES
+// What strand.geom hands the fragment stage, at its locations.
+layout(location = 0) out vec3 worldPosition;
+layout(location = 1) out vec3 worldTangent;
+layout(location = 2) out vec4 colorAlpha;  // displayColor, opacity x coverage
+layout(location = 3) flat out ivec4 ids;   // primId, elementId, material, segment
+layout(location = 4) out float spanU;
+layout(location = 5) out vec3 strandCentre;
+#else
 layout(location = 0) out vec3 tesCentre;    // the centre line at u
 layout(location = 1) out vec3 tesAcross;    // from one edge of the ribbon to the other
 layout(location = 2) out vec3 tesTangent;
 layout(location = 3) out vec4 tesColorAlpha;  // displayColor, opacity x coverage
 layout(location = 4) flat out ivec4 tesIds;   // primId, elementId, material, segment
 layout(location = 5) out float tesSpanU;
+#endif
 #ifdef HDHAIR_VERTEX_SHADOWS
 layout(location = 6) out vec4 tesTransmittance[HDHAIR_VERTEX_SHADOW_VECTORS];  // 4 lights a vec4, at the centre line
 #endif
@@ -74,6 +98,27 @@ void main() {
     // Cubic interpolation can overshoot: widths, colours and opacities are clamped.
     float width = max(positionWidth.w, 0.0);
     float opacity = clamp(shade.a, 0.0, 1.0);
+    int segment = tcsSegment[0];
+    ivec4 pointIds = ivec4(segmentPrimAndInstance(segment).x, segmentCurve[segment], segmentMaterial(segment), segment);
+#ifdef HDHAIR_STRAND_LINES
+    vec4 clip = frame.viewProjection * vec4(positionWidth.xyz, 1.0);
+    float clipW = max(abs(clip.w), 1e-12);
+    // The tangent's screen direction: d(clip.xy / clip.w) along it, in
+    // pixels (the common factor 1 / w^2 dropped).
+    vec4 clipTangent = frame.viewProjection * vec4(tangent, 0.0);
+    vec2 screen = (clipTangent.xy * clip.w - clip.xy * clipTangent.w) * frame.viewportSize;
+    float screenLength = length(screen);
+    // End-on (no screen direction) the line is a point: m = 1.
+    float m = screenLength > 0.0 ? clamp(max(abs(screen.x), abs(screen.y)) / screenLength, 0.70710678, 1.0) : 1.0;
+    float widthPixels = width * frame.pixelsPerUnit / clipW;
+    worldPosition = positionWidth.xyz;
+    strandCentre = positionWidth.xyz;
+    worldTangent = tangent;
+    colorAlpha = vec4(max(shade.rgb, vec3(0.0)), opacity * widthPixels / m);
+    ids = pointIds;
+    spanU = u;
+    gl_Position = clip;
+#else
     float drawnWidth = width;
     if (frame.minPixelWidth > 0.0) {
         float clipW = max(abs((frame.viewProjection * vec4(positionWidth.xyz, 1.0)).w), 1e-12);
@@ -87,9 +132,9 @@ void main() {
     tesAcross = side * drawnWidth;
     tesTangent = tangent;
     tesColorAlpha = vec4(max(shade.rgb, vec3(0.0)), opacity);
-    int segment = tcsSegment[0];
-    tesIds = ivec4(segmentPrimAndInstance(segment).x, segmentCurve[segment], segmentMaterial(segment), segment);
+    tesIds = pointIds;
     tesSpanU = u;
+#endif
 #ifdef HDHAIR_VERTEX_SHADOWS
     for (int v = 0; v < HDHAIR_VERTEX_SHADOW_VECTORS; ++v) tesTransmittance[v] = vec4(1.0);
     for (int i = 0; i < HDHAIR_VERTEX_SHADOWS; ++i)

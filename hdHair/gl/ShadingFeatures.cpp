@@ -41,6 +41,7 @@ std::string ShadingFeatures::glsl() const {
         text += "#define HDHAIR_VERTEX_SHADOWS " + std::to_string(vertexShadowLights_) + "\n";
         text += "#define HDHAIR_VERTEX_SHADOW_VECTORS " + std::to_string((vertexShadowLights_ + 3) / 4) + "\n";
     }
+    if (strandLines_) text += "#define HDHAIR_STRAND_LINES 1\n";
     return text + "#endif\n";
 }
 
@@ -51,6 +52,7 @@ std::string ShadingFeatures::describe() const {
     if (text.empty()) text = "none";
     if (shadowLayers_ > 0) text += " shadowLayers=" + std::to_string(shadowLayers_);
     if (vertexShadowLights_ > 0) text += " vertexShadows=" + std::to_string(vertexShadowLights_);
+    if (strandLines_) text += " strandLines";
     return text;
 }
 

@@ -82,27 +82,44 @@ public:
     }
     int vertexShadowLights() const { return vertexShadowLights_; }
 
-    // What tells one program from another: the switches, the layer count and
-    // where shadows are looked up.
+    // Strands drawn as one-pixel lines instead of ribbons (the light views'
+    // shadowStrandLines, when every strand is at most a texel wide): the
+    // program has no geometry shader (ShadingPrograms leaves strand.geom
+    // out), strand.tese hands its isolines straight to the rasteriser with
+    // the fragment stage's inputs, and scales each point's alpha so that a
+    // line, one pixel along its minor axis, holds the coverage of a ribbon of
+    // the strand's width. Like vertex shadows it changes what is drawn, so
+    // the complete program takes it too. Compiled in as HDHAIR_STRAND_LINES.
+    ShadingFeatures& setStrandLines(bool lines) {
+        strandLines_ = lines;
+        return *this;
+    }
+    bool strandLines() const { return strandLines_; }
+
+    // What tells one program from another: the switches, the layer count,
+    // where shadows are looked up and whether strands are lines.
     uint64_t key() const {
         return uint64_t(bits_) | (uint64_t(uint32_t(shadowLayers_)) << 32) |
-               (uint64_t(uint32_t(vertexShadowLights_)) << 48);
+               (uint64_t(uint32_t(vertexShadowLights_)) << 48) | (uint64_t(strandLines_ ? 1 : 0) << 62);
     }
     bool operator==(const ShadingFeatures& other) const { return key() == other.key(); }
     bool operator!=(const ShadingFeatures& other) const { return key() != other.key(); }
 
     // The replacement of include/shadingFeatures.glsl: every switch defined,
     // 1 for the features held and 0 for the rest, HDHAIR_SHADOW_LAYERS when
-    // the layer count is set and HDHAIR_VERTEX_SHADOWS with vertex shadows.
+    // the layer count is set, HDHAIR_VERTEX_SHADOWS with vertex shadows and
+    // HDHAIR_STRAND_LINES with lines.
     std::string glsl() const;
     // The features held, by name ("kajiyaKay deepOpacity"), or "none"; then
-    // "shadowLayers=N" when the count is set and "vertexShadows=N".
+    // "shadowLayers=N" when the count is set, "vertexShadows=N" and
+    // "strandLines".
     std::string describe() const;
 
 private:
     uint32_t bits_ = 0;
     int shadowLayers_ = 0;
     int vertexShadowLights_ = 0;
+    bool strandLines_ = false;
 };
 
 // How many lights of a strand draw with these uniforms vertex shadows look

@@ -9,7 +9,11 @@ ShadingPrograms::ShadingPrograms(std::vector<std::string> shaderNames) : shaderN
 const Program& ShadingPrograms::get(ShadingFeatures features) {
     auto found = programs_.find(features.key());
     if (found != programs_.end()) return found->second;
-    Program program = createProgram(shaderNames_, {{"include/shadingFeatures.glsl", features.glsl()}});
+    // Lines go to the rasteriser as the evaluation shader emits them.
+    std::vector<std::string> stages;
+    for (const std::string& name : shaderNames_)
+        if (!(features.strandLines() && name == "strand.geom")) stages.push_back(name);
+    Program program = createProgram(stages, {{"include/shadingFeatures.glsl", features.glsl()}});
     return programs_.emplace(features.key(), std::move(program)).first->second;
 }
 

@@ -18,7 +18,8 @@ public:
     explicit ShadingPrograms(std::vector<std::string> shaderNames);
 
     // The program compiled with `features` (include/shadingFeatures.glsl
-    // replaced by features.glsl()); throws std::runtime_error on driver errors.
+    // replaced by features.glsl(); without strand.geom when they ask for
+    // strand lines); throws std::runtime_error on driver errors.
     const Program& get(ShadingFeatures features);
     size_t compiled() const { return programs_.size(); }
 

@@ -3,19 +3,21 @@
 namespace hdhair::gl {
 
 ShadowMapPass::ShadowMapPass()
-    : depthProgram_(createProgram({"strand.vert", "strand.tesc", "strand.tese", "strand.geom", "shadowDepth.frag"})),
+    : depthPrograms_({"strand.vert", "strand.tesc", "strand.tese", "strand.geom", "shadowDepth.frag"}),
       opacityPrograms_({"strand.vert", "strand.tesc", "strand.tese", "strand.geom", "deepOpacity.frag"}) {
+    depthPrograms_.get(ShadingFeatures::all());  // compile errors surface here, not mid-frame
     checkGlError("setting up the shadow map passes");
 }
 
 void ShadowMapPass::renderDepth(ShadowMapStorage& storage, const StrandGeometry& geometry,
                                 const std::vector<SegmentRange>& ranges, const FrameUniforms& lightView,
-                                const ShadowUniforms& light) {
+                                const ShadowUniforms& light, bool strandLines) {
     storage.bindDepthTarget(int(light.lightMap[0].x));
     // The least depth wins, in any drawing order.
     glEnable(GL_BLEND);
     glBlendEquation(GL_MIN);
-    draw_.draw(depthProgram_, geometry, ranges, lightView, light);
+    draw_.draw(depthPrograms_.get(ShadingFeatures::all().setStrandLines(strandLines)), geometry, ranges, lightView,
+               light);
     glBlendEquation(GL_FUNC_ADD);
     glDisable(GL_BLEND);
     checkGlError("drawing a shadow depth map");
@@ -23,7 +25,7 @@ void ShadowMapPass::renderDepth(ShadowMapStorage& storage, const StrandGeometry&
 
 void ShadowMapPass::renderOpacity(ShadowMapStorage& storage, const StrandGeometry& geometry,
                                   const std::vector<SegmentRange>& ranges, const FrameUniforms& lightView,
-                                  const ShadowUniforms& light) {
+                                  const ShadowUniforms& light, bool strandLines) {
     storage.bindOpacityTargets(int(light.lightMap[0].x));
     storage.bindForLookup();  // the nearest depths, drawn by renderDepth
     // Sums in any drawing order (thesis section 2.7.2: additive blending).
@@ -33,8 +35,8 @@ void ShadowMapPass::renderOpacity(ShadowMapStorage& storage, const StrandGeometr
     // With the layer count a constant, deepOpacity.frag adds into those
     // layers alone, not all 32 under a uniform test (on llvmpipe a quarter of
     // the TressFX bear's opacity pass).
-    draw_.draw(opacityPrograms_.get(ShadingFeatures::all().setShadowLayers(light.mode.y)), geometry, ranges, lightView,
-               light);
+    draw_.draw(opacityPrograms_.get(ShadingFeatures::all().setShadowLayers(light.mode.y).setStrandLines(strandLines)),
+               geometry, ranges, lightView, light);
     glDisable(GL_BLEND);
     checkGlError("drawing deep opacity layers");
 }

@@ -30,18 +30,20 @@ public:
     // layer count; both throw on driver errors.
     ShadowMapPass();
 
-    // `light` names the light as entry 0 (its slot, view and layers).
+    // `light` names the light as entry 0 (its slot, view and layers);
+    // `strandLines`: the strands are drawn as one-texel lines rather than
+    // ribbons (ShadingFeatures::setStrandLines; PlannedShadow::strandLines).
     void renderDepth(ShadowMapStorage& storage, const StrandGeometry& geometry, const std::vector<SegmentRange>& ranges,
-                     const FrameUniforms& lightView, const ShadowUniforms& light);
+                     const FrameUniforms& lightView, const ShadowUniforms& light, bool strandLines);
     void renderOpacity(ShadowMapStorage& storage, const StrandGeometry& geometry,
                        const std::vector<SegmentRange>& ranges, const FrameUniforms& lightView,
-                       const ShadowUniforms& light);
+                       const ShadowUniforms& light, bool strandLines);
     void renderMeshDepth(ShadowMapStorage& storage, MeshPass& meshPass, const MeshGeometry& meshes,
                          const std::vector<MeshDraw>& draws, const FrameUniforms& lightView,
                          const ShadowUniforms& light);
 
 private:
-    Program depthProgram_;
+    ShadingPrograms depthPrograms_;    // every part, ribbons or lines
     ShadingPrograms opacityPrograms_;  // every part, with the layer count compiled in
     LightViewDraw draw_;
 };

@@ -285,7 +285,8 @@ void shadowDepth(FrameContext& context, size_t shadow) {
     FrameResources& resources = context.resources;
     resources.shadowMapPass.renderDepth(resources.shadowMaps, resources.strands, context.inputs.uploads.drawRanges,
                                         lightViewFrameUniforms(context.plan, shadow, context.inputs.frame),
-                                        lightShadowUniforms(context.plan, shadow));
+                                        lightShadowUniforms(context.plan, shadow),
+                                        context.plan.shadows.lights[shadow].strandLines);
 }
 
 // "deepOpacity L": light L's opacity layers behind that hair.
@@ -294,7 +295,8 @@ void deepOpacity(FrameContext& context, size_t shadow) {
     FrameResources& resources = context.resources;
     resources.shadowMapPass.renderOpacity(resources.shadowMaps, resources.strands, context.inputs.uploads.drawRanges,
                                           lightViewFrameUniforms(context.plan, shadow, context.inputs.frame),
-                                          lightShadowUniforms(context.plan, shadow));
+                                          lightShadowUniforms(context.plan, shadow),
+                                          context.plan.shadows.lights[shadow].strandLines);
 }
 
 // "meshShadow L": the nearest mesh in light L's view.

@@ -48,12 +48,13 @@ const std::vector<std::pair<std::string, std::string>>& presetSettings(Quality q
     // hdhair-bench --accuracy: exact transparency that fails rather than fall
     // back, reference shadows at the shadow benchmark's 4096 texels, analytic
     // Marschner, the tightest tolerance the setting allows with the most
-    // segments a span may get, and 4 x 4 supersampling.
+    // segments a span may get (in the light views too), and 4 x 4
+    // supersampling.
     static const std::vector<std::pair<std::string, std::string>> reference = {
         {"transparency", "exact"},         {"exactOverflow", "fail"},        {"exactMemoryMB", "2048"},
         {"shadowMode", "reference"},       {"shadowMapResolution", "4096"},  {"marschner:azimuthal", "analytic"},
         {"tessellation", "screenError"},   {"tessellationTolerance", "0.001"}, {"maxSegmentsPerSpan", "64"},
-        {"supersampling", "4"},
+        {"shadowTessellationTolerance", "0.001"}, {"supersampling", "4"},
     };
     switch (quality) {
     case Quality::Preview: return preview;

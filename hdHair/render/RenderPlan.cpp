@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include <fmt/format.h>
 #include <glm/geometric.hpp>
@@ -141,6 +142,27 @@ void planShadowSampling(ShadowPlan& shadows, const std::string& sampling, const 
     }
 }
 
+// The widest strand, in texels, a light view draws as a line (below).
+constexpr double kMaxStrandLineTexels = 1.5;
+
+// Whether a deep opacity map draws the strands as one-texel lines: when none
+// is much wider than a texel (the widest authored width, at the casters'
+// nearest depth for a perspective view). A ribbon under a texel wide is
+// drawn a texel wide with its alpha scaled down (minPixelWidth, at most 1
+// for lines to stand in for it); a line carries the same coverage, as alpha
+// width / m (strand.tese), without the geometry shader that widens each
+// segment. Up to kMaxStrandLineTexels (TressFX's roots are about a texel at
+// 512) that alpha may pass 1: the texels a line lights sum the ribbon's
+// opacity, in one texel where the ribbon spread it over two, a difference
+// within the texel the bilinear lookup blurs over anyway.
+void planStrandLines(PlannedShadow& shadow, const ShadowPlan& shadows, const std::string& setting, double maxWidth) {
+    const ShadowLightView& view = shadow.view;
+    if (!view.valid || shadows.mode != ShadowMode::DeepOpacity) return;
+    const double texel = view.orthographic ? view.texelSize : view.texelSize * view.nearDepth;
+    shadow.widestTexels = texel > 0.0 ? maxWidth / texel : std::numeric_limits<double>::infinity();
+    shadow.strandLines = setting == "auto" && shadows.minPixelWidth <= 1.0 && shadow.widestTexels <= kMaxStrandLineTexels;
+}
+
 // The shadow settings, and a planned shadow for every light that casts one
 // (its view fitted to the casters, or why it cannot be).
 void planShadows(RenderPlan& plan, const RenderSettings& settings, const StrandSummary& strands, bool anyMeshes) {
@@ -156,6 +178,7 @@ void planShadows(RenderPlan& plan, const RenderSettings& settings, const StrandS
     shadows.bilinear = settings.getToken("shadowFilter") == "bilinear";
     shadows.resolution = settings.getInt("shadowMapResolution");
     shadows.minPixelWidth = settings.getFloat("minPixelWidth");
+    shadows.tessellationTolerance = settings.getFloat("shadowTessellationTolerance");
     shadows.meshesCast = anyMeshes && shadows.mode != ShadowMode::Off;
     shadows.maxMaps = shadowMapBudget(shadows.resolution, shadows.layers, settings.getInt("shadowMemoryMB"));
     size_t mapped = 0;
@@ -178,6 +201,7 @@ void planShadows(RenderPlan& plan, const RenderSettings& settings, const StrandS
                 shadows.overBudget += 1;
             }
         }
+        planStrandLines(shadow, shadows, settings.getToken("shadowStrandLines"), strands.casters.maxWidth);
         shadows.lights.push_back(std::move(shadow));
     }
     planShadowSampling(shadows, settings.getToken("shadowSampling"), strands);
@@ -208,14 +232,24 @@ void addShadowPasses(FrameGraph& graph, const RenderPlan& plan, const PlannedSha
         graph.add(FramePass{"shadowFragments " + key, {"strands"}, {"shadowFragments " + key}, wanted,
                             why + (wanted ? ": every fragment kept per texel, the reference (slow)" : "") + flat});
     } else {
+        // How the strands are drawn there, when they are.
+        const std::string drawn =
+            !wanted ? ""
+            : shadow.strandLines
+                ? fmt::format("; strands as one-texel lines (the widest is {:.2f} texels)", shadow.widestTexels)
+                : fmt::format("; strands as ribbons ({})",
+                              shadow.widestTexels > kMaxStrandLineTexels
+                                  ? fmt::format("the widest is {:.2f} texels", shadow.widestTexels)
+                              : shadows.minPixelWidth > 1.0 ? "minPixelWidth above 1"
+                                                            : "shadowStrandLines=off");
         graph.add(FramePass{"shadowDepth " + key, {"strands"}, {"hairDepth " + key}, wanted,
-                            why + (wanted ? ": the nearest hair per texel" : "") + flat});
+                            why + (wanted ? ": the nearest hair per texel" : "") + drawn + flat});
         graph.add(FramePass{"deepOpacity " + key, {"strands", "hairDepth " + key}, {"deepOpacity " + key}, wanted,
                             (wanted ? why + fmt::format(": {} opacity layers behind it, the last {} of the hair's "
                                                         "depth along the light",
                                                         shadows.layers, shadows.layerDepth)
                                     : why) +
-                                flat});
+                                drawn + flat});
     }
     if (shadows.meshesCast)
         graph.add(FramePass{"meshShadow " + key, {"meshGeometry"}, {shadows.meshResourceOf(shadow)}, wanted,

@@ -67,6 +67,11 @@ struct PlannedShadow {
     bool rebuild = true;    // false: kept from an earlier frame (ShadowMapCache)
     std::string reason;     // "rebuilt: ..." or "kept: ..." once the renderer decided
     bool overBudget = false;  // no map because shadowMemoryMB holds no more (one warning for all)
+    // Deep opacity maps: the strands are drawn into this light's view as
+    // one-texel lines (shadowStrandLines=auto, no strand much wider than a
+    // texel there), not ribbons; `widestTexels` says why, for --explain.
+    bool strandLines = false;
+    double widestTexels = 0.0;
 };
 
 struct ShadowPlan {
@@ -83,6 +88,7 @@ struct ShadowPlan {
     std::string sampling;  // which, and why, for --explain; empty without deep opacity maps
     int resolution = 512;          // shadowMapResolution
     double minPixelWidth = 1.0;    // the coverage rule in the light's pixels, whatever the camera's path
+    double tessellationTolerance = 0.5;  // shadowTessellationTolerance: texels (screenError only)
     int capacity = 0;              // map slots the storage holds (set by the renderer)
     std::vector<PlannedShadow> lights;
     // Casting lights left without a map because shadowMemoryMB holds only

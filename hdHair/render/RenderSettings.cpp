@@ -111,6 +111,16 @@ const std::vector<SettingDescriptor>& RenderSettings::descriptors() {
          "Texels across each light's square shadow map (512 as in Yuksel & Keyser; with 3 layers, finer maps "
          "cost time without lowering the error: README, shadow benchmark)",
          16, 16384, {}},
+        {"shadowTessellationTolerance", SettingType::Float, "0.5",
+         "screenError tessellation in the light views: the most, in texels of the light's map, a strand's "
+         "polyline there may stray from the true curve (the lookups' bias is a texel; README, Shadows)",
+         0.001, 100.0, {}},
+        {"shadowStrandLines", SettingType::Token, "auto",
+         "How deep opacity maps draw the strands: auto (as one-texel lines, with alpha carrying the strand's "
+         "coverage, when no strand is over 1.5 texels wide in the light's view: no geometry shader, the "
+         "light views' largest cost on llvmpipe) or off (always camera-facing ribbons, minPixelWidth wide at "
+         "least, as the camera draws them)",
+         0, 0, {"auto", "off"}},
         {"shadowMemoryMB", SettingType::Int, "1024",
          "Memory for shadow maps; lights beyond what it holds at shadowMapResolution and shadowLayers shade "
          "unshadowed, with a warning",

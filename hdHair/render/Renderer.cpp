@@ -66,8 +66,8 @@ gl::FrameUniforms frameUniforms(const CameraView& camera, const RenderSettings& 
 std::string shadowSettingsKey(const RenderSettings& settings) {
     std::string key;
     for (const char* name : {"shadowMode", "shadowLayers", "shadowMapResolution", "shadowLayerSpacing",
-                             "shadowLayerDepth", "minPixelWidth", "tessellation", "tessellationTolerance",
-                             "pixelsPerSegment", "maxSegmentsPerSpan", "shadowSampling"})
+                             "shadowLayerDepth", "minPixelWidth", "tessellation", "shadowTessellationTolerance",
+                             "pixelsPerSegment", "maxSegmentsPerSpan", "shadowSampling", "shadowStrandLines"})
         key += settings.getToken(name) + ";";
     return key;
 }

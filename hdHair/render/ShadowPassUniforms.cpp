@@ -69,15 +69,18 @@ gl::FrameUniforms lightViewFrameUniforms(const RenderPlan& plan, size_t shadow, 
     frame.drawMode = 1;
     frame.orderedDraw = 0;
     // The levels follow the light's texels, not the camera's pixels
-    // (strand.tesc reads viewProjection and viewportSize): a map holds each
-    // curve within the tolerance of a texel, in depth too, well inside the
-    // one-texel bias every lookup takes (shadows.glsl), so the camera's
-    // points on the same curve do not shadow their own strand. A map a few
-    // hundred texels across needs fewer segments than a camera image
-    // thousands of pixels wide (the TressFX bear at low: the two light views
-    // took about a quarter less time), and does not change when only the
+    // (strand.tesc reads viewProjection and viewportSize), to a tolerance of
+    // their own (shadowTessellationTolerance, half a texel by default): a map
+    // holds each curve within it, in depth too, inside the one-texel bias
+    // every lookup takes (shadows.glsl), so the camera's points on the same
+    // curve do not shadow their own strand, and a deep opacity lookup, whose
+    // opacity is continuous in depth behind the nearest hair, moves by a
+    // fraction of a texel's worth. The camera's tolerance bounds what the
+    // eye sees, a fraction of a pixel; a map a few hundred texels across
+    // needs fewer segments than that, and does not change when only the
     // camera moves. The light views read no shadows: their spans are not cut
     // for vertex shadows either.
+    if (frame.tessellationTolerance > 0.0f) frame.tessellationTolerance = float(plan.shadows.tessellationTolerance);
     frame.shadowSegmentLength = 0.0f;
     return frame;
 }

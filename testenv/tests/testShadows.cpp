@@ -64,18 +64,32 @@ constexpr float kAboveSlab = 1.15f;  // one strand above the slab: in front of a
 
 double slabSigma(int strands, float opacity) { return strands / 4.0 * kSlabWidth * opacity; }
 
-Scene slabScene(int strands = 1000, float opacity = 0.5f) {
+// `turnDegrees`: the slab turned about the light's axis (Y), so that its
+// strands cross the light view's texel rows at that angle (turnedCamera
+// sees it as before).
+Scene slabScene(int strands = 1000, float opacity = 0.5f, double turnDegrees = 0.0) {
     // R2: the n-th point is frac(0.5 + n / g, 0.5 + n / g^2), g the plastic number.
     const double g = 1.32471795724474602596;
     std::vector<glm::vec2> yz;
     for (int n = 0; n < strands; ++n)
         yz.push_back({float(1.0 - 2.0 * std::fmod(0.5 + n / g, 1.0)),
                       float(-1.0 + 2.0 * std::fmod(0.5 + n / (g * g), 1.0))});
+    const glm::mat3 turn(glm::rotate(glm::dmat4(1.0), glm::radians(turnDegrees), glm::dvec3(0.0, 1.0, 0.0)));
     Scene scene;
-    scene.setCurves(strandsAlongX("/slab", yz, kSlabWidth, opacity));
-    scene.setCurves(strandsAlongX("/above", {{kAboveSlab, 0.0f}}, kSlabWidth, opacity));
+    for (CurvesPrim prim : {strandsAlongX("/slab", yz, kSlabWidth, opacity),
+                            strandsAlongX("/above", {{kAboveSlab, 0.0f}}, kSlabWidth, opacity)}) {
+        for (glm::vec3& point : prim.points) point = turn * point;
+        scene.setCurves(prim);
+    }
     scene.setLight(distantLightFrom({0.0, 1.0, 0.0}));
     return scene;
+}
+
+// `camera` turned with the slab about Y: it sees slabScene(..., turnDegrees)
+// exactly as `camera` sees the slab unturned.
+CameraView turnedCamera(CameraView camera, double turnDegrees) {
+    camera.view = camera.view * glm::rotate(glm::dmat4(1.0), glm::radians(-turnDegrees), glm::dvec3(0.0, 1.0, 0.0));
+    return camera;
 }
 
 RenderResult render(const Scene& scene, const CameraView& camera, const std::vector<std::string>& assignments,
@@ -116,7 +130,17 @@ bool ranAShadowPass(const RenderResult& result) {
 
 }  // namespace
 
-class SlabTransmittance : public ::testing::TestWithParam<const char*> {};
+struct SlabCase {
+    const char* name;
+    const char* shadowMode;
+    const char* strandLines;  // shadowStrandLines
+    double turnDegrees;       // the slab turned about the light's axis
+    bool drawnAsLines;        // what the light view must draw
+};
+
+void PrintTo(const SlabCase& slab, std::ostream* out) { *out << slab.name; }
+
+class SlabTransmittance : public ::testing::TestWithParam<SlabCase> {};
 
 // T = exp(-k opacity) with k = kShadowExtinction = 1, through a slab whose
 // opacity grows linearly with depth: -ln T must follow k sigma d row by row,
@@ -124,7 +148,16 @@ class SlabTransmittance : public ::testing::TestWithParam<const char*> {};
 // opacity maps with 15 layers: with 3, linear interpolation across the last
 // layer (which reaches the bounds, past the slab's last strand) adds up to
 // 8 % here, which MoreLayersMoveTowardTheReference measures instead.
+//
+// The slab's strands are a twentieth of a texel wide, so the maps draw them
+// as one-texel lines (shadowStrandLines=auto) or, turned off, as ribbons a
+// texel wide. Turned 45 degrees about the light's axis, a line lights one
+// texel per diagonal step, 1/sqrt(2) of a ribbon's texels: only the alpha
+// it carries for that (strand.tese) keeps -ln T on k sigma d there (without
+// it, measured: -ln T up to 0.45 off at 45 degrees and 0.23 at 30, against
+// a tolerance of 0.02 + 4 %).
 TEST_P(SlabTransmittance, FollowsExpOfMinusKTimesOpacity) {
+    const SlabCase& slab = GetParam();
     // Many faint strands: 0.026 alpha per texel, 29 strands a unit of depth
     // in each texel column.
     const int strands = 7500;
@@ -133,13 +166,15 @@ TEST_P(SlabTransmittance, FollowsExpOfMinusKTimesOpacity) {
     // k as DeepOpacityLayers.h states it (kShadowExtinction), written out:
     // the expectation must not follow the code it checks.
     const double k = 1.0;
-    const Scene scene = slabScene(strands, opacity);
-    const CameraView camera = orthographicView(2.4, 64);
-    const std::vector<std::string> settings = {std::string("shadowMode=") + GetParam(), "shadowLayers=15",
-                                               "shadowMapResolution=128"};
+    const Scene scene = slabScene(strands, opacity, slab.turnDegrees);
+    const CameraView camera = turnedCamera(orthographicView(2.4, 64), slab.turnDegrees);
+    const std::vector<std::string> settings = {std::string("shadowMode=") + slab.shadowMode, "shadowLayers=15",
+                                               "shadowMapResolution=128",
+                                               std::string("shadowStrandLines=") + slab.strandLines};
     const RenderResult on = render(scene, camera, settings);
     const RenderResult off = render(scene, camera, {"shadowMode=off"});
     ASSERT_EQ(on.stats.shadowMapsRebuilt, 1u);
+    EXPECT_EQ(on.stats.plan.dump().find("one-texel lines") != std::string::npos, slab.drawnAsLines);
     const std::vector<double> shadowed = rowSums(on.color), lit = rowSums(off.color);
 
     std::vector<double> transmittance(64, -1.0);
@@ -164,18 +199,24 @@ TEST_P(SlabTransmittance, FollowsExpOfMinusKTimesOpacity) {
         // met a strand more or fewer.
         EXPECT_NEAR(measured, expected, 0.02 + 0.04 * expected) << "row " << row << ", depth " << depth;
         worst = std::max(worst, std::abs(measured - expected));
-        if (row % 8 == 0) std::printf("%s, depth %.3f: -ln T %.4f, k sigma d %.4f\n", GetParam(), depth, measured, expected);
+        if (row % 8 == 0) std::printf("%s, depth %.3f: -ln T %.4f, k sigma d %.4f\n", slab.name, depth, measured, expected);
         // Two rows (0.075 deeper, 0.056 more opacity) always darker.
         if (row >= 2 && transmittance[size_t(row - 2)] >= 0.0 && rowHeight(row - 2, 64) <= 0.95) {
             EXPECT_LT(transmittance[size_t(row)], transmittance[size_t(row - 2)]) << "row " << row;
         }
         ++checked;
     }
-    std::printf("%s: largest |-ln T - k sigma d| %.4f over %d rows\n", GetParam(), worst, checked);
+    std::printf("%s: largest |-ln T - k sigma d| %.4f over %d rows\n", slab.name, worst, checked);
     EXPECT_GT(checked, 45);
 }
 
-INSTANTIATE_TEST_SUITE_P(Shadows, SlabTransmittance, ::testing::Values("deepOpacity", "reference"));
+INSTANTIATE_TEST_SUITE_P(Shadows, SlabTransmittance,
+                         ::testing::Values(SlabCase{"deepOpacityLines", "deepOpacity", "auto", 0.0, true},
+                                           SlabCase{"deepOpacityLinesTurned45", "deepOpacity", "auto", 45.0, true},
+                                           SlabCase{"deepOpacityLinesTurned30", "deepOpacity", "auto", 30.0, true},
+                                           SlabCase{"deepOpacityRibbonsTurned45", "deepOpacity", "off", 45.0, false},
+                                           SlabCase{"reference", "reference", "auto", 0.0, false}),
+                         [](const ::testing::TestParamInfo<SlabCase>& slabCase) { return std::string(slabCase.param.name); });
 
 TEST(Shadows, MoreLayersMoveTowardTheReference) {
     StageRenderRequest request{"examples/dense_clump.usda", "/World/main_cam", 96, 0.0,
@@ -424,6 +465,27 @@ TEST(Shadows, AutoSamplingTakesVertexShadowsOnlyWhereTheSpansAreShort) {
     }
     shortSpans.setCurves(split);
     EXPECT_TRUE(sampledPerPoint(shortSpans)) << "200 spans a strand";
+}
+
+// Lines stand in for ribbons only where a ribbon would be drawn a texel wide
+// with its alpha scaled down: every strand at most a texel wide in the
+// light's view, and minPixelWidth at most 1.
+TEST(Shadows, LightViewsDrawLinesOnlyWhereNoStrandIsWiderThanATexel) {
+    const CameraView camera = orthographicView(2.4, 32);
+    auto lightViewDraws = [&](const Scene& scene, std::vector<std::string> settings) {
+        settings.push_back("shadowMapResolution=128");  // texels of about 0.02 here
+        const std::string plan = render(scene, camera, settings).stats.plan.dump();
+        if (plan.find("strands as one-texel lines") != std::string::npos) return std::string("lines");
+        const size_t ribbons = plan.find("strands as ribbons (");
+        return ribbons == std::string::npos ? std::string("neither") : plan.substr(ribbons + 20, 12);
+    };
+    EXPECT_EQ(lightViewDraws(slabScene(200), {}), "lines") << "0.004 wide";
+    Scene wide = slabScene(200);
+    wide.setCurves(strandsAlongX("/wide", {{0.0f, 0.0f}}, 0.05f, 1.0f));
+    EXPECT_EQ(lightViewDraws(wide, {}), "the widest i") << "one strand of 0.05";
+    EXPECT_EQ(lightViewDraws(slabScene(200), {"minPixelWidth=2"}), "minPixelWidt");
+    EXPECT_EQ(lightViewDraws(slabScene(200), {"shadowStrandLines=off"}), "shadowStrand");
+    EXPECT_EQ(lightViewDraws(slabScene(200), {"shadowMode=reference"}), "neither") << "the reference draws ribbons";
 }
 
 TEST(Shadows, LightsBeyondTheFirstBatchKeepTheirMaps) {

@@ -241,3 +241,32 @@ TEST(ShadingFeatures, EveryProgramOneSwitchFromAllOrWithOneAloneCompiles) {
         }
     });
 }
+
+// Strand lines: the light views' programs (and the camera's, which could
+// take them) without strand.geom, the evaluation shader feeding the
+// fragment stage; with vertex shadows, which only the camera reads, a
+// compile error that says so.
+TEST(ShadingFeatures, StrandLinesCompileWithoutTheGeometryShader) {
+    EXPECT_EQ(ShadingFeatures::all().glsl().find("HDHAIR_STRAND_LINES"), std::string::npos);
+    const ShadingFeatures lines = ShadingFeatures::all().setStrandLines(true);
+    EXPECT_NE(lines.glsl().find("#define HDHAIR_STRAND_LINES 1\n"), std::string::npos);
+    EXPECT_NE(lines.key(), ShadingFeatures::all().key());
+    EXPECT_NE(lines.describe().find("strandLines"), std::string::npos);
+    GlRenderThread thread(GlBackend::Egl);
+    thread.run([&] {
+        for (const char* fragment : {"shadowDepth.frag", "deepOpacity.frag", "strand.frag", "strandFragmentList.frag"}) {
+            ShadingPrograms programs({"strand.vert", "strand.tesc", "strand.tese", "strand.geom", fragment});
+            EXPECT_NO_THROW(programs.get(lines)) << fragment;
+            EXPECT_NO_THROW(programs.get(ShadingFeatures::all().setShadowLayers(3).setStrandLines(true))) << fragment;
+            EXPECT_EQ(programs.compiled(), 2u);
+        }
+        ShadingPrograms camera({"strand.vert", "strand.tesc", "strand.tese", "strand.geom", "strand.frag"});
+        try {
+            camera.get(ShadingFeatures::all().setVertexShadowLights(1).setStrandLines(true));
+            ADD_FAILURE() << "strand lines with vertex shadows compiled";
+        } catch (const std::runtime_error& error) {
+            EXPECT_NE(std::string(error.what()).find("strand lines are for the light views"), std::string::npos)
+                << error.what();
+        }
+    });
+}

@@ -119,6 +119,8 @@ TEST(QualityPresets, ReferenceIsTheMostExactSettings) {
     EXPECT_EQ(reference.getToken("marschner:azimuthal"), "analytic");
     EXPECT_EQ(reference.getToken("tessellation"), "screenError");
     EXPECT_DOUBLE_EQ(reference.getFloat("tessellationTolerance"), RenderSettings::find("tessellationTolerance")->minimum);
+    EXPECT_DOUBLE_EQ(reference.getFloat("shadowTessellationTolerance"),
+                     RenderSettings::find("shadowTessellationTolerance")->minimum);
     EXPECT_EQ(reference.getInt("maxSegmentsPerSpan"), int(RenderSettings::find("maxSegmentsPerSpan")->maximum));
     EXPECT_GT(reference.getInt("supersampling"), 1);
     // Each preset is at least as exact as the one below it where they share a setting.
