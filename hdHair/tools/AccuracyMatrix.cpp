@@ -75,6 +75,12 @@ std::vector<Approximation> accuracyMatrix(bool quick) {
                       {},
                       ladder("shadowMapResolution", {"128", "256", "512", "2048"}, " texels"),
                       ErrorTrend::Falls, false});
+    matrix.push_back({"shadowTessellationTolerance",
+                      "the light views' tessellation tolerance in texels: the maps' polylines against the "
+                      "segments the light views draw",
+                      {},
+                      ladder("shadowTessellationTolerance", {"2", "0.5", "0.12"}, " texels"),
+                      ErrorTrend::Falls});
     matrix.push_back({"marschner:azimuthal",
                       "Marschner's azimuthal terms from 64x64 tables per material, or solved per fragment",
                       {"shadingModel=marschner"},
