@@ -5,9 +5,10 @@
 // (world units along the light's viewing direction), min-blended into an
 // R32F layer cleared to HDHAIR_NO_HAIR, so drawing order does not matter.
 // The strands come through strand.vert/.tesc/.tese with the light view's
-// frame uniforms: ribbons facing the light, tessellated and covered by the
-// same rules in the light's pixels. The light is entry 0
-// of the shadow uniforms.
+// frame uniforms: ribbons facing the light (strand.geom), or one-texel lines
+// (HDHAIR_STRAND_LINES, no geometry shader), tessellated and covered by the
+// same rules in the light's pixels. The light is entry 0 of the shadow
+// uniforms.
 #include "include/shadingFeatures.glsl"
 #include "include/frameUniforms.glsl"
 #include "include/lights.glsl"

@@ -2,9 +2,10 @@
 // Draws the frame's strands through a light's view, for the passes that
 // build shadows (ShadowMapPass, ShadowReferencePass): the strand stages
 // (strand.vert/.tesc/.tese) with the light view's frame uniforms (ribbons
-// facing the light, tessellated and covered by the rules in the light's
-// pixels) and the shadow uniforms naming the light (entry 0), under
-// whatever fragment shader and GL state the caller set up.
+// facing the light, or one-texel lines when the program has strand lines,
+// tessellated and covered by the rules in the light's pixels) and the
+// shadow uniforms naming the light (entry 0), under whatever program and GL
+// state the caller set up.
 
 #include <vector>
 
