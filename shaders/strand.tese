@@ -23,7 +23,7 @@
 // instead of breaking up into dashes or vanishing.
 //
 // Strand lines (HDHAIR_STRAND_LINES, the light views' shadowStrandLines when
-// every strand is at most a pixel wide there): no geometry shader; the
+// no strand is over 1.5 texels wide there): no geometry shader; the
 // isolines are rasterised as one-pixel lines, with the fragment stage's
 // inputs written here. A line lights one pixel per step along its major
 // axis: m pixels per pixel of its length, m = max(|dx|, |dy|) / |(dx, dy)|

@@ -83,7 +83,7 @@ public:
     int vertexShadowLights() const { return vertexShadowLights_; }
 
     // Strands drawn as one-pixel lines instead of ribbons (the light views'
-    // shadowStrandLines, when every strand is at most a texel wide): the
+    // shadowStrandLines, when no strand is over 1.5 texels wide): the
     // program has no geometry shader (ShadingPrograms leaves strand.geom
     // out), strand.tese hands its isolines straight to the rasteriser with
     // the fragment stage's inputs, and scales each point's alpha so that a
