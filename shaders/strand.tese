@@ -22,18 +22,11 @@
 // alpha scaled by true width / drawn width, so thin hair fades with distance
 // instead of breaking up into dashes or vanishing.
 //
-// Strand lines (HDHAIR_STRAND_LINES, the light views' shadowStrandLines when
-// no strand is over 1.5 texels wide there): no geometry shader; the
-// isolines are rasterised as one-pixel lines, with the fragment stage's
-// inputs written here. A line lights one pixel per step along its major
-// axis: m pixels per pixel of its length, m = max(|dx|, |dy|) / |(dx, dy)|
-// of its screen direction (1 along an axis, 1/sqrt(2) diagonally), where a
-// ribbon of the true width covers `width in pixels` of area. So each pixel
-// takes alpha opacity x width in pixels / m, and the opacity the pixels sum
-// is the ribbon's at every angle: above 1 for a strand wider than the line
-// (RenderPlan.cpp's kMaxStrandLineTexels bounds how much wider).
+// Strand lines (HDHAIR_STRAND_LINES): the isolines go to the rasteriser as
+// one-pixel lines, whose vertices strandLinePoint.glsl writes.
 #include "include/frameUniforms.glsl"
 #include "include/catmullRom.glsl"
+#include "include/strandPoint.glsl"
 #include "include/strandGeometry.glsl"
 #include "include/shadingFeatures.glsl"
 #ifdef HDHAIR_VERTEX_SHADOWS
@@ -52,13 +45,7 @@ layout(location = 2) flat in int tcsSegment[];
 #error "strand lines are for the light views, which read no shadows"
 #endif
 #ifdef HDHAIR_STRAND_LINES
-// What strand.geom hands the fragment stage, at its locations.
-layout(location = 0) out vec3 worldPosition;
-layout(location = 1) out vec3 worldTangent;
-layout(location = 2) out vec4 colorAlpha;  // displayColor, opacity x coverage
-layout(location = 3) flat out ivec4 ids;   // primId, elementId, material, segment
-layout(location = 4) out float spanU;
-layout(location = 5) out vec3 strandCentre;
+#include "include/strandLinePoint.glsl"
 #else
 layout(location = 0) out vec3 tesCentre;    // the centre line at u
 layout(location = 1) out vec3 tesAcross;    // from one edge of the ribbon to the other
@@ -73,65 +60,36 @@ layout(location = 6) out vec4 tesTransmittance[HDHAIR_VERTEX_SHADOW_VECTORS];  /
 
 void main() {
     float u = gl_TessCoord.x;
-    vec4 w = catmullRomWeights(u);
-    vec4 dw = catmullRomDerivativeWeights(u);
-
-    vec4 positionWidth = vec4(0.0);
-    vec3 tangent = vec3(0.0);
-    vec4 shade = vec4(0.0);
-    for (int i = 0; i < 4; ++i) {
-        positionWidth += w[i] * tcsPositionWidth[i];
-        tangent += dw[i] * tcsPositionWidth[i].xyz;
-        shade += w[i] * tcsColorOpacity[i];
-    }
-    // A zero-length derivative (coincident control points) falls back to the
-    // chord, then to any axis: the ribbon must stay well defined.
-    if (dot(tangent, tangent) < 1e-20) tangent = tcsPositionWidth[2].xyz - tcsPositionWidth[1].xyz;
-    if (dot(tangent, tangent) < 1e-20) tangent = vec3(0.0, 1.0, 0.0);
-    tangent = normalize(tangent);
-
-    vec3 toEye = directionToEye(positionWidth.xyz);
-    vec3 side = cross(tangent, toEye);
-    if (dot(side, side) < 1e-12) side = cross(tangent, abs(tangent.x) < 0.9 ? vec3(1, 0, 0) : vec3(0, 1, 0));
-    side = normalize(side);
-
-    // Cubic interpolation can overshoot: widths, colours and opacities are clamped.
-    float width = max(positionWidth.w, 0.0);
-    float opacity = clamp(shade.a, 0.0, 1.0);
+    vec4 positionWidth[4] = vec4[4](tcsPositionWidth[0], tcsPositionWidth[1], tcsPositionWidth[2], tcsPositionWidth[3]);
+    vec4 colorOpacity[4] = vec4[4](tcsColorOpacity[0], tcsColorOpacity[1], tcsColorOpacity[2], tcsColorOpacity[3]);
+    StrandPoint point = evaluateStrandPoint(positionWidth, colorOpacity, u);
     int segment = tcsSegment[0];
     ivec4 pointIds = ivec4(segmentPrimAndInstance(segment).x, segmentCurve[segment], segmentMaterial(segment), segment);
 #ifdef HDHAIR_STRAND_LINES
-    vec4 clip = frame.viewProjection * vec4(positionWidth.xyz, 1.0);
-    float clipW = max(abs(clip.w), 1e-12);
-    // The tangent's screen direction: d(clip.xy / clip.w) along it, in
-    // pixels (the common factor 1 / w^2 dropped).
-    vec4 clipTangent = frame.viewProjection * vec4(tangent, 0.0);
-    vec2 screen = (clipTangent.xy * clip.w - clip.xy * clipTangent.w) * frame.viewportSize;
-    float screenLength = length(screen);
-    // End-on (no screen direction) the line is a point: m = 1.
-    float m = screenLength > 0.0 ? clamp(max(abs(screen.x), abs(screen.y)) / screenLength, 0.70710678, 1.0) : 1.0;
-    float widthPixels = width * frame.pixelsPerUnit / clipW;
-    worldPosition = positionWidth.xyz;
-    strandCentre = positionWidth.xyz;
-    worldTangent = tangent;
-    colorAlpha = vec4(max(shade.rgb, vec3(0.0)), opacity * widthPixels / m);
-    ids = pointIds;
-    spanU = u;
-    gl_Position = clip;
+    emitStrandLinePoint(point, pointIds, u);
 #else
+    vec3 toEye = directionToEye(point.positionWidth.xyz);
+    vec3 side = cross(point.tangent, toEye);
+    if (dot(side, side) < 1e-12)
+        side = cross(point.tangent, abs(point.tangent.x) < 0.9 ? vec3(1, 0, 0) : vec3(0, 1, 0));
+    side = normalize(side);
+
+    // Cubic interpolation can overshoot: widths, colours and opacities are clamped.
+    float width = max(point.positionWidth.w, 0.0);
+    float opacity = clamp(point.shade.a, 0.0, 1.0);
     float drawnWidth = width;
     if (frame.minPixelWidth > 0.0) {
-        float clipW = max(abs((frame.viewProjection * vec4(positionWidth.xyz, 1.0)).w), 1e-12);
+        float clipW = max(abs((frame.viewProjection * vec4(point.positionWidth.xyz, 1.0)).w), 1e-12);
         float widthPixels = width * frame.pixelsPerUnit / clipW;
         if (widthPixels < frame.minPixelWidth) {
             drawnWidth = frame.minPixelWidth * clipW / frame.pixelsPerUnit;
             opacity *= widthPixels / frame.minPixelWidth;
         }
     }
-    tesCentre = positionWidth.xyz;
+    tesCentre = point.positionWidth.xyz;
     tesAcross = side * drawnWidth;
-    tesTangent = tangent;
-    tesColorAlpha = vec4(max(shade.rgb, vec3(0.0)), opacity);
+    tesTangent = point.tangent;
+    tesColorAlpha = vec4(max(point.shade.rgb, vec3(0.0)), opacity);
     tesIds = pointIds;
     tesSpanU = u;
 #endif

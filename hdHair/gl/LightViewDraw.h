@@ -3,13 +3,15 @@
 // build shadows (ShadowMapPass, ShadowReferencePass): the strand stages
 // (strand.vert/.tesc/.tese) with the light view's frame uniforms (ribbons
 // facing the light, or one-texel lines when the program has strand lines,
-// tessellated and covered by the rules in the light's pixels) and the
+// tessellated and covered by the rules in the light's pixels; lines of
+// straight spans may skip the tessellator, LightViewSpans.h) and the
 // shadow uniforms naming the light (entry 0), under whatever program and GL
 // state the caller set up.
 
 #include <vector>
 
 #include "hdHair/gl/GlObjects.h"
+#include "hdHair/gl/LightViewSpans.h"
 #include "hdHair/gl/SegmentRange.h"
 #include "hdHair/gl/StrandGeometry.h"
 #include "hdHair/gl/UniformBlocks.h"
@@ -26,6 +28,11 @@ public:
     // unordered.
     void draw(const Program& program, const StrandGeometry& geometry, const std::vector<SegmentRange>& ranges,
               const FrameUniforms& lightView, const ShadowUniforms& light);
+    // Strand lines from `spans`' list: its one-segment spans as plain lines
+    // with `straightProgram` (strandChord.vert), the rest through the
+    // tessellator with `program`.
+    void draw(const Program& straightProgram, const Program& program, const StrandGeometry& geometry,
+              const LightViewSpans& spans, const FrameUniforms& lightView, const ShadowUniforms& light);
 
 private:
     VertexArray emptyVertexArray_;

@@ -85,10 +85,11 @@ public:
     // Strands drawn as one-pixel lines instead of ribbons (the light views'
     // shadowStrandLines, when no strand is over 1.5 texels wide): the
     // program has no geometry shader (ShadingPrograms leaves strand.geom
-    // out), strand.tese hands its isolines straight to the rasteriser with
-    // the fragment stage's inputs, and scales each point's alpha so that a
-    // line, one pixel along its minor axis, holds the coverage of a ribbon of
-    // the strand's width. Like vertex shadows it changes what is drawn, so
+    // out), strand.tese (or strandChord.vert, for spans left one segment)
+    // hands its lines straight to the rasteriser with the fragment stage's
+    // inputs, and scales each point's alpha so that a line, one pixel along
+    // its minor axis, holds the coverage of a ribbon of the strand's width
+    // (strandLinePoint.glsl). Like vertex shadows it changes what is drawn, so
     // the complete program takes it too. Compiled in as HDHAIR_STRAND_LINES.
     ShadingFeatures& setStrandLines(bool lines) {
         strandLines_ = lines;

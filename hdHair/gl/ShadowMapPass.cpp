@@ -4,20 +4,22 @@ namespace hdhair::gl {
 
 ShadowMapPass::ShadowMapPass()
     : depthPrograms_({"strand.vert", "strand.tesc", "strand.tese", "strand.geom", "shadowDepth.frag"}),
-      opacityPrograms_({"strand.vert", "strand.tesc", "strand.tese", "strand.geom", "deepOpacity.frag"}) {
+      opacityPrograms_({"strand.vert", "strand.tesc", "strand.tese", "strand.geom", "deepOpacity.frag"}),
+      straightDepthPrograms_({"strandChord.vert", "shadowDepth.frag"}),
+      straightOpacityPrograms_({"strandChord.vert", "deepOpacity.frag"}) {
     depthPrograms_.get(ShadingFeatures::all());  // compile errors surface here, not mid-frame
     checkGlError("setting up the shadow map passes");
 }
 
 void ShadowMapPass::renderDepth(ShadowMapStorage& storage, const StrandGeometry& geometry,
                                 const std::vector<SegmentRange>& ranges, const FrameUniforms& lightView,
-                                const ShadowUniforms& light, bool strandLines) {
+                                const ShadowUniforms& light, LightViewStrands strands) {
     storage.bindDepthTarget(int(light.lightMap[0].x));
     // The least depth wins, in any drawing order.
     glEnable(GL_BLEND);
     glBlendEquation(GL_MIN);
-    draw_.draw(depthPrograms_.get(ShadingFeatures::all().setStrandLines(strandLines)), geometry, ranges, lightView,
-               light);
+    drawStrands(depthPrograms_, straightDepthPrograms_, ShadingFeatures::all(), geometry, ranges, lightView, light,
+                strands, true);
     glBlendEquation(GL_FUNC_ADD);
     glDisable(GL_BLEND);
     checkGlError("drawing a shadow depth map");
@@ -25,7 +27,7 @@ void ShadowMapPass::renderDepth(ShadowMapStorage& storage, const StrandGeometry&
 
 void ShadowMapPass::renderOpacity(ShadowMapStorage& storage, const StrandGeometry& geometry,
                                   const std::vector<SegmentRange>& ranges, const FrameUniforms& lightView,
-                                  const ShadowUniforms& light, bool strandLines) {
+                                  const ShadowUniforms& light, LightViewStrands strands) {
     storage.bindOpacityTargets(int(light.lightMap[0].x));
     storage.bindForLookup();  // the nearest depths, drawn by renderDepth
     // Sums in any drawing order (thesis section 2.7.2: additive blending).
@@ -35,10 +37,32 @@ void ShadowMapPass::renderOpacity(ShadowMapStorage& storage, const StrandGeometr
     // With the layer count a constant, deepOpacity.frag adds into those
     // layers alone, not all 32 under a uniform test (on llvmpipe a quarter of
     // the TressFX bear's opacity pass).
-    draw_.draw(opacityPrograms_.get(ShadingFeatures::all().setShadowLayers(light.mode.y).setStrandLines(strandLines)),
-               geometry, ranges, lightView, light);
+    drawStrands(opacityPrograms_, straightOpacityPrograms_, ShadingFeatures::all().setShadowLayers(light.mode.y),
+                geometry, ranges, lightView, light, strands, !spans_.builtFor(ranges, lightView));
     glDisable(GL_BLEND);
     checkGlError("drawing deep opacity layers");
+}
+
+std::pair<uint64_t, uint64_t> ShadowMapPass::takeSpanCounts() {
+    return {std::exchange(straightSpans_, 0), std::exchange(tessellatedSpans_, 0)};
+}
+
+void ShadowMapPass::drawStrands(ShadingPrograms& programs, ShadingPrograms& straightPrograms, ShadingFeatures features,
+                                const StrandGeometry& geometry, const std::vector<SegmentRange>& ranges,
+                                const FrameUniforms& lightView, const ShadowUniforms& light, LightViewStrands strands,
+                                bool listAgain) {
+    const ShadingFeatures drawn = features.setStrandLines(strands != LightViewStrands::Ribbons);
+    if (strands != LightViewStrands::Lines) {
+        draw_.draw(programs.get(drawn), geometry, ranges, lightView, light);
+        return;
+    }
+    if (listAgain) {
+        draw_.bindBlocks(lightView, light);
+        spans_.build(geometry, ranges, lightView);
+        straightSpans_ += spans_.straight();
+        tessellatedSpans_ += spans_.tessellated();
+    }
+    draw_.draw(straightPrograms.get(drawn), programs.get(drawn), geometry, spans_, lightView, light);
 }
 
 void ShadowMapPass::renderMeshDepth(ShadowMapStorage& storage, MeshPass& meshPass, const MeshGeometry& meshes,

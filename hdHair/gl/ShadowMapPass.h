@@ -10,10 +10,13 @@
 // add a third: the nearest mesh per texel (meshShadowDepth.frag), the opaque
 // occluders strands test against.
 
+#include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "hdHair/gl/GlObjects.h"
 #include "hdHair/gl/LightViewDraw.h"
+#include "hdHair/gl/LightViewSpans.h"
 #include "hdHair/gl/MeshGeometry.h"
 #include "hdHair/gl/MeshPass.h"
 #include "hdHair/gl/SegmentRange.h"
@@ -24,28 +27,51 @@
 
 namespace hdhair::gl {
 
+// How a light view draws the strands (PlannedShadow::strandLines and
+// ::straightSpans, from shadowStrandLines).
+enum class LightViewStrands {
+    Ribbons,           // camera-facing ribbons, as the camera draws them
+    TessellatedLines,  // one-texel lines, every span through the tessellator
+    Lines,             // one-texel lines, one-segment spans without it (LightViewSpans.h)
+};
+
 class ShadowMapPass {
 public:
     // Compiles the depth program, the opacity program on first use for each
     // layer count; both throw on driver errors.
     ShadowMapPass();
 
-    // `light` names the light as entry 0 (its slot, view and layers);
-    // `strandLines`: the strands are drawn as one-texel lines rather than
-    // ribbons (ShadingFeatures::setStrandLines; PlannedShadow::strandLines).
+    // `light` names the light as entry 0 (its slot, view and layers).
+    // With LightViewStrands::Lines the depth pass lists the view's spans
+    // (LightViewSpans) and the opacity pass of the same view reuses the list.
     void renderDepth(ShadowMapStorage& storage, const StrandGeometry& geometry, const std::vector<SegmentRange>& ranges,
-                     const FrameUniforms& lightView, const ShadowUniforms& light, bool strandLines);
+                     const FrameUniforms& lightView, const ShadowUniforms& light, LightViewStrands strands);
     void renderOpacity(ShadowMapStorage& storage, const StrandGeometry& geometry,
                        const std::vector<SegmentRange>& ranges, const FrameUniforms& lightView,
-                       const ShadowUniforms& light, bool strandLines);
+                       const ShadowUniforms& light, LightViewStrands strands);
+    // The spans the LightViewStrands::Lines views listed since the last call
+    // (which resets them): one-segment spans, drawn as plain lines, and the
+    // rest, drawn through the tessellator; culled spans count in neither.
+    std::pair<uint64_t, uint64_t> takeSpanCounts();
     void renderMeshDepth(ShadowMapStorage& storage, MeshPass& meshPass, const MeshGeometry& meshes,
                          const std::vector<MeshDraw>& draws, const FrameUniforms& lightView,
                          const ShadowUniforms& light);
 
 private:
+    // Draws `strands` with `programs` (and `straightPrograms` for the spans
+    // listed as one segment) under `features`; `listAgain`: the view's list
+    // is made first, else the last one is drawn.
+    void drawStrands(ShadingPrograms& programs, ShadingPrograms& straightPrograms, ShadingFeatures features,
+                     const StrandGeometry& geometry, const std::vector<SegmentRange>& ranges,
+                     const FrameUniforms& lightView, const ShadowUniforms& light, LightViewStrands strands,
+                     bool listAgain);
+
     ShadingPrograms depthPrograms_;    // every part, ribbons or lines
     ShadingPrograms opacityPrograms_;  // every part, with the layer count compiled in
+    ShadingPrograms straightDepthPrograms_, straightOpacityPrograms_;  // strandChord.vert and the same parts
     LightViewDraw draw_;
+    LightViewSpans spans_;
+    uint64_t straightSpans_ = 0, tessellatedSpans_ = 0;
 };
 
 }  // namespace hdhair::gl

@@ -279,6 +279,12 @@ void prepareShadowMaps(FrameContext& context) {
                                         shadows.convolvedOpacity);
 }
 
+// How light L's view draws the strands, as planned.
+gl::LightViewStrands lightViewStrands(const PlannedShadow& shadow) {
+    if (!shadow.strandLines) return gl::LightViewStrands::Ribbons;
+    return shadow.straightSpans ? gl::LightViewStrands::Lines : gl::LightViewStrands::TessellatedLines;
+}
+
 // "shadowDepth L": the nearest hair in light L's view.
 void shadowDepth(FrameContext& context, size_t shadow) {
     prepareShadowMaps(context);
@@ -286,7 +292,7 @@ void shadowDepth(FrameContext& context, size_t shadow) {
     resources.shadowMapPass.renderDepth(resources.shadowMaps, resources.strands, context.inputs.uploads.drawRanges,
                                         lightViewFrameUniforms(context.plan, shadow, context.inputs.frame),
                                         lightShadowUniforms(context.plan, shadow),
-                                        context.plan.shadows.lights[shadow].strandLines);
+                                        lightViewStrands(context.plan.shadows.lights[shadow]));
 }
 
 // "deepOpacity L": light L's opacity layers behind that hair.
@@ -296,7 +302,7 @@ void deepOpacity(FrameContext& context, size_t shadow) {
     resources.shadowMapPass.renderOpacity(resources.shadowMaps, resources.strands, context.inputs.uploads.drawRanges,
                                           lightViewFrameUniforms(context.plan, shadow, context.inputs.frame),
                                           lightShadowUniforms(context.plan, shadow),
-                                          context.plan.shadows.lights[shadow].strandLines);
+                                          lightViewStrands(context.plan.shadows.lights[shadow]));
 }
 
 // "meshShadow L": the nearest mesh in light L's view.

@@ -150,17 +150,20 @@ constexpr double kMaxStrandLineTexels = 1.5;
 // nearest depth for a perspective view). A ribbon under a texel wide is
 // drawn a texel wide with its alpha scaled down (minPixelWidth, at most 1
 // for lines to stand in for it); a line carries the same coverage, as alpha
-// width / m (strand.tese), without the geometry shader that widens each
-// segment. Up to kMaxStrandLineTexels (TressFX's roots are about a texel at
+// width / m (strandLinePoint.glsl), without the geometry shader that widens
+// each segment. Up to kMaxStrandLineTexels (TressFX's roots are about a texel at
 // 512) that alpha may pass 1: the texels a line lights sum the ribbon's
 // opacity, in one texel where the ribbon spread it over two, a difference
-// within the texel the bilinear lookup blurs over anyway.
+// within the texel the bilinear lookup blurs over anyway. With `auto` the
+// spans the view leaves one segment skip the tessellator too; `tessellated`
+// keeps every span on it, the path that check compares against.
 void planStrandLines(PlannedShadow& shadow, const ShadowPlan& shadows, const std::string& setting, double maxWidth) {
     const ShadowLightView& view = shadow.view;
     if (!view.valid || shadows.mode != ShadowMode::DeepOpacity) return;
     const double texel = view.orthographic ? view.texelSize : view.texelSize * view.nearDepth;
     shadow.widestTexels = texel > 0.0 ? maxWidth / texel : std::numeric_limits<double>::infinity();
-    shadow.strandLines = setting == "auto" && shadows.minPixelWidth <= 1.0 && shadow.widestTexels <= kMaxStrandLineTexels;
+    shadow.strandLines = setting != "off" && shadows.minPixelWidth <= 1.0 && shadow.widestTexels <= kMaxStrandLineTexels;
+    shadow.straightSpans = shadow.strandLines && setting == "auto";
 }
 
 // The shadow settings, and a planned shadow for every light that casts one
@@ -236,7 +239,9 @@ void addShadowPasses(FrameGraph& graph, const RenderPlan& plan, const PlannedSha
         const std::string drawn =
             !wanted ? ""
             : shadow.strandLines
-                ? fmt::format("; strands as one-texel lines (the widest is {:.2f} texels)", shadow.widestTexels)
+                ? fmt::format("; strands as one-texel lines (the widest is {:.2f} texels){}", shadow.widestTexels,
+                              shadow.straightSpans ? ", spans of one segment without the tessellator"
+                                                   : ", every span through the tessellator (shadowStrandLines=tessellated)")
                 : fmt::format("; strands as ribbons ({})",
                               shadow.widestTexels > kMaxStrandLineTexels
                                   ? fmt::format("the widest is {:.2f} texels", shadow.widestTexels)

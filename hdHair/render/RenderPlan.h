@@ -72,6 +72,11 @@ struct PlannedShadow {
     // texel there), not ribbons; `widestTexels` says why, for --explain.
     bool strandLines = false;
     double widestTexels = 0.0;
+    // With strand lines: the spans the view's tessellation leaves one
+    // segment are drawn as plain lines, without the tessellator
+    // (shadowStrandLines=auto; gl/LightViewSpans.h), not through it
+    // (shadowStrandLines=tessellated).
+    bool straightSpans = false;
 };
 
 struct ShadowPlan {

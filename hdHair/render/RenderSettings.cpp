@@ -118,9 +118,11 @@ const std::vector<SettingDescriptor>& RenderSettings::descriptors() {
         {"shadowStrandLines", SettingType::Token, "auto",
          "How deep opacity maps draw the strands: auto (as one-texel lines, with alpha carrying the strand's "
          "coverage, when no strand is over 1.5 texels wide in the light's view: no geometry shader, the "
-         "light views' largest cost on llvmpipe) or off (always camera-facing ribbons, minPixelWidth wide at "
-         "least, as the camera draws them)",
-         0, 0, {"auto", "off"}},
+         "light views' largest cost on llvmpipe; spans the view's tessellation leaves one segment are drawn "
+         "as plain lines, without the tessellator), tessellated (the same lines, every span through the "
+         "tessellator) or off (always camera-facing ribbons, minPixelWidth wide at least, as the camera "
+         "draws them)",
+         0, 0, {"auto", "tessellated", "off"}},
         {"shadowMemoryMB", SettingType::Int, "1024",
          "Memory for shadow maps; lights beyond what it holds at shadowMapResolution and shadowLayers shade "
          "unshadowed, with a warning",

@@ -19,6 +19,7 @@ nlohmann::json RenderStats::toJson() const {
     json["authoredPoints"] = authoredPoints;
     json["meshTriangles"] = meshTriangles;
     json["strandTriangles"] = strandTriangles;
+    json["lightViewSpans"] = {{"straight", lightViewStraightSpans}, {"tessellated", lightViewTessellatedSpans}};
     nlohmann::json passList = nlohmann::json::array();
     for (const PassTiming& pass : passes) passList.push_back({{"name", pass.name}, {"milliseconds", pass.milliseconds}});
     json["passes"] = passList;

@@ -29,6 +29,10 @@ struct RenderStats {
     // (as tessellated, culled spans excluded; 0 for exact transparency,
     // which draws its own way).
     uint64_t strandTriangles = 0;
+    // Spans the light views that draw strand lines listed this frame
+    // (shadowStrandLines=auto, gl/LightViewSpans.h): drawn as plain lines,
+    // one segment each, and drawn through the tessellator.
+    uint64_t lightViewStraightSpans = 0, lightViewTessellatedSpans = 0;
     size_t preparedMeshes = 0;    // meshes refined and triangulated this frame (changed ones only)
     std::vector<PassTiming> passes;
     double totalMilliseconds = 0.0;

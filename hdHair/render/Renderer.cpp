@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+#include <tuple>
 #include <vector>
 
 #include <fmt/format.h>
@@ -565,6 +566,8 @@ RenderResult Renderer::renderSamples(const Scene& scene, const CameraView& camer
         context.strandPieceSegments = control.strandPieceSegments;
         runFrameGraph(context, timing);
         stats.strandTriangles = resources_->strandPass.takeTriangles();
+        std::tie(stats.lightViewStraightSpans, stats.lightViewTessellatedSpans) =
+            resources_->shadowMapPass.takeSpanCounts();
         stats.gpuBytes = gl::gpuBytesByUse();
         stats.cpuBytes["drawOrder"] = context.drawOrder.capacity() * sizeof(uint32_t);
         // A shadow that could not be built, or whose passes a stopped frame

@@ -175,6 +175,11 @@ TEST_P(SlabTransmittance, FollowsExpOfMinusKTimesOpacity) {
     const RenderResult off = render(scene, camera, {"shadowMode=off"});
     ASSERT_EQ(on.stats.shadowMapsRebuilt, 1u);
     EXPECT_EQ(on.stats.plan.dump().find("one-texel lines") != std::string::npos, slab.drawnAsLines);
+    // The slab's strands are straight: with `auto` every span skips the
+    // tessellator (strandChord.vert draws them), with `tessellated` none.
+    const bool straight = slab.drawnAsLines && std::string(slab.strandLines) == "auto";
+    EXPECT_EQ(on.stats.lightViewStraightSpans > 0, straight);
+    EXPECT_EQ(on.stats.lightViewTessellatedSpans, 0u);
     const std::vector<double> shadowed = rowSums(on.color), lit = rowSums(off.color);
 
     std::vector<double> transmittance(64, -1.0);
@@ -214,6 +219,8 @@ INSTANTIATE_TEST_SUITE_P(Shadows, SlabTransmittance,
                          ::testing::Values(SlabCase{"deepOpacityLines", "deepOpacity", "auto", 0.0, true},
                                            SlabCase{"deepOpacityLinesTurned45", "deepOpacity", "auto", 45.0, true},
                                            SlabCase{"deepOpacityLinesTurned30", "deepOpacity", "auto", 30.0, true},
+                                           SlabCase{"deepOpacityTessellatedLinesTurned30", "deepOpacity",
+                                                    "tessellated", 30.0, true},
                                            SlabCase{"deepOpacityRibbonsTurned45", "deepOpacity", "off", 45.0, false},
                                            SlabCase{"reference", "reference", "auto", 0.0, false}),
                          [](const ::testing::TestParamInfo<SlabCase>& slabCase) { return std::string(slabCase.param.name); });
@@ -484,8 +491,50 @@ TEST(Shadows, LightViewsDrawLinesOnlyWhereNoStrandIsWiderThanATexel) {
     wide.setCurves(strandsAlongX("/wide", {{0.0f, 0.0f}}, 0.05f, 1.0f));
     EXPECT_EQ(lightViewDraws(wide, {}), "the widest i") << "one strand of 0.05";
     EXPECT_EQ(lightViewDraws(slabScene(200), {"minPixelWidth=2"}), "minPixelWidt");
+    EXPECT_EQ(lightViewDraws(slabScene(200), {"shadowStrandLines=tessellated"}), "lines");
     EXPECT_EQ(lightViewDraws(slabScene(200), {"shadowStrandLines=off"}), "shadowStrand");
     EXPECT_EQ(lightViewDraws(slabScene(200), {"shadowMode=reference"}), "neither") << "the reference draws ribbons";
+}
+
+// shadowStrandLines=auto draws the spans a light view leaves one segment as
+// plain lines (gl/LightViewSpans.h, strandChord.vert), without the
+// tessellator; `tessellated` sends every span through it. The ends of a
+// one-segment isoline are the span's ends, so the maps, and the frame that
+// reads them, must be the same up to the order the opacity layers sum in
+// (half-float sums). On the wavy stage's map at 96 texels (its strands
+// 0.81 texels wide there, so lines) the waves and curls keep most spans on
+// the tessellator and some off it. The check's reach: the same frame with
+// every span drawn as its chord (a tolerance of 100 texels leaves nearly all
+// one segment) must fail it.
+TEST(Shadows, StraightSpansSkipTheTessellatorWithTheSameMaps) {
+    StageRenderRequest request{"examples/wavy_strands.usda", "/World/main_cam", 160, 0.0, {}};
+    auto renderWith = [&](std::vector<std::string> settings) {
+        settings.push_back("shadowMapResolution=96");
+        request.settings = std::move(settings);
+        return renderStage(request).result;
+    };
+    const RenderResult tessellated = renderWith({"shadowStrandLines=tessellated"});
+    const RenderResult straight = renderWith({"shadowStrandLines=auto"});
+    const RenderResult chords = renderWith({"shadowStrandLines=auto", "shadowTessellationTolerance=100"});
+    ASSERT_NE(straight.stats.plan.dump().find("spans of one segment without the tessellator"), std::string::npos);
+    ASSERT_NE(tessellated.stats.plan.dump().find("every span through the tessellator"), std::string::npos);
+    EXPECT_EQ(tessellated.stats.lightViewStraightSpans + tessellated.stats.lightViewTessellatedSpans, 0u);
+    EXPECT_GT(straight.stats.lightViewStraightSpans, 0u);
+    EXPECT_GT(straight.stats.lightViewTessellatedSpans, 0u) << "the curls bend within a texel's tolerance";
+    EXPECT_LE(straight.stats.lightViewStraightSpans + straight.stats.lightViewTessellatedSpans,
+              straight.stats.segments);
+    EXPECT_GT(chords.stats.lightViewStraightSpans, straight.stats.lightViewStraightSpans);
+
+    const CoveredPixelTolerance sameMaps = exactWithin(2e-3);
+    const ImageComparison same = compareImages(straight.color, tessellated.color, sameMaps);
+    EXPECT_TRUE(same.passed) << same.description;
+    EXPECT_GT(same.coveredPixels, 1000u);
+    const ImageComparison mutated = compareImages(chords.color, tessellated.color, sameMaps);
+    EXPECT_FALSE(mutated.passed) << "chords for curved spans must show: " << mutated.description;
+    std::printf("straight spans %llu, tessellated %llu; largest difference %.5f, with chords everywhere %.5f\n",
+                static_cast<unsigned long long>(straight.stats.lightViewStraightSpans),
+                static_cast<unsigned long long>(straight.stats.lightViewTessellatedSpans), same.maxDifference,
+                mutated.maxDifference);
 }
 
 TEST(Shadows, LightsBeyondTheFirstBatchKeepTheirMaps) {
