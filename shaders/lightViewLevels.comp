@@ -21,11 +21,7 @@ layout(location = 2) uniform uint levelFirst;
 void main() {
     uint index = gl_GlobalInvocationID.x;
     if (index >= rangeCount) return;
-    uint first = segmentFirstControl[rangeFirst + index];
     vec4 positionWidth[4], colorOpacity[4];
-    for (uint i = 0u; i < 4u; ++i) {
-        positionWidth[i] = controlPoints[2u * (first + i)];
-        colorOpacity[i] = controlPoints[2u * (first + i) + 1u];
-    }
+    segmentControls(rangeFirst + index, positionWidth, colorOpacity);
     segmentLevels[levelFirst + index] = uint(strandTessellationLevel(positionWidth, colorOpacity));
 }

@@ -64,7 +64,7 @@ void main() {
     vec4 colorOpacity[4] = vec4[4](tcsColorOpacity[0], tcsColorOpacity[1], tcsColorOpacity[2], tcsColorOpacity[3]);
     StrandPoint point = evaluateStrandPoint(positionWidth, colorOpacity, u);
     int segment = tcsSegment[0];
-    ivec4 pointIds = ivec4(segmentPrimAndInstance(segment).x, segmentCurve[segment], segmentMaterial(segment), segment);
+    ivec4 pointIds = segmentIds(segment);
 #ifdef HDHAIR_STRAND_LINES
     emitStrandLinePoint(point, pointIds, u);
 #else

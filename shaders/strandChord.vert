@@ -17,13 +17,7 @@
 void main() {
     uint segment = drawOrder[uint(gl_VertexID) / 2u];
     float u = float(gl_VertexID % 2);
-    uint first = segmentFirstControl[segment];
     vec4 positionWidth[4], colorOpacity[4];
-    for (uint i = 0u; i < 4u; ++i) {
-        positionWidth[i] = controlPoints[2u * (first + i)];
-        colorOpacity[i] = controlPoints[2u * (first + i) + 1u];
-    }
-    int s = int(segment);
-    emitStrandLinePoint(evaluateStrandPoint(positionWidth, colorOpacity, u),
-                        ivec4(segmentPrimAndInstance(s).x, segmentCurve[s], segmentMaterial(s), s), u);
+    segmentControls(segment, positionWidth, colorOpacity);
+    emitStrandLinePoint(evaluateStrandPoint(positionWidth, colorOpacity, u), segmentIds(int(segment)), u);
 }

@@ -26,5 +26,20 @@ layout(std430, binding = 7) readonly buffer DrawnPrims {
     ivec4 drawnPrims[];
 };
 
+// Segment s's four control points, whole: for the stages that read a span
+// at once (strandChord.vert, lightViewLevels.comp) rather than a control
+// point a vertex (strand.vert).
+void segmentControls(uint segment, out vec4 positionWidth[4], out vec4 colorOpacity[4]) {
+    uint first = segmentFirstControl[segment];
+    for (uint i = 0u; i < 4u; ++i) {
+        positionWidth[i] = controlPoints[2u * (first + i)];
+        colorOpacity[i] = controlPoints[2u * (first + i) + 1u];
+    }
+}
+
 ivec2 segmentPrimAndInstance(int segment) { return drawnPrims[segmentSlot[segment]].xy; }
 int segmentMaterial(int segment) { return drawnPrims[segmentSlot[segment]].z; }
+// What the fragments of a segment carry: (primId, elementId, material, segment).
+ivec4 segmentIds(int segment) {
+    return ivec4(segmentPrimAndInstance(segment).x, segmentCurve[segment], segmentMaterial(segment), segment);
+}
