@@ -28,15 +28,18 @@ void LightViewSpans::build(const StrandGeometry& geometry, const std::vector<Seg
     geometry.bind();
     glUseProgram(levelsProgram_.get());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, levels_.get());
+    // GL guarantees 65,535 workgroups a dispatch: larger ranges go in pieces.
+    const uint64_t piece = uint64_t(65535) * kLevelsWorkgroup;
     size_t written = 0;
-    for (const SegmentRange& range : ranges) {
-        if (range.count == 0) continue;
-        glUniform1ui(0, GLuint(range.first));
-        glUniform1ui(1, GLuint(range.count));
-        glUniform1ui(2, GLuint(written));
-        glDispatchCompute(GLuint((range.count + kLevelsWorkgroup - 1) / kLevelsWorkgroup), 1, 1);
-        written += size_t(range.count);
-    }
+    for (const SegmentRange& range : ranges)
+        for (uint64_t first = range.first; first < range.first + range.count; first += piece) {
+            const uint64_t count = std::min(piece, range.first + range.count - first);
+            glUniform1ui(0, GLuint(first));
+            glUniform1ui(1, GLuint(count));
+            glUniform1ui(2, GLuint(written));
+            glDispatchCompute(GLuint((count + kLevelsWorkgroup - 1) / kLevelsWorkgroup), 1, 1);
+            written += size_t(count);
+        }
     glUseProgram(0);
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
     readLevels_.resize(total);
