@@ -130,6 +130,7 @@ ImageWriteReport writeImage(const Image& image, const std::string& path, const I
         // The colour space's name (as hdHair's OCIO config names it) and,
         // in EXR's standard attribute, its primaries and white.
         out.specmod().attribute("colorSpace", toString(color.space));
+        for (const auto& [name, value] : color.metadata) out.specmod().attribute(name, value);
         const std::array<float, 8> chromaticities = chromaticitiesOf(color.space);
         out.specmod().attribute("chromaticities", OIIO::TypeDesc(OIIO::TypeDesc::FLOAT, 8), chromaticities.data());
     } else {

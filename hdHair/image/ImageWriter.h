@@ -18,12 +18,18 @@
 
 #include <cstddef>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "hdHair/image/ColorSpaces.h"
 #include "hdHair/image/DisplayTransform.h"
 #include "hdHair/image/Image.h"
 
 namespace hdhair {
+
+// Extra string attributes an EXR carries (name, value): what made it, such
+// as a path-traced reference's sample count and seed.
+using ImageMetadata = std::vector<std::pair<std::string, std::string>>;
 
 struct ImageColor {
     RenderingSpace space = RenderingSpace::LinearRec709;  // the linear image's space
@@ -33,6 +39,7 @@ struct ImageColor {
     const Image* displayed = nullptr;
     // EXR: 32-bit float channels (hdhair-record --exrFloat32) instead of half.
     bool exrFloat32 = false;
+    ImageMetadata metadata;  // EXR only
 };
 
 // The largest finite half float.

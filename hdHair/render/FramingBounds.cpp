@@ -2,12 +2,16 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include <fmt/format.h>
 #include <glm/common.hpp>
 #include <glm/vector_relational.hpp>
 
 #include "hdHair/base/Diagnostics.h"
+#include "hdHair/curves/PreparedCurves.h"
+#include "hdHair/scene/MeshPrim.h"
+#include "hdHair/scene/SceneValidation.h"
 
 namespace hdhair {
 
@@ -63,6 +67,27 @@ SceneBounds framingBounds(const std::vector<FramingPoints>& prims, Diagnostics& 
                                                     outliers, kOutlierSpreads, spread, first.x, first.y, first.z));
     }
     return bounds;
+}
+
+FramingPoints spanFramingPoints(const PreparedCurves& curves) {
+    FramingPoints prim{curves.path, {}};
+    prim.points.reserve(2 * curves.segmentCount());
+    for (size_t s = 0; s < curves.segmentCount(); ++s) {
+        glm::vec3 low(std::numeric_limits<float>::max()), high(-std::numeric_limits<float>::max());
+        growBoundsBySpan(curves.spanControls(s), low, high);
+        prim.points.emplace_back(low);
+        prim.points.emplace_back(high);
+    }
+    return prim;
+}
+
+FramingPoints meshFramingPoints(const MeshPrim& mesh) {
+    FramingPoints prim{mesh.path, {}};
+    if (!isFiniteTransform(mesh.worldTransform)) return prim;
+    prim.points.reserve(mesh.points.size());
+    for (const glm::vec3& point : mesh.points)
+        prim.points.emplace_back(mesh.worldTransform * glm::dvec4(glm::dvec3(point), 1.0));
+    return prim;
 }
 
 }  // namespace hdhair

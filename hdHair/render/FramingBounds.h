@@ -22,6 +22,9 @@
 
 namespace hdhair {
 
+struct MeshPrim;
+struct PreparedCurves;
+
 class Diagnostics;
 
 constexpr double kOutlierSpreads = 1000.0;
@@ -39,5 +42,12 @@ struct FramingPoints {
 };
 
 SceneBounds framingBounds(const std::vector<FramingPoints>& prims, Diagnostics& diagnostics);
+
+// A curves prim's points for framing: each span's box, widths included, so
+// that with no outliers the bounds are the prepared curves' own.
+FramingPoints spanFramingPoints(const PreparedCurves& curves);
+// A mesh's authored points in world space (meshes are refined only when
+// drawn); none when its transform is not finite.
+FramingPoints meshFramingPoints(const MeshPrim& mesh);
 
 }  // namespace hdhair

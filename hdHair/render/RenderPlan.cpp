@@ -359,6 +359,10 @@ size_t shadowMapBudget(int resolution, int layers, int memoryMB) {
 
 nlohmann::json RenderPlan::toJson() const { return graph.toJson(); }
 
+bool usesCameraLight(const std::string& cameraLightSetting, bool stageHasLight, bool anythingLit) {
+    return anythingLit && (cameraLightSetting == "on" || (cameraLightSetting == "auto" && !stageHasLight));
+}
+
 RenderPlan makeRenderPlan(const Scene& scene, const RenderSettings& settings, const CameraView& camera,
                           const StrandSummary& strands, bool idsRequested, const MeshSummary& meshes,
                           bool displayOnGpu, const std::vector<DomeEnvironment>& domes) {
@@ -393,7 +397,7 @@ RenderPlan makeRenderPlan(const Scene& scene, const RenderSettings& settings, co
     std::string cameraLight = settings.getToken("cameraLight");
     bool stageHasLight = !plan.lights.lights.empty() || glm::length(plan.lights.ambient) > 0.0f ||
                          glm::length(plan.lights.uniformDome) > 0.0f;
-    plan.cameraLight = !plan.flatShading && (cameraLight == "on" || (cameraLight == "auto" && !stageHasLight));
+    plan.cameraLight = usesCameraLight(cameraLight, stageHasLight, !plan.flatShading);
     if (plan.cameraLight) {
         if (hostCameraLight) {
             // The host's light follows its camera: use it as it is.

@@ -191,6 +191,11 @@ struct RenderPlan {
     nlohmann::json toJson() const;
 };
 
+// Whether a frame adds hdHair's camera light (a distant light from the
+// eye): the cameraLight setting says on, or auto and the stage has no light
+// of its own; never when nothing is lit (flat shading only).
+bool usesCameraLight(const std::string& cameraLightSetting, bool stageHasLight, bool anythingLit);
+
 // idsRequested: a host asked for primId/instanceId/elementId. Depth is always
 // produced; with blending, by the strand pass (NearestStrandRule.h).
 // displayOnGpu: the frame also delivers its display image, made on the GPU.

@@ -210,24 +210,11 @@ SceneBounds Renderer::prepare(const Scene& scene, const RenderSettings& settings
     for (const auto& [path, entry] : scene.curves()) {
         const CachedCurves& cached = curves_.at(path);
         if (!entry.prim->visible || cached.prepared->empty()) continue;
-        FramingPoints& prim = prims.emplace_back(FramingPoints{path, {}});
-        // Each span's box, widths included: with no outliers the bounds are
-        // the prepared curves' own.
-        const PreparedCurves& curves = *cached.prepared;
-        prim.points.reserve(2 * curves.segmentCount());
-        for (size_t s = 0; s < curves.segmentCount(); ++s) {
-            glm::vec3 low(std::numeric_limits<float>::max()), high(-std::numeric_limits<float>::max());
-            growBoundsBySpan(curves.spanControls(s), low, high);
-            prim.points.emplace_back(low);
-            prim.points.emplace_back(high);
-        }
+        prims.push_back(spanFramingPoints(*cached.prepared));
     }
     for (const auto& [path, entry] : scene.meshes()) {
         if (!entry.prim->visible || !isFiniteTransform(entry.prim->worldTransform)) continue;
-        FramingPoints& prim = prims.emplace_back(FramingPoints{path, {}});
-        prim.points.reserve(entry.prim->points.size());
-        for (const glm::vec3& point : entry.prim->points)
-            prim.points.emplace_back(entry.prim->worldTransform * glm::dvec4(glm::dvec3(point), 1.0));
+        prims.push_back(meshFramingPoints(*entry.prim));
     }
     return framingBounds(prims, diagnostics);
 }
