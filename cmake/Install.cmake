@@ -23,6 +23,8 @@ install(FILES ${PROJECT_SOURCE_DIR}/README.md ${PROJECT_SOURCE_DIR}/LICENSE
         DESTINATION ${CMAKE_INSTALL_DATAROOTDIR}/doc/hdhair COMPONENT tools)
 install(FILES ${PROJECT_SOURCE_DIR}/hdHair/image/ocio/config.ocio
         DESTINATION ${CMAKE_INSTALL_DATAROOTDIR}/hdhair/ocio COMPONENT tools)
+install(FILES ${PROJECT_SOURCE_DIR}/hdHair/reference/cycles/renderCyclesScene.py
+        DESTINATION ${CMAKE_INSTALL_DATAROOTDIR}/hdhair/cycles COMPONENT tools)
 
 install(FILES ${PROJECT_SOURCE_DIR}/cmake/install/plugInfo.json DESTINATION plugin/usd COMPONENT usdPlugin)
 install(FILES ${PROJECT_SOURCE_DIR}/schemas/HdHairAPI/plugInfo.json
