@@ -6,9 +6,12 @@
 // Exit status: 0 on success; non-zero with one line "hdhair-record: error: ..."
 // on failure (bad arguments, unreadable stage, no GL context, unwritable output).
 
+#include <atomic>
 #include <chrono>
+#include <csignal>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <limits>
@@ -26,6 +29,8 @@
 #include "hdHair/gl/GlContext.h"
 #include "hdHair/image/DisplayTransform.h"
 #include "hdHair/image/ImageWriter.h"
+#include "hdHair/reference/CyclesProcess.h"
+#include "hdHair/reference/CyclesScene.h"
 #include "hdHair/render/CameraView.h"
 #include "hdHair/render/EmptyFrame.h"
 #include "hdHair/render/Renderer.h"
@@ -63,6 +68,12 @@ struct Options {
     // Colour management, as usdrecord's --colorCorrectionMode, with OCIO's choices.
     std::string colorCorrectionMode = "sRGB", ocioConfig, ocioDisplay, ocioView, ocioColorSpace, ocioLook;
     std::string displayTransformOn = "cpu";
+    // --reference cycles: the frame path-traced by Blender's Cycles instead
+    // (docs/cycles-reference.md), with these options.
+    std::string reference;
+    CyclesRenderOptions cycles;
+    std::string blender = "blender";
+    bool readerGiven = false;  // --reader on the command line
 };
 
 
@@ -120,11 +131,12 @@ DisplayTransform displayTransformFor(const Options& options, RenderingSpace rend
 // a display image is made in its memory, so a frame's floats exist once.
 void writeFrameImage(Image linear, const Image* gpuDisplayed, const DisplayTransform& display,
                      RenderingSpace space, const std::string& outputPath, bool exrFloat32, Diagnostics& diagnostics,
-                     std::vector<PassTiming>& passes, nlohmann::json& frameStats) {
+                     std::vector<PassTiming>& passes, nlohmann::json& frameStats, const ImageMetadata& metadata = {}) {
     ImageColor color;
     color.space = space;
     color.display = &display;
     color.exrFloat32 = exrFloat32;
+    color.metadata = metadata;
     const bool sceneLinear = isSceneLinearImagePath(outputPath);
     Image shown;
     if (!sceneLinear) {
@@ -212,6 +224,32 @@ std::vector<std::string> settingAssignments(const Options& options) {
 void printSettingOrigins(const RenderSettings& settings) {
     std::printf("hdhair-record: settings (what chose each; the rest are defaults):\n%s",
                 describeSettingOrigins(settings).c_str());
+}
+
+// The view of --camera's prim, checked (a bad lens is an error naming the
+// prim and attribute); none without --camera.
+std::optional<CameraView> cameraPrimView(const Options& options, const Scene& scene, Diagnostics& diagnostics) {
+    if (options.camera.empty()) return std::nullopt;
+    const CameraPrim* prim = scene.findCamera(options.camera);
+    if (!prim) {
+        std::string known;
+        for (const auto& [path, entry] : scene.cameras()) known += (known.empty() ? "" : ", ") + path;
+        throw InputError(options.usdFile + ": no camera at '" + options.camera + "'" +
+                         (known.empty() ? " (the stage has no cameras)" : " (cameras: " + known + ")"));
+    }
+    return cameraViewFromPrim(checkedCamera(*prim, options.usdFile, diagnostics), options.imageWidth);
+}
+
+// The camera a stage rendered without --camera gets: its bounds framed as
+// the framing setting says.
+CameraView framingView(const Options& options, const RenderSettings& settings, const Scene& scene,
+                       const SceneBounds& bounds) {
+    FramingStyle style = settings.getToken("framing") == "usdrecord" ? FramingStyle::UsdRecord : FramingStyle::FitAll;
+    return frameBounds(bounds.min, bounds.max, scene.info().upAxis, options.imageWidth, style);
+}
+
+std::string cameraDescription(const Options& options, const RenderSettings& settings) {
+    return options.camera.empty() ? "framing camera (" + settings.getToken("framing") + ")" : options.camera;
 }
 
 // The OpenUSD path: UsdStage, UsdImagingGL and the hdHair plugin, as
@@ -303,6 +341,157 @@ int runThroughUsdImaging(const Options& options, const usda::SceneReadOptions& p
 #endif
 }
 
+// The end of an embedded or reference run: how many warnings were not
+// printed, and --stats with every frame and every warning.
+void finishRun(const Options& options, const nlohmann::json& allStats, const Diagnostics& diagnostics,
+               size_t printed) {
+    if (printed > kWarningsPrinted)
+        std::fprintf(stderr, "hdhair-record: warning: %zu more warnings not shown (see --stats)\n",
+                     printed - kWarningsPrinted);
+    if (options.statsFile.empty()) return;
+    nlohmann::json stats;
+    stats["stage"] = options.usdFile;
+    stats["frames"] = allStats;
+    stats["warnings"] = nlohmann::json::array();
+    for (const Diagnostic& warning : diagnostics.warnings())
+        stats["warnings"].push_back({{"where", warning.where}, {"message", warning.message}});
+    writeTextFileAtomically(options.statsFile, stats.dump(2) + "\n");
+}
+
+// Set by SIGINT and SIGTERM while a reference renders: Blender is stopped
+// and nothing is written (a farm's kill, or ^C).
+std::atomic<bool> stopRequested{false};
+
+void requestStop(int) { stopRequested.store(true); }
+
+// The temporary folder a reference frame's exported scene and Cycles' image
+// live in, removed whatever happens.
+class TemporaryFolder {
+public:
+    TemporaryFolder() {
+        std::string pattern = (std::filesystem::temp_directory_path() / "hdhair-cycles-XXXXXX").string();
+        if (!mkdtemp(pattern.data())) throw std::runtime_error("cannot make a temporary folder for Cycles");
+        path_ = pattern;
+    }
+    ~TemporaryFolder() {
+        std::error_code ignored;
+        std::filesystem::remove_all(path_, ignored);
+    }
+    TemporaryFolder(const TemporaryFolder&) = delete;
+    TemporaryFolder& operator=(const TemporaryFolder&) = delete;
+    const std::filesystem::path& path() const { return path_; }
+
+private:
+    std::filesystem::path path_;
+};
+
+// --reference cycles: each frame's scene, read by the embedded reader and
+// prepared as hdHair prepares it, exported once and path-traced by Cycles;
+// the image is written as hdHair's own (colour space, alpha, atomic write),
+// the EXR with the path tracer's settings in its metadata.
+int runCyclesReference(const Options& options, const usda::SceneReadOptions& readOptions,
+                       const DisplayTransform& display, RenderingSpace space, const RenderSettings& settings) {
+    if (options.reference != "cycles")
+        throw std::invalid_argument("--reference must be cycles, not '" + options.reference + "'");
+    if (options.readerGiven && options.reader != "embedded")
+        throw std::invalid_argument("--reference cycles reads the stage with the embedded reader; leave out --reader "
+                                    "or give --reader embedded");
+    const CyclesRenderOptions& cycles = options.cycles;
+    if (cycles.samples < 1 || cycles.samples > 1 << 20) throw std::invalid_argument("--samples must be 1 to 1048576");
+    if (cycles.maxBounces < 0 || cycles.maxBounces > 1024)
+        throw std::invalid_argument("--maxBounces must be 0 (single scattering) to 1024");
+    if (!(cycles.timeLimitSeconds >= 0.0)) throw std::invalid_argument("--timeLimit must be 0 (none) or more seconds");
+    Diagnostics diagnostics;
+    size_t printed = 0;
+    diagnostics.setListener([&](const Diagnostic& warning) {
+        if (printed++ < kWarningsPrinted)
+            std::fprintf(stderr, "hdhair-record: warning: %s: %s\n", warning.where.c_str(), warning.message.c_str());
+    });
+    std::unique_ptr<usda::Stage> stage = usda::Stage::open(options.usdFile);
+    std::signal(SIGINT, requestStop);
+    std::signal(SIGTERM, requestStop);
+    nlohmann::json allStats = nlohmann::json::array();
+    for (double time : timesToRender(options)) {
+        Clock::time_point start = Clock::now();
+        Scene scene;
+        usda::readScene(*stage, time, scene, diagnostics, readOptions);
+        CyclesFraming framing;
+        framing.camera = cameraPrimView(options, scene, diagnostics);
+        framing.frame = [&](const SceneBounds& bounds) { return framingView(options, settings, scene, bounds); };
+        CameraView camera;
+        const CyclesScene exported = exportCyclesScene(scene, framing, settings, cycles, diagnostics, &camera);
+        TemporaryFolder folder;
+        writeCyclesScene(exported, folder.path());
+        const double exportMilliseconds = millisecondsSince(start);
+        const std::string outputPath =
+            std::isfinite(time) ? expandFramePlaceholder(options.outputPath, time) : options.outputPath;
+        if (options.verbose || options.explain)
+            std::printf("hdhair-record: %s: Cycles reference of %zu curves (%zu keys), %zu mesh triangles, %zu lights, "
+                        "%zu domes; %d samples, seed %d, %d bounces%s\n",
+                        describeTime(time).c_str(), exported.curves, exported.keys, exported.triangles,
+                        exported.lighting.lights.size(), exported.lighting.domes.size(), cycles.samples, cycles.seed,
+                        cycles.maxBounces, cycles.maxBounces == 0 ? " (single scattering)" : "");
+        CyclesProcessRequest request;
+        request.blender = options.blender;
+        request.script = defaultCyclesScript();
+        request.sceneJson = (folder.path() / "scene.json").string();
+        request.outputExr = (folder.path() / "cycles.exr").string();
+        request.stop = &stopRequested;
+        Clock::time_point lastReport = Clock::now();
+        request.progress = [&](const CyclesProgress& progress) {
+            // One line every few seconds: a batch log stays readable.
+            if (millisecondsSince(lastReport) < 2000.0 && progress.sample != progress.samples) return;
+            lastReport = Clock::now();
+            std::fprintf(stderr, "hdhair-record: cycles: sample %d/%d%s\n", progress.sample, progress.samples,
+                         progress.secondsLeft >= 0.0 ? fmt::format(", {:.0f} s left", progress.secondsLeft).c_str()
+                                                     : "");
+        };
+        const CyclesProcessResult result = runCyclesProcess(request);
+        Image color = readImage(request.outputExr);
+        if (color.width != camera.imageWidth || color.height != camera.imageHeight || color.channels != 4)
+            throw std::runtime_error(fmt::format("Cycles wrote a {}x{} image of {} channels, not {}x{} RGBA",
+                                                 color.width, color.height, color.channels, camera.imageWidth,
+                                                 camera.imageHeight));
+        const ImageMetadata metadata = {
+            {"hdhair:reference", "cycles"},
+            {"cycles:version", result.blenderVersion},
+            {"cycles:samples", std::to_string(cycles.samples)},
+            {"cycles:samplesDone", std::to_string(result.samplesDone)},
+            {"cycles:seed", std::to_string(cycles.seed)},
+            {"cycles:maxBounces", std::to_string(cycles.maxBounces)},
+            {"cycles:timeLimit", fmt::format("{}", cycles.timeLimitSeconds)},
+            {"cycles:keysPerSpan", std::to_string(cycles.pointsPerSpan)},
+            {"cycles:renderSeconds", fmt::format("{:.3f}", result.renderSeconds)}};
+        std::vector<PassTiming> passes = {{"exportScene", exportMilliseconds},
+                                          {"cycles", result.renderSeconds * 1000.0}};
+        nlohmann::json frameStats;
+        writeFrameImage(std::move(color), nullptr, display, space, outputPath, options.exrFloat32, diagnostics, passes,
+                        frameStats, metadata);
+        if (result.samplesDone < cycles.samples)
+            diagnostics.warn(outputPath, fmt::format("Cycles stopped at the time limit after {} of {} samples",
+                                                     result.samplesDone, cycles.samples));
+        if (options.verbose || options.explain)
+            std::printf("hdhair-record: %s: %dx%d, camera %s, %s, %d samples in %.1f s; wrote %s\n",
+                        describeTime(time).c_str(), camera.imageWidth, camera.imageHeight,
+                        cameraDescription(options, settings).c_str(), result.blenderVersion.c_str(),
+                        result.samplesDone, result.renderSeconds, outputPath.c_str());
+        frameStats["reference"] = "cycles";
+        frameStats["scene"] = describeCyclesScene(exported);
+        frameStats["samplesDone"] = result.samplesDone;
+        frameStats["camera"] = cameraDescription(options, settings);
+        frameStats["time"] = std::isfinite(time) ? nlohmann::json(time) : nlohmann::json(describeTime(time));
+        frameStats["output"] = outputPath;
+        for (const PassTiming& pass : passes)
+            frameStats["passes"].push_back({{"name", pass.name}, {"milliseconds", pass.milliseconds}});
+        frameStats["totalMilliseconds"] = millisecondsSince(start);
+        allStats.push_back(frameStats);
+    }
+    std::signal(SIGINT, SIG_DFL);
+    std::signal(SIGTERM, SIG_DFL);
+    finishRun(options, allStats, diagnostics, printed);
+    return 0;
+}
+
 int run(const Options& options) {
     Complexity complexity;
     if (!parseComplexity(options.complexity, &complexity))
@@ -331,6 +520,7 @@ int run(const Options& options) {
     usda::SceneReadOptions readOptions = purposesFrom(options.purposes);
     const RenderingSpace space = settings.renderingSpace();
     const DisplayTransform display = displayTransformFor(options, space);
+    if (!options.reference.empty()) return runCyclesReference(options, readOptions, display, space, settings);
     if (options.reader == "usd") return runThroughUsdImaging(options, readOptions, display, space);
     if (options.reader != "embedded") throw std::invalid_argument("--reader must be usd or embedded");
 
@@ -365,25 +555,10 @@ int run(const Options& options) {
         scene.updateFrom(atTime);
         double sceneMilliseconds = millisecondsSince(sceneStart);
 
-        CameraView camera;
-        std::string cameraName;
-        if (!options.camera.empty()) {
-            const CameraPrim* prim = scene.findCamera(options.camera);
-            if (!prim) {
-                std::string known;
-                for (const auto& [path, entry] : scene.cameras()) known += (known.empty() ? "" : ", ") + path;
-                throw InputError(options.usdFile + ": no camera at '" + options.camera + "'" +
-                                 (known.empty() ? " (the stage has no cameras)" : " (cameras: " + known + ")"));
-            }
-            camera = cameraViewFromPrim(checkedCamera(*prim, options.usdFile, diagnostics), options.imageWidth);
-            cameraName = options.camera;
-        } else {
-            SceneBounds bounds = renderer.prepare(scene, settings, diagnostics);
-            FramingStyle style = settings.getToken("framing") == "usdrecord" ? FramingStyle::UsdRecord
-                                                                             : FramingStyle::FitAll;
-            camera = frameBounds(bounds.min, bounds.max, scene.info().upAxis, options.imageWidth, style);
-            cameraName = "framing camera (" + settings.getToken("framing") + ")";
-        }
+        std::optional<CameraView> chosen = cameraPrimView(options, scene, diagnostics);
+        CameraView camera = chosen ? *chosen
+                                   : framingView(options, settings, scene, renderer.prepare(scene, settings, diagnostics));
+        const std::string cameraName = cameraDescription(options, settings);
 
         const bool gpuDisplay = options.displayTransformOn == "gpu" && !isSceneLinearImagePath(options.outputPath);
         RenderOutputs outputs;
@@ -429,19 +604,7 @@ int run(const Options& options) {
         frameStats["color"] = frameColor["color"];
         allStats.push_back(frameStats);
     }
-    if (printed > kWarningsPrinted)
-        std::fprintf(stderr, "hdhair-record: warning: %zu more warnings not shown (see --stats)\n",
-                     printed - kWarningsPrinted);
-
-    if (!options.statsFile.empty()) {
-        nlohmann::json stats;
-        stats["stage"] = options.usdFile;
-        stats["frames"] = allStats;
-        stats["warnings"] = nlohmann::json::array();
-        for (const Diagnostic& warning : diagnostics.warnings())
-            stats["warnings"].push_back({{"where", warning.where}, {"message", warning.message}});
-        writeTextFileAtomically(options.statsFile, stats.dump(2) + "\n");
-    }
+    finishRun(options, allStats, diagnostics, printed);
     return 0;
 }
 
@@ -504,6 +667,18 @@ int main(int argc, char** argv) {
                                                  "settings) to this JSON file");
     app.add_flag("--verbose,-v", options.verbose, "Print what was done and how long each pass took");
     app.add_flag("--explain", options.explain, "Print the render plan: which passes run and why");
+    app.add_option("--reference", options.reference,
+                   "Render a path-traced reference instead: cycles (Blender's Cycles, headless; the stage is read "
+                   "by the embedded reader and exported as hdHair prepares it; docs/cycles-reference.md)");
+    app.add_option("--samples", options.cycles.samples, "--reference: samples per pixel")->capture_default_str();
+    app.add_option("--seed", options.cycles.seed, "--reference: Cycles' sampling seed")->capture_default_str();
+    app.add_option("--maxBounces", options.cycles.maxBounces,
+                   "--reference: scattering events after the first (0: single scattering)")
+        ->capture_default_str();
+    app.add_option("--timeLimit", options.cycles.timeLimitSeconds,
+                   "--reference: stop after this many seconds (0: none), at the sample reached")
+        ->capture_default_str();
+    app.add_option("--blender", options.blender, "--reference: the Blender executable")->capture_default_str();
     bool listSettings = false;
     app.add_flag("--help-settings", listSettings, "List the renderer settings with defaults and exit");
 
@@ -524,6 +699,7 @@ int main(int argc, char** argv) {
         std::fprintf(stderr, "hdhair-record: error: %s (see --help)\n", error.what());
         return 2;
     }
+    options.readerGiven = app.count("--reader") > 0;
     try {
         return run(options);
     } catch (const std::exception& error) {
