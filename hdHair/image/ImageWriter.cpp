@@ -86,7 +86,8 @@ Image displayImage(Image&& linear, const DisplayTransform& display, bool overBla
     return shown;
 }
 
-ImageWriteReport writeImage(const Image& image, const std::string& path, const ImageColor& color) {
+ImageWriteReport writeImage(const Image& image, const std::string& path, const ImageColor& color,
+                            const ImageMetadata& metadata) {
     ImageWriteReport report;
     FileKind kind = fileKindOf(path);
     if (kind == FileKind::Unsupported)
@@ -130,7 +131,7 @@ ImageWriteReport writeImage(const Image& image, const std::string& path, const I
         // The colour space's name (as hdHair's OCIO config names it) and,
         // in EXR's standard attribute, its primaries and white.
         out.specmod().attribute("colorSpace", toString(color.space));
-        for (const auto& [name, value] : color.metadata) out.specmod().attribute(name, value);
+        for (const auto& [name, value] : metadata) out.specmod().attribute(name, value);
         const std::array<float, 8> chromaticities = chromaticitiesOf(color.space);
         out.specmod().attribute("chromaticities", OIIO::TypeDesc(OIIO::TypeDesc::FLOAT, 8), chromaticities.data());
     } else {

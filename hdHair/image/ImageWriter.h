@@ -39,7 +39,6 @@ struct ImageColor {
     const Image* displayed = nullptr;
     // EXR: 32-bit float channels (hdhair-record --exrFloat32) instead of half.
     bool exrFloat32 = false;
-    ImageMetadata metadata;  // EXR only
 };
 
 // The largest finite half float.
@@ -52,7 +51,9 @@ struct ImageWriteReport {
 
 // Throws std::runtime_error naming the path for an unsupported extension, a
 // missing folder or a failed write.
-ImageWriteReport writeImage(const Image& linear, const std::string& path, const ImageColor& color = {});
+// `metadata`: extra EXR attributes (ignored by the display formats).
+ImageWriteReport writeImage(const Image& linear, const std::string& path, const ImageColor& color = {},
+                            const ImageMetadata& metadata = {});
 
 // True for scene-linear formats (.exr), which no display transform touches.
 bool isSceneLinearImagePath(const std::string& path);

@@ -136,7 +136,6 @@ void writeFrameImage(Image linear, const Image* gpuDisplayed, const DisplayTrans
     color.space = space;
     color.display = &display;
     color.exrFloat32 = exrFloat32;
-    color.metadata = metadata;
     const bool sceneLinear = isSceneLinearImagePath(outputPath);
     Image shown;
     if (!sceneLinear) {
@@ -152,7 +151,8 @@ void writeFrameImage(Image linear, const Image* gpuDisplayed, const DisplayTrans
     Clock::time_point writeStart = Clock::now();
     // A display format reads only `color.displayed`; the linear image given
     // is checked for its size, so the display image stands in for it.
-    const ImageWriteReport report = writeImage(color.displayed ? *color.displayed : linear, outputPath, color);
+    const ImageWriteReport report =
+        writeImage(color.displayed ? *color.displayed : linear, outputPath, color, metadata);
     passes.push_back({"writeImage", millisecondsSince(writeStart)});
     if (report.pixelsClampedToHalf > 0)
         diagnostics.warn(outputPath, fmt::format("{} pixels exceed half float's largest value (65504) and were clamped "

@@ -89,7 +89,8 @@ class InstallPrefix(unittest.TestCase):
     def test_installedToolsRenderWhatTheBuildTreeRenders(self):
         self.install("tools")
         for name in ["bin/hdhair-record", "bin/hdhair-convert", "share/doc/hdhair/README.md",
-                     "share/doc/hdhair/LICENSE", "share/hdhair/ocio/config.ocio"]:
+                     "share/doc/hdhair/LICENSE", "share/hdhair/ocio/config.ocio",
+                     "share/hdhair/cycles/renderCyclesScene.py"]:
             self.assertTrue(os.path.isfile(os.path.join(self.prefix, name)), name)
         # The tools component is the tools alone.
         self.assertFalse(os.path.exists(os.path.join(self.prefix, "plugin")))
@@ -169,6 +170,7 @@ class DebianPackage(unittest.TestCase):
                        if not line.startswith("d"))
         self.assertEqual(files, ["./usr/bin/hdhair-convert", "./usr/bin/hdhair-record",
                                  "./usr/share/doc/hdhair/LICENSE", "./usr/share/doc/hdhair/README.md",
+                                 "./usr/share/hdhair/cycles/renderCyclesScene.py",
                                  "./usr/share/hdhair/ocio/config.ocio"])
         depends = run(["dpkg-deb", "-f", deb, "Depends"])
         for package in ["libopenimageio", "libtbb", "libegl-mesa0", "libgl1-mesa-dri"]:

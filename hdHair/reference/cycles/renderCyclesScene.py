@@ -48,6 +48,14 @@ class Blob:
         return values
 
 
+def rgba_of(rgb, count):
+    """RGB triples as the RGBA Blender's colour attributes hold (alpha 1)."""
+    rgba = array.array("f", [1.0]) * (4 * count)
+    for channel in range(3):
+        rgba[channel::4] = rgb[channel::3]
+    return rgba
+
+
 def clear_scene():
     for obj in list(bpy.data.objects):
         bpy.data.objects.remove(obj)
@@ -161,7 +169,7 @@ def hair_material(name, prim):
         absorption = hair["absorption"]
         surface.inputs["Absorption Coefficient"].default_value = (absorption[0], absorption[1], absorption[2])
         if hair["absorptionPerKey"]:
-            links.new(attribute(tree, "hdhair_absorption").outputs["Vector"], surface.inputs["Absorption Coefficient"])
+            links.new(attribute(tree, "hdhair_absorption").outputs["Color"], surface.inputs["Absorption Coefficient"])
         surface.inputs["Roughness"].default_value = hair["roughness"]
         surface.inputs["Radial Roughness"].default_value = hair["radialRoughness"]
         surface.inputs["Coat"].default_value = hair["coat"]
@@ -201,16 +209,15 @@ def add_curves(scene, blob, index, prim):
         fail("%s: Blender made %d keys, not %d" % (prim["path"], len(curves.points), prim["keyCount"]))
     curves.position_data.foreach_set("vector", blob.floats(prim["positions"]))
     curves.attributes["radius"].data.foreach_set("value", blob.floats(prim["radii"]))
-    colors = blob.floats(prim["colors"])
-    rgba = array.array("f", [1.0]) * (4 * prim["keyCount"])
-    for channel in range(3):
-        rgba[channel::4] = colors[channel::3]
-    curves.attributes.new("hdhair_color", "FLOAT_COLOR", "POINT").data.foreach_set("color", rgba)
+    curves.attributes.new("hdhair_color", "FLOAT_COLOR", "POINT").data.foreach_set(
+        "color", rgba_of(blob.floats(prim["colors"]), prim["keyCount"]))
     curves.attributes.new("hdhair_opacity", "FLOAT", "POINT").data.foreach_set(
         "value", blob.floats(prim["opacities"]))
     if not prim["flat"] and prim["hair"]["absorptionPerKey"]:
-        curves.attributes.new("hdhair_absorption", "FLOAT_VECTOR", "POINT").data.foreach_set(
-            "vector", blob.floats(prim["absorption"]))
+        # As a colour attribute: Cycles 3.4 renders curves' FLOAT_VECTOR
+        # point attributes as zero, their colour attributes as authored.
+        curves.attributes.new("hdhair_absorption", "FLOAT_COLOR", "POINT").data.foreach_set(
+            "color", rgba_of(blob.floats(prim["absorption"]), prim["keyCount"]))
     curves.materials.append(hair_material(name, prim))
 
 
@@ -222,11 +229,8 @@ def add_mesh(scene, blob, index, prim):
     vertices = [tuple(positions[3 * k:3 * k + 3]) for k in range(3 * triangles)]
     faces = [(3 * t, 3 * t + 1, 3 * t + 2) for t in range(triangles)]
     mesh.from_pydata(vertices, [], faces)
-    colors = blob.floats(prim["colors"])
-    rgba = array.array("f", [1.0]) * (4 * 3 * triangles)
-    for channel in range(3):
-        rgba[channel::4] = colors[channel::3]
-    mesh.attributes.new("hdhair_color", "FLOAT_COLOR", "CORNER").data.foreach_set("color", rgba)
+    mesh.attributes.new("hdhair_color", "FLOAT_COLOR", "CORNER").data.foreach_set(
+        "color", rgba_of(blob.floats(prim["colors"]), 3 * triangles))
     # hdHair shades the refined surface with its limit normals, per corner.
     normals = blob.floats(prim["normals"])
     mesh.use_auto_smooth = True
