@@ -485,7 +485,7 @@ TEST(CyclesReference, RecordsWhatMadeTheImage) {
     EXPECT_EQ(spec.get_string_attribute("cycles:seed"), "7");
     EXPECT_EQ(spec.get_string_attribute("cycles:maxBounces"), "3");
     EXPECT_EQ(spec.get_string_attribute("colorSpace"), "lin_rec709");
-    EXPECT_EQ(spec.get_string_attribute("cycles:version").rfind("Blender 3.", 0), 0u);
+    EXPECT_EQ(std::string(spec.get_string_attribute("cycles:version")).rfind("Blender 3.", 0), 0u);
 }
 
 TEST(CyclesReference, WithoutBlenderItFailsInOneLineAndWritesNothing) {
