@@ -153,8 +153,32 @@ def attribute(tree, name):
     return node
 
 
-def hair_material(name, prim):
-    """Emission (flat) or Principled Hair, mixed with transparency by opacity."""
+def opacity_factor(tree, cell):
+    """1 where a ray's hit is opaque, 0 where it passes: white noise on the
+    hit's position in cells of `cell` units, below the key's opacity. A
+    fractional Mix factor would be the obvious way, but with Principled Hair
+    Cycles 3.4 then reports too much alpha (0.647 for a factor of 0.5, where
+    Emission and Diffuse give 0.5: docs/cycles-reference.md); a factor of 0
+    or 1 per hit gives the right alpha and the same colour. The cells are far
+    finer than a strand, so every pixel averages over many of them."""
+    geometry = tree.nodes.new("ShaderNodeNewGeometry")
+    scale = tree.nodes.new("ShaderNodeVectorMath")
+    scale.operation = "SCALE"
+    scale.inputs["Scale"].default_value = 1.0 / cell
+    tree.links.new(geometry.outputs["Position"], scale.inputs[0])
+    noise = tree.nodes.new("ShaderNodeTexWhiteNoise")
+    noise.noise_dimensions = "3D"
+    tree.links.new(scale.outputs[0], noise.inputs["Vector"])
+    below = tree.nodes.new("ShaderNodeMath")
+    below.operation = "LESS_THAN"
+    tree.links.new(noise.outputs["Value"], below.inputs[0])
+    tree.links.new(attribute(tree, "hdhair_opacity").outputs["Fac"], below.inputs[1])
+    return below.outputs[0]
+
+
+def hair_material(name, prim, cell):
+    """Emission (flat) or Principled Hair, or transparency where the opacity
+    says (opacity_factor)."""
     material = bpy.data.materials.new(name)
     tree, output = node_tree(material)
     links = tree.links
@@ -179,7 +203,7 @@ def hair_material(name, prim):
         surface.inputs["Random Roughness"].default_value = 0.0
     transparent = tree.nodes.new("ShaderNodeBsdfTransparent")
     mix = tree.nodes.new("ShaderNodeMixShader")
-    links.new(attribute(tree, "hdhair_opacity").outputs["Fac"], mix.inputs["Fac"])
+    links.new(opacity_factor(tree, cell), mix.inputs["Fac"])
     links.new(transparent.outputs[0], mix.inputs[1])
     links.new(surface.outputs[0], mix.inputs[2])
     links.new(mix.outputs[0], output.inputs["Surface"])
@@ -218,7 +242,9 @@ def add_curves(scene, blob, index, prim):
         # point attributes as zero, their colour attributes as authored.
         curves.attributes.new("hdhair_absorption", "FLOAT_COLOR", "POINT").data.foreach_set(
             "color", rgba_of(blob.floats(prim["absorption"]), prim["keyCount"]))
-    curves.materials.append(hair_material(name, prim))
+    radii = blob.floats(prim["radii"])
+    mean_width = 2.0 * sum(radii) / max(len(radii), 1)
+    curves.materials.append(hair_material(name, prim, max(mean_width, 1e-9) / 16.0))
 
 
 def add_mesh(scene, blob, index, prim):
