@@ -164,6 +164,9 @@ CyclesScene exportCyclesScene(const Scene& scene, const CyclesFraming& framing, 
         if (hair.model == ShadingModel::KajiyaKay)
             diagnostics.warn(prim.path, "Kajiya-Kay has no physical counterpart: the reference shades these "
                                         "strands with Principled Hair, its absorption from their colour");
+        if (hair.model == ShadingModel::Marschner && (hair.varies & (kEtaVaries | kLongitudinalVaries)) != 0)
+            diagnostics.warn(prim.path, "hdHair:eta, longitudinalShift or longitudinalWidth vary over the prim: the "
+                                        "reference gives every strand their mean (only absorption varies per key)");
         anyLit = anyLit || hair.model != ShadingModel::Flat;
         if (!framing.camera) framingPoints.push_back(spanFramingPoints(prepared));
         result.strands.push_back(cyclesStrands(prepared, hair, options.pointsPerSpan));

@@ -396,6 +396,9 @@ int runCyclesReference(const Options& options, const usda::SceneReadOptions& rea
     if (options.readerGiven && options.reader != "embedded")
         throw std::invalid_argument("--reference cycles reads the stage with the embedded reader; leave out --reader "
                                     "or give --reader embedded");
+    if (options.displayTransformOn == "gpu")
+        std::fprintf(stderr, "hdhair-record: warning: --displayTransformOn gpu: a reference has no GL context; the "
+                             "display transform runs on the CPU\n");
     const CyclesRenderOptions& cycles = options.cycles;
     if (cycles.samples < 1 || cycles.samples > 1 << 20) throw std::invalid_argument("--samples must be 1 to 1048576");
     if (cycles.maxBounces < 0 || cycles.maxBounces > 1024)

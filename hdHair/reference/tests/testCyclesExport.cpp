@@ -267,3 +267,26 @@ TEST(CyclesScene, WritesTheArraysWhereTheDescriptionSays) {
     EXPECT_EQ(description["render"]["samples"], 64);
     std::filesystem::remove_all(folder);
 }
+
+TEST(CyclesScene, ParametersThatVaryBesidesAbsorptionWarnThatTheirMeanIsUsed) {
+    CurvesPrim prim = straightCurve(CurveBasis::CatmullRom, CurveWrap::Pinned);
+    prim.shadingModel = "marschner";
+    Primvar eta;
+    eta.name = "hdHair:eta";
+    eta.typeName = "float[]";
+    eta.interpolation = Interpolation::Vertex;
+    eta.values = {1.5f, 1.55f, 1.6f, 1.65f};
+    prim.primvars["hdHair:eta"] = eta;
+    Scene scene;
+    scene.setCurves(prim);
+    Diagnostics diagnostics;
+    CyclesFraming framing;
+    framing.camera = cameraFor(Projection::Perspective);
+    const CyclesScene exported = exportCyclesScene(scene, framing, RenderSettings{}, CyclesRenderOptions{}, diagnostics);
+    ASSERT_EQ(exported.strands.size(), 1u);
+    EXPECT_NEAR(exported.strands.front().hair.ior, 1.575f, 1e-3f);
+    bool warned = false;
+    for (const Diagnostic& warning : diagnostics.warnings())
+        warned = warned || (warning.where == "/hair" && warning.message.find("their mean") != std::string::npos);
+    EXPECT_TRUE(warned);
+}
