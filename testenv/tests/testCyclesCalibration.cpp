@@ -565,6 +565,24 @@ TEST(CyclesReference, RecordsWhatMadeTheImage) {
     EXPECT_EQ(std::string(spec.get_string_attribute("cycles:version")).rfind("Blender 3.", 0), 0u);
 }
 
+TEST(CyclesReference, ATimeLimitEndsTheRenderAndSaysHowFarItGot) {
+    const std::string stage = writeStage("timeLimit", fibreStage(0.3, 20.0, 0.0));
+    const fs::path output = workFolder() / "timeLimit.exr";
+    std::string log;
+    const int status = runCommand(std::string(HDHAIR_RECORD) + " --reference cycles --samples 1000000 --timeLimit 1 -w " +
+                                      std::to_string(kWidth) + " " + shellQuoted(stage) + " " +
+                                      shellQuoted(output.string()),
+                                  &log);
+    ASSERT_EQ(status, 0) << log;
+    EXPECT_NE(log.find("Cycles stopped at the time limit after"), std::string::npos) << log;
+    std::unique_ptr<OIIO::ImageInput> input = OIIO::ImageInput::open(output.string());
+    ASSERT_TRUE(input);
+    const int done = std::stoi(std::string(input->spec().get_string_attribute("cycles:samplesDone")));
+    EXPECT_GT(done, 0);
+    EXPECT_LT(done, 1000000);
+    EXPECT_EQ(std::string(input->spec().get_string_attribute("cycles:timeLimit")), "1");
+}
+
 TEST(CyclesReference, WithoutBlenderItFailsInOneLineAndWritesNothing) {
     const std::string stage = writeStage("noBlender", fibreStage(0.3, 20.0, 0.0));
     const fs::path output = workFolder() / "noBlender.exr";
