@@ -53,6 +53,16 @@ CyclesProcessResult runCyclesProcess(const CyclesProcessRequest& request) {
     std::vector<char*> argv;
     for (std::string& argument : arguments) argv.push_back(argument.data());
     argv.push_back(nullptr);
+    // Blender's own temporary folder goes inside the scene's, so that a
+    // stopped Blender (which leaves it behind) leaves nothing once the
+    // caller removes that folder. Made before fork: the child only execs.
+    std::vector<std::string> environment;
+    for (char** variable = environ; *variable; ++variable)
+        if (std::strncmp(*variable, "TMPDIR=", 7) != 0) environment.emplace_back(*variable);
+    environment.push_back("TMPDIR=" + std::filesystem::path(request.sceneJson).parent_path().string());
+    std::vector<char*> envp;
+    for (std::string& variable : environment) envp.push_back(variable.data());
+    envp.push_back(nullptr);
     const pid_t child = fork();
     if (child < 0) throw std::runtime_error(std::string("cannot start Blender: ") + std::strerror(errno));
     if (child == 0) {
@@ -63,7 +73,7 @@ CyclesProcessResult runCyclesProcess(const CyclesProcessRequest& request) {
         // Blender must not read the caller's terminal.
         const int devNull = open("/dev/null", O_RDONLY);
         if (devNull >= 0) dup2(devNull, STDIN_FILENO);
-        execvp(argv[0], argv.data());
+        execvpe(argv[0], argv.data(), envp.data());
         _exit(kExecFailed);
     }
     close(pipeFds[1]);

@@ -6,6 +6,8 @@
 // its result or its error. A stop request (the caller's flag, set from a
 // signal handler) ends Blender with SIGTERM and throws CyclesStopped, so a
 // farm's kill leaves no half-written image and no orphaned renderer.
+// Blender's TMPDIR is the scene's folder, so its own temporary files go
+// with that folder too.
 
 #include <atomic>
 #include <functional>
