@@ -629,3 +629,38 @@ TEST(CyclesReference, ATerminatedRenderWritesNothing) {
 }
 
 }  // namespace
+
+namespace {
+
+// hdhair-compare, which scripts/cycles-comparison.sh measures with.
+TEST(HdhairCompare, PrintsRelativeColorErrorPerImageAndFailsInOneLine) {
+    Image reference(4, 1, 4, 0.0f), brighter(4, 1, 4, 0.0f);
+    for (int x = 0; x < 2; ++x)
+        for (int c = 0; c < 4; ++c) {
+            reference.at(x, 0, c) = c == 3 ? 1.0f : 0.5f;
+            brighter.at(x, 0, c) = c == 3 ? 1.0f : 0.6f;
+        }
+    const std::string a = (workFolder() / "compare_reference.exr").string();
+    const std::string b = (workFolder() / "compare_brighter.exr").string();
+    hdhair::ImageColor exact;
+    exact.exrFloat32 = true;
+    hdhair::writeImage(reference, a, exact);
+    hdhair::writeImage(brighter, b, exact);
+    std::string log;
+    ASSERT_EQ(runCommand(std::string(HDHAIR_COMPARE) + " " + shellQuoted(a) + " " + shellQuoted(a) + " " +
+                             shellQuoted(b),
+                         &log),
+              0)
+        << log;
+    // Itself: no error; 0.6 against 0.5 on both covered pixels: RMS 0.2 of
+    // the reference's, sums 1.2.
+    EXPECT_NE(log.find("\"relativeRmse\":0.0"), std::string::npos) << log;
+    EXPECT_NE(log.find("\"coveredPixels\":2"), std::string::npos) << log;
+    EXPECT_NE(log.find("\"relativeRmse\":0.2"), std::string::npos) << log;
+    EXPECT_NE(log.find("\"sumRatio\":1.2"), std::string::npos) << log;
+    log.clear();
+    EXPECT_EQ(runCommand(std::string(HDHAIR_COMPARE) + " " + shellQuoted(a) + " /nonexistent.exr", &log), 1);
+    EXPECT_EQ(log.rfind("hdhair-compare: error: ", 0), 0u) << log;
+}
+
+}  // namespace
