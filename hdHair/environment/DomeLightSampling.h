@@ -1,5 +1,5 @@
 #pragma once
-// The yardstick the SRBF dome lighting is measured against (issue 16): the
+// The yardstick the SRBF dome lighting is measured against: the
 // dome integrated with many distant lights, importance sampled from its
 // radiance, each of which can cast its own deep-opacity shadow like any
 // other distant light. Ren et al. 2010 (§8, Fig. 6 and 8) make their

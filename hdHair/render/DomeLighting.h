@@ -13,7 +13,7 @@
 //   batch.
 // - ambient: the old flat term, radiance × colour (toShadingLights), kept to
 //   compare with.
-// - sampled: the reference the srbf mode is measured against (issue 16):
+// - sampled: the reference the srbf mode is measured against:
 //   each dome, textured or not, as domeSampledLights distant lights
 //   importance-sampled from its radiance (sampledDomeEnvironment,
 //   DomeLightSampling.h), each casting its own deep opacity map when the dome

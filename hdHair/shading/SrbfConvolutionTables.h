@@ -1,5 +1,5 @@
 #pragma once
-// The SRBF-convolution tables of issue 16: for one material, the radiance a
+// The SRBF-convolution tables: for one material, the radiance a
 // fibre scatters towards ωo under one SRBF lobe of unit amplitude
 // (SrbfConvolution.h), precomputed over the lobe's centre and bandwidth and
 // the view, for the GPU to sample once per lobe and fragment.

@@ -11,7 +11,7 @@
 
 namespace hdhair::accuracy {
 
-// How far a preset may lie from the front, in time or in error (issue 15).
+// How far a preset may lie from the front, in time or in error.
 constexpr double kPresetFrontAllowance = 0.10;
 
 // Marks every row "pareto": true when no other row of its stage is at least

@@ -1,5 +1,5 @@
 #pragma once
-// The defects a baseline image must catch (issue 10: today's rule passed
+// The defects a baseline image must catch (the earlier rule passed
 // renders with each of them). Which ones apply to a stage follows from what
 // the stage contains, read from its scene, so a new stage gets its checks
 // without anyone updating a list:

@@ -1,7 +1,7 @@
 // Built and run only with OpenUSD: a textured DomeLight lights a grey sphere
 // from the same side in hdHair as in Storm (usdrecord --renderer GL, under
 // Xvfb), and turning the dome about +Y turns its light the same way in both
-// (issue 16; the convention is hdHair/environment/LatlongDirections.h).
+// (the convention is hdHair/environment/LatlongDirections.h).
 //
 // The dome is red over its +X half and blue over its -X half (a latlong map
 // whose left half, u < 1/2, is +X). The camera looks down -Z from +Z, so the

@@ -1,4 +1,4 @@
-// Hard cases of issue 13 that no other test covers, table-driven: small
+// Hard cases (docs/hard-cases.md) that no other test covers, table-driven: small
 // stages written here, read by the embedded reader and rendered, each
 // checked for finite values in every AOV (colour, depth, ids) and for the
 // warning that names the prim and attribute; and hdhair-record's one-line

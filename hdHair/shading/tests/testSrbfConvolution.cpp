@@ -1,4 +1,4 @@
-// The SRBF convolution of issue 16: the numerical reference
+// The SRBF convolution: the numerical reference
 // (SrbfConvolution.h), the precomputed tables the GPU samples
 // (SrbfConvolutionTables.h) against it, their behaviour at the bandwidth
 // bounds and grazing angles, the sharp-lobe limit, the white furnace, and the
