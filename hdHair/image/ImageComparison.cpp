@@ -6,6 +6,8 @@
 
 #include <fmt/format.h>
 
+#include "hdHair/image/BoxDownsample.h"
+
 namespace hdhair {
 namespace {
 
@@ -120,6 +122,29 @@ RelativeColorError relativeColorError(const Image& actual, const Image& referenc
     error.largest = largestReference > 0.0 ? largestDifference / largestReference
                                            : (largestDifference > 0.0 ? INFINITY : 0.0);
     return error;
+}
+
+namespace {
+
+// The image's top-left whole blocks.
+Image croppedToBlocks(const Image& image, int block) {
+    Image cropped(image.width / block * block, image.height / block * block, image.channels);
+    const size_t channels = size_t(image.channels), row = size_t(cropped.width) * channels;
+    for (int y = 0; y < cropped.height; ++y)
+        std::copy_n(image.pixels.begin() + std::ptrdiff_t(size_t(y) * size_t(image.width) * channels), row,
+                    cropped.pixels.begin() + std::ptrdiff_t(size_t(y) * row));
+    return cropped;
+}
+
+}  // namespace
+
+RelativeColorError blockRelativeColorError(const Image& actual, const Image& reference, int block) {
+    if (block < 1) throw std::invalid_argument("blockRelativeColorError: the block must be at least one pixel");
+    if (block == 1) return relativeColorError(actual, reference);
+    if (actual.width != reference.width || actual.height != reference.height || actual.channels != reference.channels)
+        throw std::invalid_argument("blockRelativeColorError: the images' sizes differ");
+    return relativeColorError(boxDownsample(croppedToBlocks(actual, block), block),
+                              boxDownsample(croppedToBlocks(reference, block), block));
 }
 
 Image differenceImage(const Image& actual, const Image& expected, const CoveredPixelTolerance& tolerance, float gain) {

@@ -73,6 +73,16 @@ struct RelativeColorError {
 };
 RelativeColorError relativeColorError(const Image& actual, const Image& reference);
 
+// relativeColorError over blocks of `block` x `block` pixels, each averaged
+// (BoxDownsample.h; pre-multiplied colours average correctly), the frame's
+// last partial row and column of blocks left out. Against a path-traced
+// reference the per-pixel error is mostly the tracer's own noise, which
+// averaging over a block's N pixels divides by up to sqrt(N), while an
+// error the approximation makes over a region stays: a block error above
+// the reference's own (two seeds) is the approximation's. block 1 is
+// relativeColorError; block < 1 throws std::invalid_argument.
+RelativeColorError blockRelativeColorError(const Image& actual, const Image& reference, int block);
+
 // An image to look at beside a failed comparison: each pixel's largest
 // channel difference |actual - expected| times `gain`, as opaque grey,
 // red where it is over the tolerance's outlier limit, so that moved edges

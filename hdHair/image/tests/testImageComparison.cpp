@@ -136,3 +136,28 @@ TEST(ImageComparison, DifferentSizesFail) {
     EXPECT_NE(c.description.find("2x2x4 vs 3x2x4"), std::string::npos) << c.description;
     EXPECT_FALSE(compareImages(Image(2, 2, 4), Image(2, 2, 3), CoveredPixelTolerance{1.0, 1.0, 1.0, 100}).passed);
 }
+
+// Block errors: zero-mean per-pixel noise (a checkerboard of +-0.2 about the
+// reference) vanishes over 2x2 blocks, while a bias (10 % too bright) keeps
+// its size at every block; the last partial blocks are left out.
+TEST(ImageComparison, BlockErrorAveragesNoiseAndKeepsBias) {
+    Image reference(64, 64, 4, 0.5f), noisy(64, 64, 4, 0.5f), biased(64, 64, 4, 0.55f);
+    for (int y = 0; y < 64; ++y)
+        for (int x = 0; x < 64; ++x) {
+            for (int c = 0; c < 3; ++c) noisy.at(x, y, c) = (x + y) % 2 ? 0.7f : 0.3f;
+            reference.at(x, y, 3) = noisy.at(x, y, 3) = biased.at(x, y, 3) = 1.0f;
+        }
+    EXPECT_NEAR(blockRelativeColorError(noisy, reference, 1).rootMeanSquare, 0.4, 1e-6);
+    EXPECT_NEAR(blockRelativeColorError(noisy, reference, 2).rootMeanSquare, 0.0, 1e-6);
+    EXPECT_EQ(blockRelativeColorError(noisy, reference, 2).coveredPixels, 32u * 32u);
+    EXPECT_NEAR(blockRelativeColorError(biased, reference, 1).rootMeanSquare, 0.1, 1e-6);
+    EXPECT_NEAR(blockRelativeColorError(biased, reference, 8).rootMeanSquare, 0.1, 1e-6);
+    EXPECT_NEAR(blockRelativeColorError(biased, reference, 8).sumRatio, 1.1, 1e-6);
+
+    Image edge = reference;
+    edge.at(63, 63, 0) = 5.0f;  // in the last partial block of 6x6 blocks (60 = 10 x 6)
+    EXPECT_EQ(blockRelativeColorError(edge, reference, 6).rootMeanSquare, 0.0);
+    EXPECT_GT(blockRelativeColorError(edge, reference, 8).rootMeanSquare, 0.0);
+    EXPECT_THROW(blockRelativeColorError(edge, reference, 0), std::invalid_argument);
+    EXPECT_THROW(blockRelativeColorError(edge, Image(32, 32, 4), 2), std::invalid_argument);
+}
