@@ -29,8 +29,7 @@
 #include "hdHair/gl/GlContext.h"
 #include "hdHair/image/DisplayTransform.h"
 #include "hdHair/image/ImageWriter.h"
-#include "hdHair/reference/CyclesProcess.h"
-#include "hdHair/reference/CyclesScene.h"
+#include "hdHair/reference/CyclesFrame.h"
 #include "hdHair/render/CameraView.h"
 #include "hdHair/render/EmptyFrame.h"
 #include "hdHair/render/Renderer.h"
@@ -364,27 +363,6 @@ std::atomic<bool> stopRequested{false};
 
 void requestStop(int) { stopRequested.store(true); }
 
-// The temporary folder a reference frame's exported scene and Cycles' image
-// live in, removed whatever happens.
-class TemporaryFolder {
-public:
-    TemporaryFolder() {
-        std::string pattern = (std::filesystem::temp_directory_path() / "hdhair-cycles-XXXXXX").string();
-        if (!mkdtemp(pattern.data())) throw std::runtime_error("cannot make a temporary folder for Cycles");
-        path_ = pattern;
-    }
-    ~TemporaryFolder() {
-        std::error_code ignored;
-        std::filesystem::remove_all(path_, ignored);
-    }
-    TemporaryFolder(const TemporaryFolder&) = delete;
-    TemporaryFolder& operator=(const TemporaryFolder&) = delete;
-    const std::filesystem::path& path() const { return path_; }
-
-private:
-    std::filesystem::path path_;
-};
-
 // --reference cycles: each frame's scene, read by the embedded reader and
 // prepared as hdHair prepares it, exported once and path-traced by Cycles;
 // the image is written as hdHair's own (colour space, alpha, atomic write),
@@ -421,24 +399,15 @@ int runCyclesReference(const Options& options, const usda::SceneReadOptions& rea
         CyclesFraming framing;
         framing.camera = cameraPrimView(options, scene, diagnostics);
         framing.frame = [&](const SceneBounds& bounds) { return framingView(options, settings, scene, bounds); };
-        CameraView camera;
-        const CyclesScene exported = exportCyclesScene(scene, framing, settings, cycles, diagnostics, &camera);
-        TemporaryFolder folder;
-        writeCyclesScene(exported, folder.path());
-        const double exportMilliseconds = millisecondsSince(start);
         const std::string outputPath =
             std::isfinite(time) ? expandFramePlaceholder(options.outputPath, time) : options.outputPath;
         if (options.verbose || options.explain)
-            std::printf("hdhair-record: %s: Cycles reference of %zu curves (%zu keys), %zu mesh triangles, %zu lights, "
-                        "%zu domes; %d samples, seed %d, %d bounces%s\n",
-                        describeTime(time).c_str(), exported.curves, exported.keys, exported.triangles,
-                        exported.lighting.lights.size(), exported.lighting.domes.size(), cycles.samples, cycles.seed,
-                        cycles.maxBounces, cycles.maxBounces == 0 ? " (single scattering)" : "");
-        CyclesProcessRequest request;
+            std::printf("hdhair-record: %s: Cycles reference: %d samples, seed %d, %d bounces%s\n",
+                        describeTime(time).c_str(), cycles.samples, cycles.seed, cycles.maxBounces,
+                        cycles.maxBounces == 0 ? " (single scattering)" : "");
+        CyclesFrameRequest request;
         request.blender = options.blender;
-        request.script = defaultCyclesScript();
-        request.sceneJson = (folder.path() / "scene.json").string();
-        request.outputExr = (folder.path() / "cycles.exr").string();
+        request.options = cycles;
         request.stop = &stopRequested;
         Clock::time_point lastReport = Clock::now();
         request.progress = [&](const CyclesProgress& progress) {
@@ -449,26 +418,19 @@ int runCyclesReference(const Options& options, const usda::SceneReadOptions& rea
                          progress.secondsLeft >= 0.0 ? fmt::format(", {:.0f} s left", progress.secondsLeft).c_str()
                                                      : "");
         };
-        const CyclesProcessResult result = runCyclesProcess(request);
-        Image color = readImage(request.outputExr);
-        if (color.width != camera.imageWidth || color.height != camera.imageHeight || color.channels != 4)
-            throw std::runtime_error(fmt::format("Cycles wrote a {}x{} image of {} channels, not {}x{} RGBA",
-                                                 color.width, color.height, color.channels, camera.imageWidth,
-                                                 camera.imageHeight));
-        const ImageMetadata metadata = {
-            {"hdhair:reference", "cycles"},
-            {"cycles:version", result.blenderVersion},
-            {"cycles:samples", std::to_string(cycles.samples)},
-            {"cycles:samplesDone", std::to_string(result.samplesDone)},
-            {"cycles:seed", std::to_string(cycles.seed)},
-            {"cycles:maxBounces", std::to_string(cycles.maxBounces)},
-            {"cycles:timeLimit", fmt::format("{}", cycles.timeLimitSeconds)},
-            {"cycles:keysPerSpan", std::to_string(cycles.pointsPerSpan)},
-            {"cycles:renderSeconds", fmt::format("{:.3f}", result.renderSeconds)}};
-        std::vector<PassTiming> passes = {{"exportScene", exportMilliseconds},
+        CyclesFrame frame = renderCyclesFrame(scene, framing, settings, request, diagnostics);
+        const CyclesProcessResult& result = frame.result;
+        const CameraView& camera = frame.camera;
+        if (options.verbose || options.explain)
+            std::printf("hdhair-record: %s: exported %zu curves (%zu keys), %zu mesh triangles, %zu lights, %zu "
+                        "domes\n",
+                        describeTime(time).c_str(), frame.curves, frame.keys, frame.triangles, frame.lights,
+                        frame.domes);
+        const ImageMetadata metadata = cyclesFrameMetadata(cycles, result);
+        std::vector<PassTiming> passes = {{"exportScene", frame.exportMilliseconds},
                                           {"cycles", result.renderSeconds * 1000.0}};
         nlohmann::json frameStats;
-        writeFrameImage(std::move(color), nullptr, display, space, outputPath, options.exrFloat32, diagnostics, passes,
+        writeFrameImage(std::move(frame.color), nullptr, display, space, outputPath, options.exrFloat32, diagnostics, passes,
                         frameStats, metadata);
         if (result.samplesDone < cycles.samples)
             diagnostics.warn(outputPath, fmt::format("Cycles stopped at the time limit after {} of {} samples",
@@ -479,7 +441,7 @@ int runCyclesReference(const Options& options, const usda::SceneReadOptions& rea
                         cameraDescription(options, settings).c_str(), result.blenderVersion.c_str(),
                         result.samplesDone, result.renderSeconds, outputPath.c_str());
         frameStats["reference"] = "cycles";
-        frameStats["scene"] = describeCyclesScene(exported);
+        frameStats["scene"] = frame.scene;
         frameStats["samplesDone"] = result.samplesDone;
         frameStats["camera"] = cameraDescription(options, settings);
         frameStats["time"] = std::isfinite(time) ? nlohmann::json(time) : nlohmann::json(describeTime(time));
