@@ -14,6 +14,7 @@
 #include "hdHair/image/DisplayTransform.h"
 #include "hdHair/image/ImageComparison.h"
 #include "hdHair/image/ImageWriter.h"
+#include "hdHair/reference/CyclesFrame.h"
 #include "hdHair/render/QualityPresets.h"
 #include "hdHair/render/Renderer.h"
 #include "hdHair/scene/Scene.h"
@@ -56,15 +57,79 @@ std::string joined(const std::vector<std::string>& settings) {
     return text;
 }
 
-struct Frame {
-    Image color;
-    std::string path, fallback;
+// Every frame of a Cycles comparison, hdHair's and Cycles', is shaded so:
+// Kajiya-Kay has no physical counterpart.
+const std::vector<std::string> kCyclesShading = {"shadingModel=marschner"};
+
+nlohmann::json errorJson(const RelativeColorError& error) {
+    return {{"blockRmse", error.rootMeanSquare}, {"sumRatio", error.sumRatio}, {"largest", error.largest}};
+}
+
+// A stage path-traced by Cycles: full path tracing with two seeds (their
+// difference is the noise floor) and single scattering.
+struct CyclesFrames {
+    Image full, otherSeed, single;
+    nlohmann::json description;
 };
+
+CyclesFrames renderCyclesFrames(const AccuracyStage& stage, const CyclesComparison& comparison) {
+    const RenderSettings settings = RenderSettings::fromAssignments(Complexity::Low, kCyclesShading);
+    CyclesFraming framing;
+    framing.camera = stage.camera;
+    CyclesFrames frames;
+    nlohmann::json seconds = nlohmann::json::object();
+    std::string version;
+    auto render = [&](const char* name, int seed, int maxBounces) {
+        CyclesFrameRequest request;
+        request.blender = comparison.blender;
+        request.options.samples = comparison.samples;
+        request.options.seed = seed;
+        request.options.maxBounces = maxBounces;
+        Clock::time_point last = Clock::now();
+        request.progress = [&](const CyclesProgress& progress) {
+            if (std::chrono::duration<double>(Clock::now() - last).count() < 10.0) return;
+            last = Clock::now();
+            std::fprintf(stderr, "hdhair-bench: %s, Cycles %s: sample %d/%d\n", stage.name.c_str(), name,
+                         progress.sample, progress.samples);
+        };
+        Diagnostics diagnostics;
+        const Clock::time_point start = Clock::now();
+        CyclesFrame frame = renderCyclesFrame(*stage.scene, framing, settings, request, diagnostics);
+        const double wall = std::chrono::duration<double>(Clock::now() - start).count();
+        seconds[name] = {{"wall", wall}, {"render", frame.result.renderSeconds}};
+        version = frame.result.blenderVersion;
+        std::fprintf(stderr, "hdhair-bench: %s, Cycles %s: %d samples in %.1f s (%.1f s with export and start-up)\n",
+                     stage.name.c_str(), name, frame.result.samplesDone, frame.result.renderSeconds, wall);
+        if (!comparison.imagesFolder.empty())
+            writeImage(frame.color, fmt::format("{}/{}.cycles-{}.exr", comparison.imagesFolder, stage.name, name),
+                       ImageColor{settings.renderingSpace(), nullptr, nullptr, true},
+                       cyclesFrameMetadata(request.options, frame.result));
+        return std::move(frame.color);
+    };
+    frames.full = render("full", 0, CyclesRenderOptions().maxBounces);
+    frames.otherSeed = render("full-seed1", 1, CyclesRenderOptions().maxBounces);
+    frames.single = render("single", 0, 0);
+    frames.description = {
+        {"version", version},
+        {"samples", comparison.samples},
+        {"block", comparison.block},
+        {"seconds", seconds},
+        // The error a frame as exact as Cycles itself would still show.
+        {"noiseFloor", errorJson(blockRelativeColorError(frames.otherSeed, frames.full, comparison.block))},
+        {"pixelNoiseFloor", relativeColorError(frames.otherSeed, frames.full).rootMeanSquare},
+        // What leaving out every scattering event after the first costs.
+        {"singleAgainstFull", errorJson(blockRelativeColorError(frames.single, frames.full, comparison.block))}};
+    return frames;
+}
 
 class StageBench {
 public:
-    StageBench(Renderer& renderer, AccuracyStage& stage, const DisplayTransform& display, int repetitions)
-        : renderer_(renderer), stage_(stage), display_(display), repetitions_(repetitions) {}
+    // `common` goes under every frame's settings (the Cycles comparison's
+    // shading); `cycles`, when given, is what every row is also compared with.
+    StageBench(Renderer& renderer, AccuracyStage& stage, const DisplayTransform& display, int repetitions,
+               std::vector<std::string> common, const CyclesFrames* cycles, int block)
+        : renderer_(renderer), stage_(stage), display_(display), repetitions_(repetitions), common_(std::move(common)),
+          cycles_(cycles), block_(block) {}
 
     // quality=reference over `base`, rendered once per base.
     const Image& reference(const std::vector<std::string>& base) {
@@ -138,6 +203,9 @@ public:
                 {"path", first.stats.transparency},
                 {"fallback", first.stats.fallback},
                 {"segments", first.stats.segments}};
+        if (cycles_)
+            row["cycles"] = {{"full", errorJson(blockRelativeColorError(first.color, cycles_->full, block_))},
+                             {"single", errorJson(blockRelativeColorError(first.color, cycles_->single, block_))}};
         rows_[key] = row;
         return row;
     }
@@ -145,16 +213,20 @@ public:
     nlohmann::json describe() const {
         nlohmann::json references = nlohmann::json::object();
         for (const auto& [key, seconds] : referenceSeconds_) references[key.empty() ? "(none)" : key] = seconds;
-        return {{"name", stage_.name},
-                {"path", stage_.path},
-                {"width", stage_.camera.imageWidth},
-                {"height", stage_.camera.imageHeight},
-                {"referenceSeconds", references}};
+        nlohmann::json stage = {{"name", stage_.name},
+                                {"path", stage_.path},
+                                {"width", stage_.camera.imageWidth},
+                                {"height", stage_.camera.imageHeight},
+                                {"referenceSeconds", references}};
+        if (cycles_) stage["cycles"] = cycles_->description;
+        return stage;
     }
 
 private:
     // A frame that rebuilds its shadow maps (the lights turned back and forth).
-    RenderResult render(std::vector<std::string> settings) {
+    RenderResult render(const std::vector<std::string>& rowSettings) {
+        std::vector<std::string> settings = common_;
+        settings.insert(settings.end(), rowSettings.begin(), rowSettings.end());
         settings.push_back("passTimings=true");
         turnLightsAboutY(*stage_.scene, (forth_ = !forth_) ? 1e-6 : -1e-6);
         Diagnostics diagnostics;
@@ -166,11 +238,22 @@ private:
     AccuracyStage& stage_;
     const DisplayTransform& display_;
     int repetitions_;
+    std::vector<std::string> common_;
+    const CyclesFrames* cycles_;
+    int block_;
     bool forth_ = false;
     std::map<std::string, Image> references_;
     std::map<std::string, double> referenceSeconds_;
     std::map<std::string, nlohmann::json> rows_;  // by their settings
 };
+
+// The progress line's comparison with Cycles, when the row has one.
+std::string cyclesSummary(const nlohmann::json& row) {
+    if (!row.contains("cycles")) return "";
+    return fmt::format(", against Cycles {:.3f} (sum {:.2f}), single scattering {:.3f}",
+                       row["cycles"]["full"]["blockRmse"].get<double>(), row["cycles"]["full"]["sumRatio"].get<double>(),
+                       row["cycles"]["single"]["blockRmse"].get<double>());
+}
 
 }  // namespace
 
@@ -190,6 +273,8 @@ nlohmann::json runAccuracyBench(Renderer& renderer, std::vector<AccuracyStage>& 
                          {"glDevice", renderer.glDevice()},
                          {"loadAverageAtStart", firstLineOf("/proc/loadavg")}};
     report["display"] = {{"transform", display.summary()}, {"threshold", kDisplayThreshold}};
+    const std::vector<std::string> common = run.cycles ? kCyclesShading : std::vector<std::string>();
+    report["commonSettings"] = common;
     report["approximations"] = nlohmann::json::array();
     for (const Approximation& approximation : matrix) {
         nlohmann::json steps = nlohmann::json::array();
@@ -204,21 +289,26 @@ nlohmann::json runAccuracyBench(Renderer& renderer, std::vector<AccuracyStage>& 
     report["stages"] = nlohmann::json::array();
     report["rows"] = nlohmann::json::array();
     for (AccuracyStage& stage : stages) {
-        StageBench bench(renderer, stage, display, run.repetitions);
+        std::optional<CyclesFrames> cycles;
+        if (run.cycles) cycles = renderCyclesFrames(stage, *run.cycles);
+        StageBench bench(renderer, stage, display, run.repetitions, common, cycles ? &*cycles : nullptr,
+                         run.cycles ? run.cycles->block : 1);
         for (const Approximation& approximation : matrix)
             for (const Step& step : approximation.steps) {
                 nlohmann::json row = bench.measure(approximation.base, step, approximation.ownErrorAtReferenceSampling);
                 row["approximation"] = approximation.name;
-                std::fprintf(stderr, "hdhair-bench: %s, %s %s: %.1f ms, RMSE %.5f (own %.5f)\n", stage.name.c_str(),
+                std::fprintf(stderr, "hdhair-bench: %s, %s %s: %.1f ms, RMSE %.5f (own %.5f)%s\n", stage.name.c_str(),
                              approximation.name.c_str(), step.label.c_str(), row["frame"]["medianMs"].get<double>(),
-                             row["error"]["rmse"].get<double>(), row["error"]["ownRmse"].get<double>());
+                             row["error"]["rmse"].get<double>(), row["error"]["ownRmse"].get<double>(),
+                             cyclesSummary(row).c_str());
                 report["rows"].push_back(row);
             }
         for (const Step& step : presetSteps()) {
             nlohmann::json row = bench.measure({}, step, false);
             row["approximation"] = "preset";
-            std::fprintf(stderr, "hdhair-bench: %s, %s: %.1f ms, RMSE %.5f\n", stage.name.c_str(), step.label.c_str(),
-                         row["frame"]["medianMs"].get<double>(), row["error"]["rmse"].get<double>());
+            std::fprintf(stderr, "hdhair-bench: %s, %s: %.1f ms, RMSE %.5f%s\n", stage.name.c_str(), step.label.c_str(),
+                         row["frame"]["medianMs"].get<double>(), row["error"]["rmse"].get<double>(),
+                         cyclesSummary(row).c_str());
             report["rows"].push_back(row);
         }
         report["stages"].push_back(bench.describe());

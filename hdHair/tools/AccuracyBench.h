@@ -15,7 +15,18 @@
 // Every timed frame rebuilds its shadow maps (the lights are turned by a
 // microradian first, BenchLights.h), so shadow settings cost what they cost
 // after a light moved. The result is the report's JSON (AccuracyReport.h).
+//
+// With a Cycles comparison (docs/accuracy.md, "Against Cycles") each stage
+// is also path-traced by Blender's Cycles from the scene hdHair renders
+// (CyclesFrame.h), three times: full path tracing with two seeds and single
+// scattering. Every frame, hdHair's and Cycles', is shaded with
+// shadingModel=marschner (Kajiya-Kay has no physical counterpart), and every
+// row gets its error against both Cycles frames over blocks of pixels
+// (blockRelativeColorError): per pixel, a path-traced frame's error is its
+// own noise. The stage records the noise floor (the two seeds against each
+// other over the same blocks) and each Cycles frame's time.
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -39,10 +50,18 @@ struct AccuracyStage {
     CameraView camera;
 };
 
+struct CyclesComparison {
+    int samples = 256;               // per pixel, each Cycles frame
+    int block = 16;                  // pixels across a block of the errors
+    std::string blender = "blender";
+    std::string imagesFolder;        // where the Cycles frames are written as EXR (none when empty)
+};
+
 struct AccuracyRun {
     bool quick = false;
     int repetitions = 3;   // timed frames per configuration, after one untimed frame
     std::string command;   // as run, for the report
+    std::optional<CyclesComparison> cycles;
 };
 
 // Throws std::runtime_error when a reference cannot be rendered (exact

@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <map>
 #include <set>
 #include <stdexcept>
 
@@ -16,11 +17,45 @@ namespace hdhair::accuracy {
 
 namespace {
 
+using ErrorOf = double (*)(const nlohmann::json& row);
+
 double timeOf(const nlohmann::json& row) { return row["frame"]["medianMs"].get<double>(); }
 double errorOf(const nlohmann::json& row) { return row["error"]["rmse"].get<double>(); }
+double cyclesErrorOf(const nlohmann::json& row) { return row["cycles"]["full"]["blockRmse"].get<double>(); }
 
-bool dominates(const nlohmann::json& a, const nlohmann::json& b) {
-    return timeOf(a) <= timeOf(b) && errorOf(a) <= errorOf(b) && (timeOf(a) < timeOf(b) || errorOf(a) < errorOf(b));
+// Marks each of `rows` `flag` when no other is at least as fast and at least
+// as exact (by `error`) and better in one; returns each preset's distance
+// from that front (markParetoFront), in the rows' order.
+nlohmann::json markFront(const std::vector<nlohmann::json*>& rows, ErrorOf error, const char* flag) {
+    auto dominates = [error](const nlohmann::json& a, const nlohmann::json& b) {
+        return timeOf(a) <= timeOf(b) && error(a) <= error(b) && (timeOf(a) < timeOf(b) || error(a) < error(b));
+    };
+    for (nlohmann::json* row : rows) {
+        bool dominated = false;
+        for (const nlohmann::json* other : rows) dominated = dominated || dominates(*other, *row);
+        (*row)[flag] = !dominated;
+    }
+    nlohmann::json presets = nlohmann::json::array();
+    for (const nlohmann::json* row : rows) {
+        if ((*row)["approximation"] != "preset") continue;
+        const double time = timeOf(*row), rowError = error(*row);
+        // The fastest front row at least as exact, and the most exact front row at least as fast.
+        double fastest = time, mostExact = rowError;
+        for (const nlohmann::json* front : rows) {
+            if (!(*front)[flag].get<bool>()) continue;
+            if (error(*front) <= rowError) fastest = std::min(fastest, timeOf(*front));
+            if (timeOf(*front) <= time) mostExact = std::min(mostExact, error(*front));
+        }
+        const double timeGap = time > 0.0 ? (time - fastest) / time : 0.0;
+        const double errorGap = rowError > 0.0 ? (rowError - mostExact) / rowError : 0.0;
+        presets.push_back({
+            {"preset", (*row)["label"]},
+            {"onFront", (*row)[flag]},
+            {"timeGap", timeGap},
+            {"errorGap", errorGap},
+            {"nearFront", std::min(timeGap, errorGap) <= kPresetFrontAllowance}});
+    }
+    return presets;
 }
 
 std::string csvField(const std::string& text) {
@@ -36,6 +71,57 @@ std::string joinedSettings(const nlohmann::json& settings) {
     return text;
 }
 
+std::string errorCell(const nlohmann::json& error) {
+    return fmt::format("{:.3f} | {:.2f}", error["blockRmse"].get<double>(), error["sumRatio"].get<double>());
+}
+
+// A stage's rows against Cycles: the Cycles frames' noise floor and times,
+// every row's block error against full path tracing and single scattering,
+// the presets against that front, and each approximation's span of error
+// against full path tracing (how much of it that approximation decides).
+std::string cyclesMarkdown(const nlohmann::json& report, const nlohmann::json& stage) {
+    const std::string name = stage["name"];
+    const nlohmann::json& cycles = stage["cycles"];
+    std::string text = fmt::format(
+        "#### {} against Cycles\n\n{}, {} samples a pixel; errors over {}-pixel blocks (relative RMSE | ratio of "
+        "sums). Full path tracing took {:.1f} s (seed 1: {:.1f} s), single scattering {:.1f} s (Cycles' render "
+        "times). Noise floor, seed 1 against seed 0: {} (per pixel {:.3f}). Single scattering against full: {}.\n\n",
+        name, cycles["version"].get<std::string>(), cycles["samples"].get<int>(), cycles["block"].get<int>(),
+        cycles["seconds"]["full"]["render"].get<double>(), cycles["seconds"]["full-seed1"]["render"].get<double>(),
+        cycles["seconds"]["single"]["render"].get<double>(), errorCell(cycles["noiseFloor"]),
+        cycles["pixelNoiseFloor"].get<double>(), errorCell(cycles["singleAgainstFull"]));
+    text += "| approximation | step | frame | vs Cycles full | sum | vs single scattering | sum | front |\n"
+            "|---|---|---|---|---|---|---|---|\n";
+    std::map<std::string, std::pair<double, double>> spans;  // approximation: least and largest error
+    for (const auto& row : report["rows"]) {
+        if (row["stage"] != name || !row.contains("cycles")) continue;
+        const std::string approximation = row["approximation"];
+        const double error = cyclesErrorOf(row);
+        auto [span, added] = spans.try_emplace(approximation, error, error);
+        span->second.first = std::min(span->second.first, error);
+        span->second.second = std::max(span->second.second, error);
+        text += fmt::format("| {} | {} | {:.1f} ms | {} | {} | {} |\n", approximation, row["label"].get<std::string>(),
+                            timeOf(row), errorCell(row["cycles"]["full"]), errorCell(row["cycles"]["single"]),
+                            row.value("cyclesPareto", false) ? "*" : "");
+    }
+    text += "\n| preset | on the front against Cycles | time gap | error gap |\n|---|---|---|---|\n";
+    for (const auto& preset : report["presets"]) {
+        if (preset["stage"] != name || !preset.contains("cycles")) continue;
+        const nlohmann::json& gaps = preset["cycles"];
+        text += fmt::format("| {} | {} | {:.0f} % | {:.0f} % |\n", preset["preset"].get<std::string>(),
+                            gaps["onFront"].get<bool>() ? "yes" : "no", 100.0 * gaps["timeGap"].get<double>(),
+                            100.0 * gaps["errorGap"].get<double>());
+    }
+    std::vector<std::pair<double, std::string>> ranked;
+    for (const auto& [approximation, span] : spans)
+        if (approximation != "preset") ranked.emplace_back(span.second - span.first, approximation);
+    std::sort(ranked.rbegin(), ranked.rend());
+    text += "\nSpan of error against Cycles along each ladder, largest first:";
+    for (size_t i = 0; i < ranked.size(); ++i)
+        text += fmt::format("{} {} {:.3f}", i ? "," : "", ranked[i].second, ranked[i].first);
+    return text + ".\n\n";
+}
+
 }  // namespace
 
 void markParetoFront(nlohmann::json& report) {
@@ -48,35 +134,21 @@ void markParetoFront(nlohmann::json& report) {
         std::set<std::string> otherReference;
         for (const auto& approximation : report["approximations"])
             if (!approximation["base"].empty()) otherReference.insert(approximation["name"].get<std::string>());
-        std::vector<nlohmann::json*> mine;
+        std::vector<nlohmann::json*> mine, all;
         for (auto& row : rows) {
             if (row["stage"] != name) continue;
             row["pareto"] = false;
             if (!otherReference.count(row["approximation"].get<std::string>())) mine.push_back(&row);
+            if (row.contains("cycles")) all.push_back(&row);
         }
-        for (nlohmann::json* row : mine) {
-            bool dominated = false;
-            for (const nlohmann::json* other : mine) dominated = dominated || dominates(*other, *row);
-            (*row)["pareto"] = !dominated;
-        }
-        for (const nlohmann::json* row : mine) {
-            if ((*row)["approximation"] != "preset") continue;
-            const double time = timeOf(*row), error = errorOf(*row);
-            // The fastest front row at least as exact, and the most exact front row at least as fast.
-            double fastest = time, mostExact = error;
-            for (const nlohmann::json* front : mine) {
-                if (!(*front)["pareto"].get<bool>()) continue;
-                if (errorOf(*front) <= error) fastest = std::min(fastest, timeOf(*front));
-                if (timeOf(*front) <= time) mostExact = std::min(mostExact, errorOf(*front));
-            }
-            const double timeGap = time > 0.0 ? (time - fastest) / time : 0.0;
-            const double errorGap = error > 0.0 ? (error - mostExact) / error : 0.0;
-            report["presets"].push_back({{"stage", name},
-                                         {"preset", (*row)["label"]},
-                                         {"onFront", (*row)["pareto"]},
-                                         {"timeGap", timeGap},
-                                         {"errorGap", errorGap},
-                                         {"nearFront", std::min(timeGap, errorGap) <= kPresetFrontAllowance}});
+        const nlohmann::json own = markFront(mine, errorOf, "pareto");
+        // Against Cycles every row has the same yardstick, whatever its base.
+        const nlohmann::json cycles = markFront(all, cyclesErrorOf, "cyclesPareto");
+        for (nlohmann::json entry : own) {
+            entry["stage"] = name;
+            for (const auto& gaps : cycles)
+                if (gaps["preset"] == entry["preset"]) entry["cycles"] = gaps;
+            report["presets"].push_back(entry);
         }
     }
 }
@@ -113,6 +185,7 @@ std::string accuracyMarkdown(const nlohmann::json& report) {
                                 100.0 * preset["errorGap"].get<double>(), preset["nearFront"].get<bool>() ? "yes" : "no");
         }
         text += "\n";
+        if (stage.contains("cycles")) text += cyclesMarkdown(report, stage);
     }
     return text;
 }
@@ -126,14 +199,23 @@ void writeAccuracyReport(const nlohmann::json& report, const std::string& folder
             throw std::runtime_error("cannot write '" + folder + "/" + file + "': " + why);
     writeTextFileAtomically(folder + "/accuracy.json", report.dump(2) + "\n");
     std::string csv = "stage,approximation,step,settings,default,frame_median_ms,frame_spread,rmse,max,display_share,"
-                      "covered_pixels,path,pareto\n";
-    for (const auto& row : report["rows"])
-        csv += fmt::format("{},{},{},{},{},{:.3f},{:.4f},{:.6f},{:.6f},{:.6f},{},{},{}\n",
+                      "covered_pixels,path,pareto,cycles_full_block_rmse,cycles_full_sum_ratio,"
+                      "cycles_single_block_rmse,cycles_single_sum_ratio,cycles_pareto\n";
+    for (const auto& row : report["rows"]) {
+        csv += fmt::format("{},{},{},{},{},{:.3f},{:.4f},{:.6f},{:.6f},{:.6f},{},{},{}",
                            csvField(row["stage"]), csvField(row["approximation"]), csvField(row["label"]),
                            csvField(joinedSettings(row["settings"])), row["isDefault"].get<bool>() ? 1 : 0, timeOf(row),
                            row["frame"]["spread"].get<double>(), errorOf(row), row["error"]["max"].get<double>(),
                            row["error"]["displayShare"].get<double>(), row["error"]["coveredPixels"].get<size_t>(),
                            csvField(row["path"]), row["pareto"].get<bool>() ? 1 : 0);
+        if (row.contains("cycles"))
+            csv += fmt::format(",{:.6f},{:.6f},{:.6f},{:.6f},{}\n", cyclesErrorOf(row),
+                               row["cycles"]["full"]["sumRatio"].get<double>(),
+                               row["cycles"]["single"]["blockRmse"].get<double>(),
+                               row["cycles"]["single"]["sumRatio"].get<double>(), row.value("cyclesPareto", false) ? 1 : 0);
+        else
+            csv += ",,,,,\n";
+    }
     writeTextFileAtomically(folder + "/accuracy.csv", csv);
     writeTextFileAtomically(folder + "/accuracy.md", accuracyMarkdown(report));
 }

@@ -30,7 +30,10 @@ void writeAccuracyReport(const nlohmann::json& report, const std::string& folder
 // The Markdown tables: per stage, a row per measurement (approximation,
 // step, frame time as median and half its range and relative to the
 // default, RMSE, max, own RMSE, display share, Pareto), then the presets
-// against the front.
+// against the front; for a stage compared with Cycles, the same rows against
+// Cycles (full and single scattering) with the noise floor and Cycles'
+// times, the presets against that front, and the approximations ranked by
+// how far their error against Cycles moves along their ladders.
 std::string accuracyMarkdown(const nlohmann::json& report);
 
 }  // namespace hdhair::accuracy

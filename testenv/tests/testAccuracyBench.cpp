@@ -3,7 +3,9 @@
 // its files are read back here and checked again: every approximation and
 // preset has its rows, the CSV and Markdown hold them, and each
 // approximation's error falls toward the reference within the allowance.
+// With --cycles, the comparison with Blender's Cycles is wired through.
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -14,6 +16,7 @@
 
 #include "Commands.h"
 
+#include "hdHair/image/ImageWriter.h"
 #include "hdHair/tools/AccuracyChecks.h"
 #include "hdHair/tools/AccuracyMatrix.h"
 
@@ -93,6 +96,58 @@ TEST(AccuracyBench, QuickRunWritesAWellFormedReportWhoseErrorsFallTowardTheRefer
     fs::remove_all(out);
 }
 
+// --cycles: each stage path-traced by Blender's Cycles too (small and few
+// samples here: what is checked is the plumbing, not the figures). Every row
+// is compared with both Cycles frames, the noise floor is measured from the
+// two seeds, and the frames are written beside the report.
+TEST(AccuracyBench, QuickRunAgainstCyclesComparesEveryRowWithBothCyclesFrames) {
+    const fs::path out = fs::temp_directory_path() / "hdhair-accuracy-cycles";
+    fs::remove_all(out);
+    std::string output;
+    const int status = testenv::runCommand(
+        std::string(HDHAIR_BENCH) + " --accuracy --quick --cycles --cyclesSamples 8 --cyclesBlock 4 --imageWidth 48 --out " +
+            testenv::shellQuoted(out.string()) + " --stage " +
+            testenv::shellQuoted(HDHAIR_SOURCE_DIR "/examples/wavy_strands.usda"),
+        &output);
+    ASSERT_EQ(status, 0) << output;
+    const nlohmann::json report = nlohmann::json::parse(readText(out / "accuracy.json"));
+    EXPECT_EQ(report["commonSettings"], nlohmann::json::array({"shadingModel=marschner"}));
+    ASSERT_EQ(report["stages"].size(), 1u);
+    const nlohmann::json& stage = report["stages"][0];
+    ASSERT_TRUE(stage.contains("cycles")) << stage.dump();
+    const nlohmann::json& cycles = stage["cycles"];
+    EXPECT_EQ(cycles["samples"], 8);
+    EXPECT_EQ(cycles["block"], 4);
+    EXPECT_EQ(cycles["version"].get<std::string>().rfind("Blender ", 0), 0u) << cycles.dump();
+    // Two seeds differ, and single scattering loses light.
+    EXPECT_GT(cycles["noiseFloor"]["blockRmse"].get<double>(), 0.0);
+    EXPECT_LT(cycles["noiseFloor"]["blockRmse"].get<double>(), cycles["pixelNoiseFloor"].get<double>());
+    EXPECT_LT(cycles["singleAgainstFull"]["sumRatio"].get<double>(), 1.0);
+    for (const char* frame : {"full", "full-seed1", "single"}) {
+        EXPECT_GT(cycles["seconds"][frame]["render"].get<double>(), 0.0) << frame;
+        const hdhair::Image image = hdhair::readImage((out / ("wavy_strands.cycles-" + std::string(frame) + ".exr")).string());
+        EXPECT_EQ(image.width, stage["width"].get<int>()) << frame;
+        EXPECT_EQ(image.height, stage["height"].get<int>()) << frame;
+    }
+    bool someRowOnTheFront = false;
+    for (const auto& row : report["rows"]) {
+        ASSERT_TRUE(row.contains("cycles")) << row.dump();
+        for (const char* against : {"full", "single"}) {
+            const double error = row["cycles"][against]["blockRmse"].get<double>();
+            EXPECT_TRUE(std::isfinite(error) && error > 0.0) << row.dump();
+        }
+        // Compared with two different frames, not one twice.
+        EXPECT_NE(row["cycles"]["full"]["sumRatio"], row["cycles"]["single"]["sumRatio"]) << row.dump();
+        someRowOnTheFront = someRowOnTheFront || row["cyclesPareto"].get<bool>();
+    }
+    EXPECT_TRUE(someRowOnTheFront);
+    for (const auto& preset : report["presets"]) EXPECT_TRUE(preset.contains("cycles")) << preset.dump();
+    const std::string markdown = readText(out / "accuracy.md");
+    EXPECT_NE(markdown.find("#### wavy_strands against Cycles"), std::string::npos) << markdown;
+    EXPECT_NE(markdown.find("Span of error against Cycles along each ladder"), std::string::npos) << markdown;
+    fs::remove_all(out);
+}
+
 TEST(AccuracyBench, BadArgumentsAreOneLineErrors) {
     std::string output;
     EXPECT_EQ(testenv::runCommand(std::string(HDHAIR_BENCH) + " --quick", &output), 2);
@@ -100,6 +155,12 @@ TEST(AccuracyBench, BadArgumentsAreOneLineErrors) {
     output.clear();
     EXPECT_EQ(testenv::runCommand(std::string(HDHAIR_BENCH) + " --accuracy --repetitions 0", &output), 2);
     EXPECT_EQ(output, "hdhair-bench: error: --repetitions must be at least 1\n");
+    output.clear();
+    EXPECT_EQ(testenv::runCommand(std::string(HDHAIR_BENCH) + " --cycles", &output), 2);
+    EXPECT_EQ(output, "hdhair-bench: error: --cycles needs --accuracy\n");
+    output.clear();
+    EXPECT_EQ(testenv::runCommand(std::string(HDHAIR_BENCH) + " --accuracy --cycles --cyclesBlock 0", &output), 2);
+    EXPECT_EQ(output.rfind("hdhair-bench: error: --cyclesSamples must be", 0), 0u) << output;
     output.clear();
     EXPECT_EQ(testenv::runCommand(std::string(HDHAIR_BENCH) + " --accuracy --quick --stage /nonexistent.usda", &output), 1);
     EXPECT_EQ(output.rfind("hdhair-bench: error: ", 0), 0u) << output;

@@ -211,3 +211,49 @@ TEST(AccuracyChecks, MalformedReportsFail) {
     report.erase("presets");
     EXPECT_EQ(checkAccuracyReport(report), std::vector<std::string>{"the report has no 'presets' list"});
 }
+
+// Against Cycles every row shares one yardstick: the second front is marked
+// by the block error against full path tracing, over rows whatever their
+// base, and the report ranks the approximations by the span of that error.
+TEST(AccuracyReport, MarksAFrontAgainstCyclesAndRanksTheApproximations) {
+    nlohmann::json report = goodReport();
+    const std::vector<std::pair<std::string, double>> cyclesErrors = {
+        {"1 bins", 0.30}, {"256 bins", 0.29}, {"1024 bins", 0.29}, {"1 lights", 0.10}, {"4 lights", 0.40},
+        {"quality=preview", 0.50}, {"quality=default", 0.29}, {"quality=high", 0.28}, {"quality=reference", 0.28}};
+    for (const auto& [label, error] : cyclesErrors)
+        rowOf(report, label)["cycles"] = {{"full", {{"blockRmse", error}, {"sumRatio", 0.6}, {"largest", 1.0}}},
+                                          {"single", {{"blockRmse", error / 2}, {"sumRatio", 1.2}, {"largest", 1.0}}}};
+    report["stages"][0]["cycles"] = {
+        {"version", "Blender 3.4.1"},
+        {"samples", 256},
+        {"block", 16},
+        {"seconds",
+         {{"full", {{"render", 20.0}}}, {"full-seed1", {{"render", 21.0}}}, {"single", {{"render", 9.0}}}}},
+        {"noiseFloor", {{"blockRmse", 0.05}, {"sumRatio", 1.0}, {"largest", 0.1}}},
+        {"pixelNoiseFloor", 0.7},
+        {"singleAgainstFull", {{"blockRmse", 0.5}, {"sumRatio", 0.4}, {"largest", 0.6}}}};
+    markParetoFront(report);
+    // The own front is unchanged; against Cycles "1 lights" (25 ms, 0.10) is
+    // the most exact row, and dominates everything slower.
+    EXPECT_FALSE(rowOf(report, "1 lights")["pareto"]);
+    EXPECT_TRUE(rowOf(report, "1 lights")["cyclesPareto"]);
+    EXPECT_TRUE(rowOf(report, "1 bins")["cyclesPareto"]);
+    EXPECT_FALSE(rowOf(report, "quality=high")["cyclesPareto"]);
+    EXPECT_FALSE(rowOf(report, "quality=reference")["cyclesPareto"]);
+    for (const auto& preset : report["presets"]) {
+        ASSERT_TRUE(preset.contains("cycles")) << preset.dump();
+        if (preset["preset"] == "quality=high") {
+            EXPECT_FALSE(preset["cycles"]["onFront"].get<bool>());
+            // "1 lights" is faster (25 ms against 60) and more exact.
+            EXPECT_NEAR(preset["cycles"]["timeGap"].get<double>(), (60.0 - 25.0) / 60.0, 1e-9);
+        }
+    }
+    const std::string markdown = accuracyMarkdown(report);
+    EXPECT_NE(markdown.find("#### s against Cycles"), std::string::npos) << markdown;
+    EXPECT_NE(markdown.find("seed 1 against seed 0: 0.050 | 1.00"), std::string::npos) << markdown;
+    // lightsPerPass spans 0.10 to 0.40, sortBins 0.29 to 0.30.
+    EXPECT_NE(markdown.find("largest first: lightsPerPass 0.300, sortBins 0.010."), std::string::npos) << markdown;
+    EXPECT_NE(markdown.find("| lightsPerPass | 1 lights | 25.0 ms | 0.100 | 0.60 | 0.050 | 1.20 | * |"),
+              std::string::npos)
+        << markdown;
+}
