@@ -4,13 +4,18 @@
 # output folder, accuracy.json, accuracy.csv, accuracy.md (the tables),
 # accuracy-<stage>.png and accuracy.png (the headline plot), and machine.txt.
 #   scripts/accuracy-bench.sh [--build DIR] [--out DIR] [--data DIR] [--imageWidth N] [--repetitions N] [--quick]
+#                             [--cycles [--cyclesSamples N]]
 # --build: a build folder with bin/hdhair-bench and bin/hdhair-convert (default build/).
 # --data: the TressFX samples (default ../shared/data/tressfx beside the repository).
 # --quick: the CI matrix on the wavy example only (what the testAccuracyBench ctest runs).
-# The full matrix took 10 minutes on the quiet 2-core machine docs/accuracy.md names.
+# --cycles: against Blender's Cycles too (docs/accuracy.md, "Against Cycles"),
+# 512 pixels wide unless --imageWidth says otherwise, every frame shaded with
+# Marschner, on the matrix's stages, the textured dome's, and three grooms at
+# production size: the bear in black hair, Ratboy in brown, the ponytail in
+# blond (melanin 0.95, 0.5, 0.15 authored over the converted assets).
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
-build="$root/build" out="" data="$root/../shared/data/tressfx" width=128 repetitions=3 quick=()
+build="$root/build" out="" data="$root/../shared/data/tressfx" width="" repetitions=3 quick=() cycles=()
 fail() { echo "accuracy-bench: $*" >&2; exit 1; }
 while [[ $# -gt 0 ]]; do
   case "$1" in
@@ -20,9 +25,13 @@ while [[ $# -gt 0 ]]; do
     --imageWidth) width="$2"; shift 2 ;;
     --repetitions) repetitions="$2"; shift 2 ;;
     --quick) quick=(--quick); shift ;;
+    --cycles) cycles+=(--cycles); shift ;;
+    --cyclesSamples) cycles+=(--cyclesSamples "$2"); shift 2 ;;
     *) fail "unknown argument '$1'" ;;
   esac
 done
+[[ ${#cycles[@]} -eq 0 || "${cycles[0]}" == --cycles ]] || fail "--cyclesSamples needs --cycles before it"
+width="${width:-$([[ ${#cycles[@]} -gt 0 ]] && echo 512 || echo 128)}"
 out="${out:-$build/accuracy}"
 bench="$build/bin/hdhair-bench" convert="$build/bin/hdhair-convert"
 [[ -x "$bench" && -x "$convert" ]] || fail "$build has no bin/hdhair-bench or bin/hdhair-convert (scripts/build.sh --target hdhair-bench hdhair-convert)"
@@ -43,7 +52,34 @@ if [[ ${#quick[@]} -eq 0 ]]; then
     "$convert" "$data/sintel/sintel_hair.tfx" "$data/sintel/sintel.obj" "$sintel" >/dev/null
   [[ "$ratboy" -nt "$data/ratboy/Ratboy_mohawk.tfx" ]] ||
     "$convert" "$data/ratboy/Ratboy_mohawk.tfx" "$ratboy" >/dev/null
-  stages+=(--stage "$sintel" --stage "$ratboy")
+  if [[ ${#cycles[@]} -eq 0 ]]; then
+    stages+=(--stage "$sintel" --stage "$ratboy")
+  else
+    # A groom in one hair colour: the converted asset with its strands'
+    # melanin authored over it (the embedded reader composes the sublayer).
+    groom() {  # NAME ASSET MELANIN PRIM...
+      local name="$1" asset="$2" melanin="$3"; shift 3
+      {
+        printf '#usda 1.0\n(\n    subLayers = [@%s@]\n    defaultPrim = "World"\n)\n\nover "World"\n{\n' "$(basename "$asset")"
+        for prim in "$@"; do
+          printf '    over "%s"\n    {\n' "$prim"
+          printf '        float[] primvars:hdHair:melanin = [%s] (\n            interpolation = "constant"\n        )\n' "$melanin"
+          printf '        token primvars:hdHair:shadingModel = "marschner" (\n            interpolation = "constant"\n        )\n    }\n'
+        done
+        printf '}\n'
+      } > "$out/assets/$name.usda"
+      stages+=(--stage "$out/assets/$name.usda")
+    }
+    bear="$out/assets/bear.usda" ponytail="$out/assets/ponytail.usda"
+    [[ -f "$data/bear/bear.tfx" && -f "$data/ponytail/tail.tfx" ]] || fail "missing the bear or ponytail samples in $data"
+    [[ "$bear" -nt "$data/bear/bear.tfx" ]] || "$convert" "$data/bear/bear.tfx" "$bear" >/dev/null
+    [[ "$ponytail" -nt "$data/ponytail/tail.tfx" ]] ||
+      "$convert" "$data"/ponytail/{back,front_top,side,tail}.tfx "$ponytail" >/dev/null
+    stages+=(--stage "$root/examples/dome_lit_strands.usda" --stage "$sintel")
+    groom bear_black "$bear" 0.95 bear
+    groom ratboy_brown "$ratboy" 0.5 Ratboy_mohawk
+    groom ponytail_blond "$ponytail" 0.15 back front_top side tail
+  fi
 fi
 
 {
@@ -54,7 +90,7 @@ fi
 } > "$out/machine.txt"
 start=$(date +%s)
 status=0
-"$bench" --accuracy "${quick[@]}" --imageWidth "$width" --repetitions "$repetitions" --out "$out" "${stages[@]}" \
+"$bench" --accuracy "${quick[@]}" "${cycles[@]}" --imageWidth "$width" --repetitions "$repetitions" --out "$out" "${stages[@]}" \
   > "$out/bench.log" 2>&1 || status=$?
 {
   echo "load average after: $(cut -d' ' -f1-3 /proc/loadavg)"
