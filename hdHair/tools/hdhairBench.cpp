@@ -6,6 +6,7 @@
 //   hdhair-bench --accuracy [--quick] [--out DIR] [--repetitions N] [--stage FILE]... [--imageWidth N]
 //                [--cycles [--cyclesSamples N] [--cyclesBlock PX] [--blender EXE]]
 //   hdhair-bench --report accuracy.json [--out DIR]   (an earlier report's front and tables again)
+//   hdhair-bench --help   (every option; unknown arguments are an error)
 //
 // --accuracy: the error-versus-time matrix of every approximation and quality
 // preset against each stage's reference (AccuracyBench.h), written to DIR
@@ -48,7 +49,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <cstring>
 #include <filesystem>
 #include <map>
 #include <set>
@@ -60,6 +60,7 @@
 #include <unistd.h>
 
 #include <benchmark/benchmark.h>
+#include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 #include <fmt/format.h>
 #include <glm/common.hpp>
@@ -511,25 +512,55 @@ int main(int argc, char** argv) {
     bool accuracyRun = false, quick = false, cyclesRun = false;
     int repetitions = 3;
     accuracy::CyclesComparison cycles;
-    std::string out = "accuracy", command, report, domeTexture = HDHAIR_SOURCE_DIR "/examples/dome_sky.exr";
-    std::vector<char*> benchmarkArguments;
-    for (int i = 0; i < argc; ++i) {
-        command += (i ? " " : "") + std::string(argv[i]);
-        if (i + 1 < argc && std::strcmp(argv[i], "--stage") == 0) stagePaths.push_back(argv[++i]);
-        else if (i + 1 < argc && std::strcmp(argv[i], "--imageWidth") == 0) imageWidth = std::atoi(argv[++i]);
-        else if (i + 1 < argc && std::strcmp(argv[i], "--table") == 0) table = argv[++i];
-        else if (i + 1 < argc && std::strcmp(argv[i], "--out") == 0) out = argv[++i];
-        else if (i + 1 < argc && std::strcmp(argv[i], "--report") == 0) report = argv[++i];
-        else if (i + 1 < argc && std::strcmp(argv[i], "--domeTexture") == 0) domeTexture = argv[++i];
-        else if (i + 1 < argc && std::strcmp(argv[i], "--repetitions") == 0) repetitions = std::atoi(argv[++i]);
-        else if (i + 1 < argc && std::strcmp(argv[i], "--cyclesSamples") == 0) cycles.samples = std::atoi(argv[++i]);
-        else if (i + 1 < argc && std::strcmp(argv[i], "--cyclesBlock") == 0) cycles.block = std::atoi(argv[++i]);
-        else if (i + 1 < argc && std::strcmp(argv[i], "--blender") == 0) cycles.blender = argv[++i];
-        else if (std::strcmp(argv[i], "--cycles") == 0) cyclesRun = true;
-        else if (std::strcmp(argv[i], "--accuracy") == 0) accuracyRun = true;
-        else if (std::strcmp(argv[i], "--quick") == 0) quick = true;
-        else benchmarkArguments.push_back(argv[i]);
+    std::string out = "accuracy", report, domeTexture = HDHAIR_SOURCE_DIR "/examples/dome_sky.exr";
+    std::string command;
+    for (int i = 0; i < argc; ++i) command += (i ? " " : "") + std::string(argv[i]);
+
+    CLI::App app{"What accuracy costs in time: Google Benchmark tables, the accuracy matrix (--accuracy) and the "
+                 "dome lighting table (--table dome).",
+                 "hdhair-bench"};
+    app.add_option("--stage", stagePaths, "A stage to measure (repeatable; default examples/dense_clump.usda)");
+    app.add_option("--imageWidth", imageWidth,
+                   "Image width in pixels (default 512; 128 with --accuracy or --table dome, 64 with --quick)")
+        ->check(CLI::Range(1, 16384));
+    app.add_option("--table", table, "Which Google Benchmark tables, or the dome table")
+        ->check(CLI::IsMember({"all", "complexity", "transparency", "shading", "shadows", "tessellation", "dome"}))
+        ->capture_default_str();
+    app.add_option("--repetitions", repetitions, "Frames timed per configuration (--accuracy, --table dome)")
+        ->check(CLI::Range(1, 1000))
+        ->capture_default_str();
+    app.add_option("--domeTexture", domeTexture, "--table dome: the latlong sky")->capture_default_str();
+    auto* accuracyFlag = app.add_flag("--accuracy", accuracyRun,
+                                      "The error-versus-time matrix of every approximation and preset (AccuracyBench.h)");
+    app.add_flag("--quick", quick, "--accuracy: the CI run (short ladders, one repetition, 64 pixels wide)")
+        ->needs(accuracyFlag);
+    app.add_option("--out", out, "--accuracy, --report: the folder for accuracy.{json,csv,md}")->capture_default_str();
+    app.add_option("--report", report, "Write an earlier run's accuracy.json report again (front, tables, checks)");
+    auto* cyclesFlag = app.add_flag("--cycles", cyclesRun, "--accuracy: against Blender's Cycles too")->needs(accuracyFlag);
+    app.add_option("--cyclesSamples", cycles.samples, "--cycles: Cycles' samples per pixel")
+        ->check(CLI::Range(1, 1 << 20))
+        ->needs(cyclesFlag)
+        ->capture_default_str();
+    app.add_option("--cyclesBlock", cycles.block, "--cycles: the side of the blocks errors are measured over, pixels")
+        ->check(CLI::Range(1, 1024))
+        ->needs(cyclesFlag)
+        ->capture_default_str();
+    app.add_option("--blender", cycles.blender, "--cycles: the Blender executable")->needs(cyclesFlag)->capture_default_str();
+    app.footer("Other arguments (--benchmark_filter=REGEX, --benchmark_repetitions=N, ...) go to Google Benchmark.");
+    // Google Benchmark reads the arguments CLI11 does not know.
+    app.allow_extras();
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::CallForHelp& help) {
+        return app.exit(help);
+    } catch (const CLI::ParseError& error) {
+        std::fprintf(stderr, "hdhair-bench: error: %s\n", error.what());
+        return 2;
     }
+    std::vector<std::string> extras = app.remaining();
+    std::string programName = "hdhair-bench";
+    std::vector<char*> benchmarkArguments{programName.data()};
+    for (std::string& extra : extras) benchmarkArguments.push_back(extra.data());
     // --report FILE: the report of an earlier --accuracy run marked and
     // written again (after a change to the report's tables or front).
     if (!report.empty()) {
@@ -549,35 +580,22 @@ int main(int argc, char** argv) {
             return 1;
         }
     }
-    if (quick && !accuracyRun) {
-        std::fprintf(stderr, "hdhair-bench: error: --quick needs --accuracy\n");
-        return 2;
-    }
-    if (cyclesRun && !accuracyRun) {
-        std::fprintf(stderr, "hdhair-bench: error: --cycles needs --accuracy\n");
-        return 2;
-    }
-    if (cycles.samples < 1 || cycles.samples > 1 << 20 || cycles.block < 1 || cycles.block > 1024) {
-        std::fprintf(stderr, "hdhair-bench: error: --cyclesSamples must be 1 to 1048576 and --cyclesBlock 1 to 1024\n");
-        return 2;
-    }
     if (quick) repetitions = 1;
-    if (repetitions < 1) {
-        std::fprintf(stderr, "hdhair-bench: error: --repetitions must be at least 1\n");
-        return 2;
-    }
     // Accuracy frames are many (about 50 configurations a stage, the
     // reference 16 samples a pixel): small images keep the matrix to minutes.
     // So are dome frames: the reference is a thousand lights, each with a map.
     const bool domeTable = table == "dome";
     if (imageWidth == 0) imageWidth = accuracyRun || domeTable ? (quick ? 64 : 128) : 512;
-    if (imageWidth < 1 || imageWidth > 16384) {
-        std::fprintf(stderr, "hdhair-bench: error: --imageWidth must be between 1 and 16384\n");
-        return 2;
-    }
     if (stagePaths.empty()) stagePaths.push_back(HDHAIR_SOURCE_DIR "/examples/dense_clump.usda");
     int benchmarkArgc = int(benchmarkArguments.size());
     benchmark::Initialize(&benchmarkArgc, benchmarkArguments.data());
+    // What neither CLI11 nor Google Benchmark knows is a typo, not a default.
+    if (benchmarkArgc > 1) {
+        std::string unknown;
+        for (int i = 1; i < benchmarkArgc; ++i) unknown += (i > 1 ? " " : "") + std::string(benchmarkArguments[i]);
+        std::fprintf(stderr, "hdhair-bench: error: unknown arguments: %s (--help lists them)\n", unknown.c_str());
+        return 2;
+    }
 
     std::vector<std::unique_ptr<BenchStage>> stages;
     try {
