@@ -1,6 +1,6 @@
 #pragma once
 // Per-curve element counts of a BasisCurves prim, following what USD and
-// Hydra *implement* (hydra-delegate-guide.md §3.6), which is not always what
+// Hydra *implement* (the sources named below), which is not always what
 // the UsdGeomBasisCurves class doc tables say:
 //  - segments: UsdGeomBasisCurves::ComputeSegmentCounts for valid curves, and
 //    HdSt's index builder (basisCurvesComputations.cpp) for under-length ones;

@@ -3,8 +3,8 @@
 // over by Hydra) is checked against the curves' topology and repaired. Every
 // front end (the .usda reader's scene, the Hydra plugin) goes through here, so
 // a given input resolves the same way everywhere. The rules mirror HdSt's
-// HdSt_BasisCurvesPrimvarInterpolaterComputation (hydra-delegate-guide.md §3.6)
-// and are listed in hdHair/curves/README.md.
+// HdSt_BasisCurvesPrimvarInterpolaterComputation (pxr/imaging/hdSt/
+// basisCurvesComputations.cpp) and are listed in hdHair/curves/README.md.
 
 #include <string>
 #include <vector>

@@ -1,6 +1,6 @@
 #pragma once
-// Fitting a dome texture costs a read of the whole file and a fit (about
-// 0.1 s for a 1k map); a stage is synced again on every edit and every
+// Fitting a dome texture costs a read of the whole file and a fit (a
+// noticeable fraction of a second for a 1k map); a stage is synced again on every edit and every
 // frame of hdhair-record --frames, and several lights or stages may share a
 // map. So fits are kept, in memory, for the life of the process, keyed by
 //   (resolved path, file size, modification time, layout, grid size, fit settings):

@@ -6,8 +6,8 @@
 // - LinkedImageBandReader.cpp: programs that link OpenImageIO anyway
 //   (hdhair-record writes its images with it; the tests; hdhair-bench).
 // - LoadedImageBandReader.cpp: the Hydra plugin. OpenImageIO and the ~280
-//   libraries it pulls in cost a host about 0.36 s and 124 MB of resident
-//   memory to load (measured on this project's Debian 12), on every launch;
+//   libraries it pulls in cost a host noticeable time and resident memory to
+//   load on every launch (README, "Storm side by side");
 //   most stages have no dome texture, so the plugin leaves the decoder in a
 //   module of its own, hdHairImageReader.so beside hdHair.so, and loads it
 //   with dlopen the first time a dome texture is read.

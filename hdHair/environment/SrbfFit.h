@@ -43,10 +43,10 @@
 // Measured (hdHair/environment/README.md has the table): on the default
 // 64 × 32 grid, a uniform map fits to E = 0.17 with 30 lobes and 0.052 with
 // 60 (lobes no wider than λ = 16 ripple over a constant), a procedural sky
-// with a sun to E = 0.10 with 30 and 0.039 with 60. Reading a 1024 × 512
-// half-float EXR onto the grid and fitting 30 lobes takes about 0.06 s on
-// this machine (2 cores, niced, shared: hdhair-bench SrbfFit/1024x512 gave
-// 59.5 ms), the paper's 5-20 minutes notwithstanding.
+// with a sun to E = 0.10 with 30 and 0.039 with 60 (testSrbfFit). Reading a
+// 1k half-float EXR onto the grid and fitting 30 lobes takes a fraction of a
+// second (hdhair-bench SrbfFit/1024x512 measures it), the
+// paper's 5-20 minutes notwithstanding.
 
 #include <vector>
 

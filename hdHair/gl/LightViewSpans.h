@@ -4,9 +4,9 @@
 // (shadowStrandLines=auto). On llvmpipe a patch costs its vertex, control
 // and evaluation stages on the one thread that draws, even when it emits a
 // single segment, and at the light views' tolerance (half a texel) most
-// spans are straight: drawn as plain lines (strandChord.vert), the TressFX
-// bear's two light-view passes took 0.20 s against 0.29 s, Ratboy's 0.07 s
-// against 0.15 s (README, Shadows).
+// spans are straight, and drawing them as plain lines (strandChord.vert)
+// saves that work (README, "Straight spans skip the tessellator", has the
+// measurement).
 //
 // lightViewLevels.comp asks strandTessellationLevel.glsl, the very rule
 // strand.tesc applies, for every span of the drawn ranges in the light's

@@ -4,10 +4,9 @@
 //    frame's readback (which waits for the GPU anyway): no extra stall.
 //  - CpuSynchronised: the CPU clock around each pass with glFinish() at its
 //    end. Used on Mesa's llvmpipe, whose timer queries cannot time every
-//    pass: measured on the dense clump at 800 px (hdHair/render/README.md,
-//    "Timing passes"), a query around the strand pass agreed with the CPU
-//    clock within 3 %, but one around a pass that draws nothing (the clear)
-//    returned 5,183,466 ms. Synchronising costs the overlap between
+//    pass: a query around a pass that draws nothing (the clear) returns
+//    nonsense there (hdHair/render/README.md, "Timing passes", has the
+//    measurement). Synchronising costs the overlap between
 //    passes, so the renderer does it only when the passTimings setting asks.
 // Passes that work on the CPU (the bin sort) take the CPU clock either way.
 // Off measures nothing.

@@ -1,21 +1,20 @@
 #pragma once
 // How the strands' patches are cut into draw calls. One draw a prim range is
 // what GL wants, but Mesa 22.3's llvmpipe draws triangles between unrelated
-// vertices (long spikes across the image, and 50x slower frames) once one
-// draw's tessellator emits too many vertices: examples/dense_clump.usda
-// broke at 22+ segments per span in single draws of 27,900 patches. There,
-// draws of at most 2,048 emitted vertices (counted as 2 (level + 1) a patch
-// at the highest level, as when the strands were a quad domain; since they
-// are isolines the tessellator emits level + 1) render correctly at every
-// level; other drivers get whole
+// vertices (long spikes across the image, and far slower frames) once one
+// draw's tessellator emits too many vertices (examples/dense_clump.usda broke
+// at high tessellation in single draws). Draws of at most 2,048 emitted
+// vertices (counted as 2 (level + 1) a patch at the highest level, as when
+// the strands were a quad domain; since they are isolines the tessellator
+// emits level + 1) render correctly at every level; other drivers get whole
 // ranges. The drawBatching setting overrides the choice (tests compare both).
 //
 // llvmpipe also bins every submitted draw before its threads rasterise it,
 // and keeps up to 64 binned scenes of up to 36 MB each: blended strands
-// rasterise slower than they bin, so without a pause the queue alone held
-// 1.2 GB of the bear's 1.7 GB peak at veryhigh. Batched draws therefore wait,
-// every kDrawsBetweenFences draws, for the fence set that many draws before
-// (measured: 0.48 GB peak, the same image, no slower).
+// rasterise slower than they bin, so without a pause the queue grows to
+// most of a large groom's peak memory. Batched draws therefore wait, every
+// kDrawsBetweenFences draws, for the fence set that many draws before
+// (README, "Memory", has what that saves).
 
 #include <string>
 #include <vector>

@@ -5,9 +5,8 @@
 // switches this mirrors). Why: llvmpipe runs a fragment shader as masked
 // SIMD and pays for every branch whether a fragment takes it or not, so a
 // Kajiya-Kay frame with one deep-opacity light ran the Marschner, SRBF and
-// reference-shadow code too (on the TressFX bear at 1280 px the strand pass
-// took 13.0 s and the ids pass 5.7 s, against 2.4 s and 0.9 s with only the
-// code the frame reaches). A feature is on whenever the draw could take its
+// reference-shadow code too (README, "Performance and memory", has what
+// compiling only the reachable code saves). A feature is on whenever the draw could take its
 // branch, so a specialised program draws exactly what the complete one
 // draws (testShaderSpecialization).
 
@@ -56,9 +55,8 @@ public:
     // The deep opacity maps' layer count (shadowLayers), compiled in as a
     // constant (shaders/include/shadows.glsl): up to 4 layers are looked up
     // in straight code with the layers in one vec4, where the uniform count
-    // needs a loop over an array that llvmpipe keeps in memory (the TressFX
-    // bear's strand pass at 1280 px, low, bilinear: 1.20 s against 0.86 s,
-    // the fastest of three runs each). 0: read from the uniform
+    // needs a loop over an array that llvmpipe keeps in memory, which is
+    // slower. 0: read from the uniform
     // (ShadowUniforms::mode.y), as the complete program does.
     ShadingFeatures& setShadowLayers(int layers) {
         shadowLayers_ = layers;

@@ -126,7 +126,8 @@ void HdHairBasisCurves::_SyncPrimvars(HdSceneDelegate* sceneDelegate, HdDirtyBit
         }
         hdhair::Primvar primvar;
         if (!HdHairToEnginePrimvar(pulled, &primvar)) {
-            // Other token and string primvars serve materials, which hdHair does not read yet.
+            // Token and string primvars other than the shading model have no engine
+            // counterpart: materials reach hdHair through their numeric primvars.
             _curves.primvars.erase(pulled.name);
             return;
         }

@@ -5,8 +5,8 @@
 // always ask for them, yet read them only to pick or to highlight a
 // selection (HdxColorizeSelectionTask returns before touching them when
 // nothing is selected). Rendering them costs the ids pass and 12 bytes a
-// pixel of GL images cleared and read back: about 0.5 s of the TressFX
-// bear's 2.8 s frame at 1280 px on llvmpipe. So the render pass renders its
+// pixel of GL images cleared and read back, a sizeable share of a large
+// groom's frame on llvmpipe. So the render pass renders its
 // frames without ids and leaves each bound id buffer one of these: the first
 // Resolve() or Map() of any of them renders the same request again with ids
 // (synchronously, on the host's thread, under the renderer's mutex), and

@@ -25,9 +25,9 @@ const std::vector<std::pair<std::string, std::string>>& presetSettings(Quality q
     // preview: what the interactive previews draw (InteractivePreview.h),
     // at full size: coarse tessellation, 16 bins, no self-shadowing, every
     // light in one pass, Marschner from tables. Shadows are off because on a
-    // groom of many spans their light-view passes are half the frame
-    // (docs/accuracy.md: Ratboy 119 ms without them, 279 ms with), while the
-    // other cheap steps save little at small sizes.
+    // groom of many spans their light-view passes are a large share of the
+    // frame (docs/accuracy.md, "The presets and the front"), while the other
+    // cheap steps save little at small sizes.
     static const std::vector<std::pair<std::string, std::string>> preview = {
         {"tessellationTolerance", "0.5"}, {"maxSegmentsPerSpan", "4"}, {"sortBins", "16"},
         {"shadowMode", "off"},            {"lightsPerPass", "16"},     {"marschner:azimuthal", "tables"},

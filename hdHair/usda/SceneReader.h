@@ -1,7 +1,7 @@
 #pragma once
 // Translates a composed .usda stage into the engine's Scene at one time code,
-// with the semantics UsdImaging gives the same stage (hydra-delegate-guide.md
-// §3.5, §3.8, §4.1, §4.3):
+// with the semantics UsdImaging gives the same stage (its prim adapters in
+// pxr/usdImaging/usdImaging/):
 //
 //  - Prims: the prims Stage::traverse() yields (active, defined, not
 //    abstract). BasisCurves become CurvesPrim, Mesh MeshPrim, Camera

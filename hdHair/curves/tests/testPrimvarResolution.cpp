@@ -56,7 +56,7 @@ void expectFallbackWidth(const Primvar& widths, const CurveTopology& topology, c
 
 }  // namespace
 
-// --- Counts (hydra-delegate-guide.md §3.6), written out by hand ---------------
+// --- Counts (as CurveTopology.h's sources define them), written out by hand --
 
 TEST(CurveTopology, CountsFollowUsdImplementedRules) {
     struct Row {
