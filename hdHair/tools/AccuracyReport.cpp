@@ -7,6 +7,8 @@
 #include <map>
 #include <set>
 #include <stdexcept>
+#include <tuple>
+#include <vector>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -122,6 +124,86 @@ std::string cyclesMarkdown(const nlohmann::json& report, const nlohmann::json& s
     return text + ".\n\n";
 }
 
+// Every stage against Cycles in one table, then each approximation's span of
+// error (largest minus least along its ladder) averaged over the stages,
+// against full path tracing and against single scattering: which settings
+// decide how close a frame comes to the path-traced one, and how much of the
+// error is the light hdHair does not carry (Cycles' single scattering
+// against its full frame).
+std::string cyclesSummaryMarkdown(const nlohmann::json& report) {
+    std::string text =
+        "### Against Cycles, every stage\n\nErrors over blocks (relative RMSE | ratio of sums, hdHair over "
+        "Cycles). *Missing light*: Cycles' single scattering against its full frame. *Closest*: the row of the "
+        "matrix with the least error. *Cycles / default*: Cycles' full render time over the default frame's.\n\n"
+        "| stage | noise floor | missing light | default vs full | default vs single | closest to full | closest to "
+        "single | Cycles / default |\n|---|---|---|---|---|---|---|---|\n";
+    struct Span {
+        double leastFull = std::numeric_limits<double>::infinity(), mostFull = 0.0;
+        double leastSingle = std::numeric_limits<double>::infinity(), mostSingle = 0.0;
+    };
+    std::map<std::string, std::pair<double, double>> spanSums;  // approximation: summed spans (full, single)
+    std::map<std::string, int> spanStages;
+    int stages = 0;
+    for (const auto& stage : report["stages"]) {
+        if (!stage.contains("cycles")) continue;
+        ++stages;
+        const std::string name = stage["name"];
+        const nlohmann::json& cycles = stage["cycles"];
+        const nlohmann::json* defaultRow = nullptr;
+        const nlohmann::json *closestFull = nullptr, *closestSingle = nullptr;
+        std::map<std::string, Span> spans;
+        for (const auto& row : report["rows"]) {
+            if (row["stage"] != name || !row.contains("cycles")) continue;
+            const double full = row["cycles"]["full"]["blockRmse"].get<double>();
+            const double single = row["cycles"]["single"]["blockRmse"].get<double>();
+            if (row["approximation"] == "preset" && row["label"] == "quality=default") defaultRow = &row;
+            if (!closestFull || full < (*closestFull)["cycles"]["full"]["blockRmse"].get<double>()) closestFull = &row;
+            if (!closestSingle || single < (*closestSingle)["cycles"]["single"]["blockRmse"].get<double>())
+                closestSingle = &row;
+            if (row["approximation"] == "preset") continue;
+            Span& span = spans[row["approximation"].get<std::string>()];
+            span.leastFull = std::min(span.leastFull, full);
+            span.mostFull = std::max(span.mostFull, full);
+            span.leastSingle = std::min(span.leastSingle, single);
+            span.mostSingle = std::max(span.mostSingle, single);
+        }
+        for (const auto& [approximation, span] : spans) {
+            spanSums[approximation].first += span.mostFull - span.leastFull;
+            spanSums[approximation].second += span.mostSingle - span.leastSingle;
+            ++spanStages[approximation];
+        }
+        const auto rowName = [](const nlohmann::json* row, const char* against) {
+            if (!row) return std::string("-");
+            return fmt::format("{} {} ({:.3f})", (*row)["approximation"].get<std::string>(),
+                               (*row)["label"].get<std::string>(),
+                               (*row)["cycles"][against]["blockRmse"].get<double>());
+        };
+        const double defaultTime = defaultRow ? timeOf(*defaultRow) : 0.0;
+        text += fmt::format("| {} ({}x{}) | {} | {} | {} | {} | {} | {} | {} |\n", name, stage["width"].get<int>(),
+                            stage["height"].get<int>(), errorCell(cycles["noiseFloor"]),
+                            errorCell(cycles["singleAgainstFull"]),
+                            defaultRow ? errorCell((*defaultRow)["cycles"]["full"]) : std::string("-"),
+                            defaultRow ? errorCell((*defaultRow)["cycles"]["single"]) : std::string("-"),
+                            rowName(closestFull, "full"), rowName(closestSingle, "single"),
+                            defaultTime > 0.0
+                                ? fmt::format("{:.0f}x", 1000.0 * cycles["seconds"]["full"]["render"].get<double>() /
+                                                             defaultTime)
+                                : std::string("-"));
+    }
+    if (stages == 0) return "";
+    std::vector<std::tuple<double, double, std::string>> ranked;
+    for (const auto& [approximation, sums] : spanSums)
+        ranked.emplace_back(sums.second / spanStages[approximation], sums.first / spanStages[approximation],
+                            approximation);
+    std::sort(ranked.rbegin(), ranked.rend());
+    text += "\nEach approximation's span of error along its ladder (largest minus least), the mean over the stages, "
+            "largest against single scattering first:\n\n| approximation | span against single scattering | span "
+            "against full path tracing |\n|---|---|---|\n";
+    for (const auto& [single, full, approximation] : ranked)
+        text += fmt::format("| {} | {:.3f} | {:.3f} |\n", approximation, single, full);
+    return text + "\n";
+}
+
 }  // namespace
 
 void markParetoFront(nlohmann::json& report) {
@@ -154,7 +236,7 @@ void markParetoFront(nlohmann::json& report) {
 }
 
 std::string accuracyMarkdown(const nlohmann::json& report) {
-    std::string text;
+    std::string text = cyclesSummaryMarkdown(report);
     for (const auto& stage : report["stages"]) {
         const std::string name = stage["name"];
         double defaultTime = 0.0;

@@ -256,4 +256,16 @@ TEST(AccuracyReport, MarksAFrontAgainstCyclesAndRanksTheApproximations) {
     EXPECT_NE(markdown.find("| lightsPerPass | 1 lights | 25.0 ms | 0.100 | 0.60 | 0.050 | 1.20 | * |"),
               std::string::npos)
         << markdown;
+    // The summary over the stages: the default's errors, the closest rows,
+    // Cycles' time over the default frame's (20 s over 20 ms), and the spans
+    // ranked against single scattering (lightsPerPass 0.15, sortBins 0.005).
+    EXPECT_EQ(markdown.rfind("### Against Cycles, every stage", 0), 0u) << markdown;
+    EXPECT_NE(markdown.find("| 0.050 | 1.00 | 0.500 | 0.40 | 0.290 | 0.60 | 0.145 | 1.20 | lightsPerPass 1 lights (0.100) "
+                            "| lightsPerPass 1 lights (0.050) | 1000x |"),
+              std::string::npos)
+        << markdown;
+    EXPECT_NE(markdown.find("| lightsPerPass | 0.150 | 0.300 |\n| sortBins | 0.005 | 0.010 |"), std::string::npos)
+        << markdown;
+    // Without Cycles there is no summary.
+    EXPECT_EQ(accuracyMarkdown(goodReport()).find("Against Cycles"), std::string::npos);
 }
