@@ -244,7 +244,7 @@ def dome_lit_strands():
     """The straight curtain lit only by a DomeLight with a small HDR sky
     (dome_sky.exr, written by make_dome_sky.sh), turned 30 degrees about +Y so
     that the sun is off the camera's axis: domeLighting=srbf fits it with SRBF
-    lights (README, "Dome lighting")."""
+    lights (docs/how-it-works.md, "Dome lighting")."""
     counts, points, widths = curtain()
     hair = u.basis_curves("hair", counts, points, widths, "vertex",
                           colors=[(0.55, 0.36, 0.2)], colors_interp="constant")

@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
-# README's benchmarks again on a machine with a GPU (made for an NVIDIA GPU
+# docs/performance.md's benchmarks again on a machine with a GPU (made for an NVIDIA GPU
 # through EGL's device platform, runs anywhere): first which GL device hdHair
 # lands on, then hdhair-bench's complexity, transparency, shading and shadow
-# tables on the stages README measured them on, then, when OpenUSD's
+# tables on the stages docs/performance.md measured them on, then, when OpenUSD's
 # usdrecord is there, scripts/storm-comparison.sh. Everything goes into one
 # folder with a summary.md naming the machine, the GPU and the GL renderer.
 #
@@ -88,7 +88,7 @@ fi
   echo "- commit: $(git -C "$root" rev-parse --short HEAD 2>/dev/null || echo unknown)"
 } >"$summary"
 
-# 2. The stages README's tables were measured on.
+# 2. The stages docs/performance.md's tables were measured on.
 convertOnce() {  # NAME OUTPUT INPUT... [options]
   local name="$1" output="$2"; shift 2
   if [[ ! -s "$output" ]]; then

@@ -3,7 +3,7 @@
 # down with hdhair-convert --maxStrands and grown with --followStrands, from
 # about 10 thousand to 2 million spans, each rendered by hdhair-record in its
 # own process at one size and complexity. Writes, under the output folder,
-# scaling.md (the table README shows), scaling.csv and, with python3-matplotlib,
+# scaling.md (the table docs/performance.md shows), scaling.csv and, with python3-matplotlib,
 # scaling.png (frame time and peak memory against spans, log-log).
 #   scripts/scaling-bench.sh [--build DIR] [--out DIR] [--imageWidth N] [--complexity LEVEL]
 # Figures are one run each on whatever machine runs it: read the ratios

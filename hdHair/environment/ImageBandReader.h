@@ -7,7 +7,7 @@
 //   (hdhair-record writes its images with it; the tests; hdhair-bench).
 // - LoadedImageBandReader.cpp: the Hydra plugin. OpenImageIO and the ~280
 //   libraries it pulls in cost a host noticeable time and resident memory to
-//   load on every launch (README, "Storm side by side");
+//   load on every launch (docs/performance.md, "Storm side by side");
 //   most stages have no dome texture, so the plugin leaves the decoder in a
 //   module of its own, hdHairImageReader.so beside hdHair.so, and loads it
 //   with dlopen the first time a dome texture is read.

@@ -5,8 +5,8 @@
 // and evaluation stages on the one thread that draws, even when it emits a
 // single segment, and at the light views' tolerance (half a texel) most
 // spans are straight, and drawing them as plain lines (strandChord.vert)
-// saves that work (README, "Straight spans skip the tessellator", has the
-// measurement).
+// saves that work (docs/how-it-works.md, "Straight spans skip the
+// tessellator", has the measurement).
 //
 // lightViewLevels.comp asks strandTessellationLevel.glsl, the very rule
 // strand.tesc applies, for every span of the drawn ranges in the light's

@@ -14,7 +14,7 @@
 // rasterise slower than they bin, so without a pause the queue grows to
 // most of a large groom's peak memory. Batched draws therefore wait, every
 // kDrawsBetweenFences draws, for the fence set that many draws before
-// (README, "Memory", has what that saves).
+// (docs/performance.md, "Memory", has what that saves).
 
 #include <string>
 #include <vector>

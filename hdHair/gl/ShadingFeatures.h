@@ -5,7 +5,7 @@
 // switches this mirrors). Why: llvmpipe runs a fragment shader as masked
 // SIMD and pays for every branch whether a fragment takes it or not, so a
 // Kajiya-Kay frame with one deep-opacity light ran the Marschner, SRBF and
-// reference-shadow code too (README, "Performance and memory", has what
+// reference-shadow code too (docs/performance.md has what
 // compiling only the reachable code saves). A feature is on whenever the draw could take its
 // branch, so a specialised program draws exactly what the complete one
 // draws (testShaderSpecialization).

@@ -21,7 +21,7 @@
 // Hair on llvmpipe costs fragments, and strands thinner than a pixel are
 // drawn a pixel wide (minPixelWidth): a quarter of the width costs about a
 // quarter, not a sixteenth, and the dense clump at 1/8 of 960 pixels is still
-// over 100 ms (README, "Hydra plugin": measured), hence the curves. Fewer
+// over 100 ms (docs/hydra-plugin.md: measured), hence the curves. Fewer
 // curves cover less: the strand shader keeps each strand's coverage to its
 // own width, so a thinned preview looks sparser and lighter than the frame.
 

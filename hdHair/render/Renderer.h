@@ -64,7 +64,7 @@ struct RenderOutputs {
 
 // Segments per piece of a cancellable frame's strand draws (FramePasses.h):
 // a request to stop waits for at most one piece, and every piece costs a
-// finish of the GL work; README ("Progressive rendering") has what 2,048 gives on
+// finish of the GL work; docs/hydra-plugin.md ("Progressive rendering") has what 2,048 gives on
 // the dense clump (27,900 segments: 14 pieces a draw).
 constexpr size_t kStrandPieceSegments = 2048;
 

@@ -361,7 +361,7 @@ INSTANTIATE_TEST_SUITE_P(
 // about +Y, compared half by half (left, right, top, bottom), so the sky
 // must reach the sphere the same way round in both renderers. Bound 12 %:
 // hdHair lights a mesh under a textured dome through the dome's SRBF lobes
-// ("Dome lighting" in README), a fit of the map, which is within 8 % of
+// ("Dome lighting" in docs/how-it-works.md), a fit of the map, which is within 8 % of
 // Cycles' sampled map in every half here; Cycles' noise over a half is under
 // 1 % at 64 samples (2 % at the mutations' 16). Mutations: the sky mirrored (turned -30° instead, which
 // swaps the halves' light by 35 %) and turned half round (210°).

@@ -148,7 +148,7 @@ TEST(Transparency, ErrorAgainstExactFallsAsBinsIncrease) {
     EXPECT_GT(errors[0], errors[1]) << "1 bin vs 16 bins";
     EXPECT_GT(errors[1], errors[2]) << "16 bins vs 256 bins";
     // Measured 0.0059 over the covered pixels at 128 px (0.0034 over the
-    // whole frame; README's table has the full picture).
+    // whole frame; docs/transparency.md's table has the full picture).
     EXPECT_LT(errors[2], 0.009) << "256 bins should be close to exact";
 }
 

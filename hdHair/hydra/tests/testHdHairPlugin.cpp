@@ -3,7 +3,7 @@
 // does, fills every AOV with the values a host expects, re-syncs only what an
 // edit touches, and syncs many prims in parallel.
 // Run the whole binary under ThreadSanitizer with the build described in
-// README ("Hydra plugin", tests).
+// docs/hydra-plugin.md (tests).
 
 #include <link.h>
 

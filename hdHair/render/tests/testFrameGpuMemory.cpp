@@ -82,7 +82,7 @@ TEST(FrameGpuMemory, StrandAndOrderBytesFollowTheSegmentCount) {
     }
 }
 
-// The memory goal (README, "Memory"): at most 64 GPU bytes an authored point for a
+// The memory goal (docs/performance.md, "Memory"): at most 64 GPU bytes an authored point for a
 // groom of Catmull-Rom strands (TressFX assets have 16 or 32 points a strand):
 // the strands' geometry and their drawing order together.
 TEST(FrameGpuMemory, ACatmullRomGroomTakesAtMost64BytesAnAuthoredPoint) {
