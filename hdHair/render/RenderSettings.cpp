@@ -37,7 +37,7 @@ const std::vector<SettingDescriptor>& RenderSettings::descriptors() {
          "A named set of the settings below, from cheap to exact: preview, default (today's defaults), high or "
          "reference (the yardstick: exact transparency that fails rather than fall back, reference shadows, "
          "analytic Marschner, the tightest tessellation, 4 x 4 supersampling); settings set explicitly, and a "
-         "complexity above low, win over it (README, Quality presets)",
+         "complexity above low, win over it (docs/settings.md, Quality presets)",
          0, 0, {"preview", "default", "high", "reference"}},
         {"tessellation", SettingType::Token, "screenError",
          "How finely each curve span is cut: screenError (as few segments as keep the polyline within "
@@ -46,7 +46,7 @@ const std::vector<SettingDescriptor>& RenderSettings::descriptors() {
          0, 0, {"screenError", "projectedLength"}},
         {"tessellationTolerance", SettingType::Float, "0.12",
          "screenError tessellation: the most, in pixels, a strand's tessellated centre line may stray from the "
-         "true curve (complexity: low 0.12, medium 0.06, high 0.03, veryhigh 0.015; README, tessellation benchmark)",
+         "true curve (complexity: low 0.12, medium 0.06, high 0.03, veryhigh 0.015; docs/how-it-works.md, tessellation benchmark)",
          0.001, 100.0, {}},
         {"pixelsPerSegment", SettingType::Float, "8",
          "projectedLength tessellation: target on-screen length in pixels of one segment (complexity: low 8, "
@@ -81,7 +81,7 @@ const std::vector<SettingDescriptor>& RenderSettings::descriptors() {
          0, 0, {"fallBack", "fail"}},
         {"supersampling", SettingType::Int, "1",
          "N x N samples per pixel: the frame is rendered N times as wide and high and box-filtered in linear "
-         "pre-multiplied RGBA; depth and ids are those of the nearest of a pixel's samples (README, Quality presets)",
+         "pre-multiplied RGBA; depth and ids are those of the nearest of a pixel's samples (docs/settings.md, Quality presets)",
          1, 8, {}},
         {"lightsPerPass", SettingType::Int, "4",
          "Most lights shaded in one pass; more lights take more passes over the same sorted strands, "
@@ -109,7 +109,7 @@ const std::vector<SettingDescriptor>& RenderSettings::descriptors() {
          1, 32, {}},
         {"shadowMapResolution", SettingType::Int, "512",
          "Texels across each light's square shadow map (512 as in Yuksel & Keyser; with 3 layers, finer maps "
-         "cost time without lowering the error: README, shadow benchmark)",
+         "cost time without lowering the error: docs/how-it-works.md, shadow benchmark)",
          16, 16384, {}},
         {"shadowTessellationTolerance", SettingType::Float, "0.5",
          "screenError tessellation in the light views: the most, in texels of the light's map, a strand's "
@@ -144,7 +144,7 @@ const std::vector<SettingDescriptor>& RenderSettings::descriptors() {
          "the strand's centre line, where every lookup is taken, interpolated along each segment; spans cut to "
          "2 texels of the finest map, up to 64 segments), fragment (at every fragment), or auto (vertex when "
          "every span is within 2 texels of the finest map, as in real grooms, else fragment). Reference shadows "
-         "are always looked up per fragment (README, Shadows)",
+         "are always looked up per fragment (docs/how-it-works.md, Shadows)",
          0, 0, {"auto", "vertex", "fragment"}},
         {"domeLighting", SettingType::Token, "srbf",
          "How DomeLights light the frame: srbf (a textured dome as domeLights Gaussian SRBF lights, each "

@@ -575,6 +575,34 @@ int run(const Options& options) {
 
 }  // namespace
 
+// The settings reference as a Markdown table, from the descriptors
+// (docs/settings.md holds it; testHdhairRecord keeps the two equal).
+static std::string settingsMarkdown() {
+    const auto cell = [](const std::string& text) {
+        std::string escaped;
+        for (char c : text) escaped += c == '|' ? std::string("\\|") : std::string(1, c);
+        return escaped;
+    };
+    const auto number = [](double value) { return fmt::format("{:g}", value); };
+    std::string text = "| setting | values | default | meaning |\n|---|---|---|---|\n";
+    for (const SettingDescriptor& descriptor : RenderSettings::descriptors()) {
+        std::string values;
+        if (!descriptor.tokens.empty()) {
+            for (const std::string& token : descriptor.tokens) values += (values.empty() ? "" : ", ") + ("`" + token + "`");
+        } else if (descriptor.type == SettingType::Bool) {
+            values = "`true`, `false`";
+        } else if (descriptor.type == SettingType::Int || descriptor.type == SettingType::Float) {
+            values = fmt::format("{} {} to {}", descriptor.type == SettingType::Int ? "integer" : "number",
+                                 number(descriptor.minimum), number(descriptor.maximum));
+        } else {
+            values = "text";
+        }
+        text += fmt::format("| `{}` | {} | `{}` | {} |\n", descriptor.name, values, cell(descriptor.defaultValue),
+                            cell(descriptor.description));
+    }
+    return text;
+}
+
 int main(int argc, char** argv) {
     Options options;
     CLI::App app{"Renders a USD stage's hair curves to images, like usdrecord, with hdHair's engine.",
@@ -645,16 +673,30 @@ int main(int argc, char** argv) {
         ->capture_default_str();
     app.add_option("--blender", options.blender, "--reference: the Blender executable")->capture_default_str();
     bool listSettings = false;
+    std::string settingsFormat = "text";
     app.add_flag("--help-settings", listSettings, "List the renderer settings with defaults and exit");
+    app.add_option("--format", settingsFormat,
+                   "--help-settings: text, or markdown (the table of docs/settings.md, which a test keeps equal)")
+        ->capture_default_str();
 
     // --help-settings needs no positional arguments.
     for (int i = 1; i < argc; ++i) {
-        if (std::string(argv[i]) == "--help-settings") {
-            for (const SettingDescriptor& descriptor : RenderSettings::descriptors())
-                std::printf("%-22s default %-8s %s\n", descriptor.name.c_str(), descriptor.defaultValue.c_str(),
-                            descriptor.description.c_str());
+        if (std::string(argv[i]) != "--help-settings") continue;
+        for (int j = 1; j + 1 < argc; ++j)
+            if (std::string(argv[j]) == "--format") settingsFormat = argv[j + 1];
+        if (settingsFormat == "markdown") {
+            std::printf("%s", settingsMarkdown().c_str());
             return 0;
         }
+        if (settingsFormat != "text") {
+            std::fprintf(stderr, "hdhair-record: error: --format must be text or markdown, not '%s'\n",
+                         settingsFormat.c_str());
+            return 2;
+        }
+        for (const SettingDescriptor& descriptor : RenderSettings::descriptors())
+            std::printf("%-22s default %-8s %s\n", descriptor.name.c_str(), descriptor.defaultValue.c_str(),
+                        descriptor.description.c_str());
+        return 0;
     }
     try {
         app.parse(argc, argv);

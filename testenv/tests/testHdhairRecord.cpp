@@ -5,6 +5,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <string>
 
 #include <glm/gtc/packing.hpp>
@@ -462,6 +463,30 @@ TEST_F(HdhairRecord, HelpListsUsdrecordOptions) {
     RecordRun settings = record("--help-settings");
     EXPECT_EQ(settings.exitCode, 0);
     EXPECT_NE(settings.output.find("maxSegmentsPerSpan"), std::string::npos);
+}
+
+// docs/settings.md's table is what --help-settings --format markdown prints
+// from the descriptors, so the reference cannot drift from the code.
+TEST_F(HdhairRecord, TheSettingsReferenceIsWhatTheDescriptorsSay) {
+    RecordRun markdown = record("--help-settings --format markdown");
+    ASSERT_EQ(markdown.exitCode, 0) << markdown.output;
+    EXPECT_EQ(markdown.output.rfind("| setting | values | default | meaning |\n", 0), 0u) << markdown.output;
+    EXPECT_NE(markdown.output.find("| `maxSegmentsPerSpan` | integer 1 to 64 | `8` |"), std::string::npos)
+        << markdown.output;
+    std::ifstream file(std::string(HDHAIR_SOURCE_DIR) + "/docs/settings.md");
+    const std::string document((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
+    const std::string begin = "<!-- generated: hdhair-record --help-settings --format markdown";
+    const std::string end = "<!-- end of generated table -->";
+    const size_t from = document.find('\n', document.find(begin));
+    const size_t to = document.find(end);
+    ASSERT_NE(document.find(begin), std::string::npos) << "docs/settings.md has no generated table";
+    ASSERT_NE(to, std::string::npos);
+    EXPECT_EQ(document.substr(from + 1, to - from - 1), markdown.output)
+        << "docs/settings.md differs from the descriptors: write it again with "
+           "hdhair-record --help-settings --format markdown";
+    RecordRun unknown = record("--help-settings --format xml");
+    EXPECT_EQ(unknown.exitCode, 2);
+    EXPECT_EQ(unknown.output, "hdhair-record: error: --format must be text or markdown, not 'xml'\n");
 }
 
 #if HDHAIR_WITH_USD
