@@ -2,7 +2,7 @@
 
 #include <fmt/format.h>
 
-#include "hdHair/render/Renderer.h"
+#include "hdHair/render/RenderResult.h"
 #include "hdHair/scene/Scene.h"
 
 namespace hdhair {

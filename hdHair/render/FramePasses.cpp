@@ -15,7 +15,7 @@
 #include "hdHair/meshes/PreparedMesh.h"
 #include "hdHair/render/FrameResources.h"
 #include "hdHair/render/RenderSettings.h"
-#include "hdHair/render/Renderer.h"
+#include "hdHair/render/RenderResult.h"
 #include "hdHair/render/ShadowPassUniforms.h"
 
 namespace hdhair {

@@ -1,6 +1,6 @@
 #include "hdHair/render/FrameScheduler.h"
 
-#include "hdHair/render/Renderer.h"
+#include "hdHair/render/RenderResult.h"
 
 namespace hdhair {
 

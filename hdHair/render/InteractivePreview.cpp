@@ -6,7 +6,7 @@
 
 #include "hdHair/image/NearestUpscale.h"
 #include "hdHair/render/FramePasses.h"
-#include "hdHair/render/Renderer.h"
+#include "hdHair/render/RenderResult.h"
 
 namespace hdhair {
 

@@ -29,8 +29,11 @@
 #include "hdHair/render/CameraView.h"
 #include "hdHair/render/FrameCancellation.h"
 #include "hdHair/render/FramePasses.h"
+#include "hdHair/render/FrameControl.h"
 #include "hdHair/render/FramingBounds.h"
+#include "hdHair/render/RenderOutputs.h"
 #include "hdHair/render/RenderPlan.h"
+#include "hdHair/render/RenderResult.h"
 #include "hdHair/render/RenderSettings.h"
 #include "hdHair/render/RenderStats.h"
 #include "hdHair/render/ShadowMapCache.h"
@@ -45,61 +48,6 @@ namespace gl {
 class GlRenderThread;
 }  // namespace gl
 struct FrameResources;
-
-// What a frame must produce besides colour and depth.
-struct RenderOutputs {
-    // primId, instanceId and elementId images (for Hydra's picking and
-    // selection). Off by default: id attachments are made only when asked for.
-    bool ids = false;
-    // The display image made on the GPU through this transform
-    // (RenderResult::display), un-premultiplied, or over black for formats
-    // without alpha. nullptr: none (hdhair-record applies it on the CPU).
-    const DisplayShader* gpuDisplay = nullptr;
-    bool displayOverBlack = false;
-    // The depth image read back to the CPU (RenderResult::depth). Hosts pick
-    // and composite with it; a tool that writes colour only turns it off and
-    // saves 4 bytes a pixel of readback.
-    bool depth = true;
-};
-
-// Segments per piece of a cancellable frame's strand draws (FramePasses.h):
-// a request to stop waits for at most one piece, and every piece costs a
-// finish of the GL work; docs/hydra-plugin.md ("Progressive rendering") has what 2,048 gives on
-// the dense clump (27,900 segments: 14 pieces a draw).
-constexpr size_t kStrandPieceSegments = 2048;
-
-// How a frame may be stopped or simplified (ProgressiveRenderer.h).
-struct FrameControl {
-    // Asked between passes and between strand pieces whether to stop
-    // (FrameCancellation.h); a stopped frame throws FrameCancelled. Null:
-    // the frame runs to its end and draws its strands at once.
-    const FrameCancellation* cancellation = nullptr;
-    size_t strandPieceSegments = kStrandPieceSegments;
-    // A preview (InteractivePreview.h): its settings and image size are not
-    // those of the frames before and after it, so it keeps the shadow maps
-    // as the last full frame left them (building and dropping none: its
-    // settings must have shadowMode=off).
-    bool preview = false;
-    // A preview draws every this-many-th curve of each prim only
-    // (keepEveryNthCurve, InteractivePreview.h); 1 for every other frame.
-    int previewCurveStride = 1;
-};
-
-struct RenderResult {
-    Image color;  // RGBA, scene-linear, pre-multiplied
-    // One channel, window depth in [0, 1], 1 where empty (empty itself when
-    // RenderOutputs::depth is off). Blended frames: the
-    // depth of the nearest fragment of alpha >= kNearestStrandMinAlpha
-    // (NearestStrandRule.h), whether or not ids are asked for.
-    Image depth;
-    // With RenderOutputs::ids: per pixel, rows from the top down; -1 where
-    // empty. The same fragment as depth, on every path.
-    std::vector<int32_t> primIds, instanceIds, elementIds;
-    // With RenderOutputs::gpuDisplay: RGBA display code values, rows from the top down.
-    Image display;
-    RenderPlan plan;
-    RenderStats stats;
-};
 
 class Renderer {
 public:

@@ -5,7 +5,7 @@
 #include <fmt/format.h>
 
 #include "hdHair/image/BoxDownsample.h"
-#include "hdHair/render/Renderer.h"
+#include "hdHair/render/RenderResult.h"
 
 namespace hdhair {
 
