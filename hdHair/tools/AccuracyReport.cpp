@@ -135,8 +135,8 @@ std::string cyclesSummaryMarkdown(const nlohmann::json& report) {
         "### Against Cycles, every stage\n\nErrors over blocks (relative RMSE | ratio of sums, hdHair over "
         "Cycles). *Missing light*: Cycles' single scattering against its full frame. *Closest*: the row of the "
         "matrix with the least error. *Cycles / default*: Cycles' full render time over the default frame's.\n\n"
-        "| stage | noise floor | missing light | default vs full | default vs single | closest to full | closest to "
-        "single | Cycles / default |\n|---|---|---|---|---|---|---|---|\n";
+        "| stage | noise floor | sum | missing light | sum | default vs full | sum | default vs single | sum | closest "
+        "to full | closest to single | Cycles / default |\n|---|---|---|---|---|---|---|---|---|---|---|---|\n";
     struct Span {
         double leastFull = std::numeric_limits<double>::infinity(), mostFull = 0.0;
         double leastSingle = std::numeric_limits<double>::infinity(), mostSingle = 0.0;

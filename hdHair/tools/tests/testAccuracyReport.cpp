@@ -260,6 +260,12 @@ TEST(AccuracyReport, MarksAFrontAgainstCyclesAndRanksTheApproximations) {
     // Cycles' time over the default frame's (20 s over 20 ms), and the spans
     // ranked against single scattering (lightsPerPass 0.15, sortBins 0.005).
     EXPECT_EQ(markdown.rfind("### Against Cycles, every stage", 0), 0u) << markdown;
+    // Every error is two cells (block error, ratio of sums): twelve columns in all.
+    EXPECT_NE(markdown.find("| stage | noise floor | sum | missing light | sum | default vs full | sum | default vs single "
+                            "| sum | closest to full | closest to single | Cycles / default |\n|---|---|---|---|---|---|---|"
+                            "---|---|---|---|---|\n"),
+              std::string::npos)
+        << markdown;
     EXPECT_NE(markdown.find("| 0.050 | 1.00 | 0.500 | 0.40 | 0.290 | 0.60 | 0.145 | 1.20 | lightsPerPass 1 lights (0.100) "
                             "| lightsPerPass 1 lights (0.050) | 1000x |"),
               std::string::npos)
