@@ -36,12 +36,13 @@ const std::vector<std::pair<std::string, std::string>>& presetSettings(Quality q
     static const std::vector<std::pair<std::string, std::string>> none;
     // high: what lowered the error for its time in docs/accuracy.md: 2 x 2
     // supersampling (the largest term at one sample a pixel on every stage),
-    // 7 shadow layers (the layer ladder stops falling there), complexity
+    // 15 shadow layers (against Cycles' single scattering the layer ladder
+    // falls to 15 on dense grooms: docs/accuracy.md, "Against Cycles"), complexity
     // medium's tolerance (curls) and shadow lookups at every fragment. Finer bins and shadow maps are left at the
     // defaults: 1024 bins matched 256 bins' error, and maps finer than 512
     // texels raised it with the layers' depth resolution the limit.
     static const std::vector<std::pair<std::string, std::string>> high = {
-        {"tessellationTolerance", "0.06"}, {"maxSegmentsPerSpan", "16"}, {"shadowLayers", "7"},
+        {"tessellationTolerance", "0.06"}, {"maxSegmentsPerSpan", "16"}, {"shadowLayers", "15"},
         {"supersampling", "2"},           {"shadowSampling", "fragment"},
     };
     // reference: the most exact hdHair can be, the yardstick of

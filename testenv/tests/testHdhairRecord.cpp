@@ -341,23 +341,23 @@ TEST_F(HdhairRecord, ExplainPrintsThePlanAndVerbosePrintsPassTimes) {
 // chose each setting and --stats keeps it; a preset with supersampling still
 // writes an image of the asked width.
 TEST_F(HdhairRecord, QualityPresetIsExplainedAndExplicitSettingsWin) {
-    RecordRun run = record("--quality high --setting shadowLayers=15 --explain --imageWidth 64 --stats " +
+    RecordRun run = record("--quality high --setting shadowLayers=3 --explain --imageWidth 64 --stats " +
                            file("stats.json") + " " + example("straight_strands.usda") + " " + file("o.png"));
     ASSERT_EQ(run.exitCode, 0) << run.output;
     EXPECT_NE(run.output.find("  quality=high, complexity low\n"), std::string::npos) << run.output;
-    EXPECT_NE(run.output.find("  shadowLayers           15           explicit (wins over quality=high's 7)\n"),
+    EXPECT_NE(run.output.find("  shadowLayers           3            explicit (wins over quality=high's 15)\n"),
               std::string::npos)
         << run.output;
     EXPECT_NE(run.output.find("  supersampling          2            quality=high\n"), std::string::npos) << run.output;
     EXPECT_NE(run.output.find("supersampleResolve"), std::string::npos) << run.output;
     const nlohmann::json frame = nlohmann::json::parse(std::ifstream(file("stats.json")))["frames"][0];
     EXPECT_EQ(frame["settings"]["quality"], "high");
-    EXPECT_EQ(frame["settings"]["shadowLayers"], 15);
+    EXPECT_EQ(frame["settings"]["shadowLayers"], 3);
     EXPECT_EQ(frame["settings"]["sortBins"], 256);  // high leaves the bins at the default
     EXPECT_EQ(frame["supersampling"], 2);
     EXPECT_EQ(frame["image"]["width"], 64);
     EXPECT_EQ(frame["settingOrigins"]["supersampling"]["source"], "quality=high");
-    EXPECT_EQ(frame["settingOrigins"]["shadowLayers"]["overriddenPreset"], "7");
+    EXPECT_EQ(frame["settingOrigins"]["shadowLayers"]["overriddenPreset"], "15");
     const Image written = readImage(file("o.png"));
     EXPECT_EQ(written.width, 64);
 
@@ -518,7 +518,7 @@ TEST_F(HdhairRecord, UsdReaderRendersTheQualityPresetThroughThePlugin) {
     EXPECT_NE(run.output.find("  supersampling          2            quality=high\n"), std::string::npos) << run.output;
     const nlohmann::json frame = nlohmann::json::parse(std::ifstream(file("stats.json")))["frames"][0];
     EXPECT_EQ(frame["settings"]["quality"], "high");
-    EXPECT_EQ(frame["settings"]["shadowLayers"], 7);
+    EXPECT_EQ(frame["settings"]["shadowLayers"], 15);
     EXPECT_EQ(frame["settingOrigins"]["shadowLayers"]["source"], "quality=high");
     EXPECT_EQ(frame["supersampling"], 2);
     EXPECT_EQ(frame["image"]["width"], 64);

@@ -146,10 +146,10 @@ TEST(QualityPresets, ReferenceIsTheMostExactSettings) {
 // complexity above low wins over it for the settings complexity scales;
 // low, every host's default, does not.
 TEST(QualityPresets, ExplicitSettingsAndAComplexityAboveLowWin) {
-    RenderSettings settings = RenderSettings::fromAssignments(Complexity::Low, {"shadowLayers=15", "quality=high"});
-    EXPECT_EQ(settings.getInt("shadowLayers"), 15);
+    RenderSettings settings = RenderSettings::fromAssignments(Complexity::Low, {"shadowLayers=3", "quality=high"});
+    EXPECT_EQ(settings.getInt("shadowLayers"), 3);
     EXPECT_EQ(settings.origin("shadowLayers").source, SettingSource::Explicit);
-    EXPECT_EQ(settings.origin("shadowLayers").overriddenPreset, "7");
+    EXPECT_EQ(settings.origin("shadowLayers").overriddenPreset, "15");
     EXPECT_EQ(settings.getInt("supersampling"), 2);
     EXPECT_DOUBLE_EQ(settings.getFloat("tessellationTolerance"), 0.06);
     EXPECT_EQ(settings.origin("tessellationTolerance").source, SettingSource::Preset);
