@@ -18,5 +18,9 @@ function(hdhair_add_test name)
   # cache; a test may name its own folder.
   list(APPEND TEST_ENVIRONMENT "HDHAIR_CACHE_DIR=${CMAKE_BINARY_DIR}/testCache")
   list(APPEND properties ENVIRONMENT "${TEST_ENVIRONMENT}")
-  gtest_discover_tests(${name} DISCOVERY_MODE PRE_TEST PROPERTIES ${properties})
+  # Listing a sanitized binary's tests on a loaded two-core machine can take
+  # longer than GoogleTest's default five seconds; a slow listing is not a
+  # failed test.
+  gtest_discover_tests(${name} DISCOVERY_MODE PRE_TEST DISCOVERY_TIMEOUT 120
+                       PROPERTIES ${properties})
 endfunction()
