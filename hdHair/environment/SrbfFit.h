@@ -40,13 +40,11 @@
 // E is measured against the map after the prefilter (RadianceGridBlur.h):
 // what a fit within the paper's bandwidths could reach.
 //
-// Measured (hdHair/environment/README.md has the table): on the default
-// 64 × 32 grid, a uniform map fits to E = 0.17 with 30 lobes and 0.052 with
-// 60 (lobes no wider than λ = 16 ripple over a constant), a procedural sky
-// with a sun to E = 0.10 with 30 and 0.039 with 60 (testSrbfFit). Reading a
-// 1k half-float EXR onto the grid and fitting 30 lobes takes a fraction of a
-// second (hdhair-bench SrbfFit/1024x512 measures it), the
-// paper's 5-20 minutes notwithstanding.
+// How well the fit does on a uniform map and a sky, with 30 and 60 lobes,
+// and what it costs: hdHair/environment/README.md has the table
+// (testSrbfFit pins the errors; hdhair-bench SrbfFit/1024x512 the time).
+// Lobes no wider than λ = 16 ripple over a constant, so a uniform map is
+// the hardest case for its energy.
 
 #include <vector>
 
