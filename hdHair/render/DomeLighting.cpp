@@ -27,7 +27,7 @@ float lobePower(const Srbf& srbf) {
 }  // namespace
 
 DomeLightingMode domeLightingMode(const RenderSettings& settings) {
-    const std::string mode = settings.getToken("domeLighting");
+    const std::string mode = settings.values().domeLighting;
     if (mode == "ambient") return DomeLightingMode::Ambient;
     return mode == "sampled" ? DomeLightingMode::Sampled : DomeLightingMode::Srbf;
 }
@@ -38,12 +38,12 @@ std::vector<DomeEnvironment> frameDomeEnvironments(const Scene& scene, const Ren
     const DomeLightingMode mode = domeLightingMode(settings);
     if (mode == DomeLightingMode::Ambient) return domes;
     DomeFitSettings fit;
-    fit.srbf.maxLobes = settings.getInt("domeLights");
+    fit.srbf.maxLobes = settings.values().domeLights;
     for (const auto& [path, entry] : scene.lights()) {
         if (!isDrawnDome(*entry.prim)) continue;
         const glm::vec3 radiance = lightRadiance(*entry.prim);
         domes.push_back(mode == DomeLightingMode::Sampled
-                            ? sampledDomeEnvironment(*entry.prim, radiance, settings.getInt("domeSampledLights"),
+                            ? sampledDomeEnvironment(*entry.prim, radiance, settings.values().domeSampledLights,
                                                      diagnostics)
                             : domeEnvironment(*entry.prim, radiance, fit, diagnostics));
     }

@@ -191,15 +191,15 @@ const std::vector<ShadingPrimvarRequest>& hairParameterPrimvars() {
 HairMaterial hairMaterialFor(const CurvesPrim& prim, const PreparedCurves& prepared, const RenderSettings& settings,
                              Diagnostics& diagnostics) {
     HairMaterial material;
-    parseModel(settings.getToken("shadingModel"), &material.model);
+    parseModel(settings.values().shadingModel, &material.model);
     if (!prim.shadingModel.empty() && !parseModel(prim.shadingModel, &material.model))
         diagnostics.warn(prim.path + ".primvars:hdHair:shadingModel",
                          fmt::format("unknown shading model '{}' (kajiyaKay, marschner or flat); using {}",
                                      prim.shadingModel, toString(material.model)));
 
-    material.kajiyaKay.diffuse = float(settings.getFloat("kajiyaKay:diffuse"));
-    material.kajiyaKay.specular = float(settings.getFloat("kajiyaKay:specular"));
-    material.kajiyaKay.shininess = float(settings.getFloat("kajiyaKay:shininess"));
+    material.kajiyaKay.diffuse = float(settings.values().kajiyaKayDiffuse);
+    material.kajiyaKay.specular = float(settings.values().kajiyaKaySpecular);
+    material.kajiyaKay.shininess = float(settings.values().kajiyaKayShininess);
     if (material.model == ShadingModel::Marschner) {
         material.marschner = marschnerParametersFromR(kDefaultShiftDegrees * kMarschnerDegrees,
                                                       kDefaultWidthDegrees * kMarschnerDegrees);
@@ -209,7 +209,7 @@ HairMaterial hairMaterialFor(const CurvesPrim& prim, const PreparedCurves& prepa
     const HairParameterSource wholePrim(prepared, std::nullopt);
     applyHairParameters(wholePrim, material.model, material.kajiyaKay, material.marschner);
     material.varies = variationOf(wholePrim, material.model);
-    const std::string azimuthal = settings.getToken("marschner:azimuthal");
+    const std::string azimuthal = settings.values().marschnerAzimuthal;
     // Forced tables: absorption and eta stay at their means over the prim.
     if (azimuthal == "tables") material.varies &= ~unsigned(kAbsorptionVaries | kEtaVaries);
     if (material.perPoint()) material.perPointPrim = prim.path;
@@ -219,9 +219,9 @@ HairMaterial hairMaterialFor(const CurvesPrim& prim, const PreparedCurves& prepa
 }
 
 std::string hairMaterialSettingsKey(const RenderSettings& settings) {
-    return fmt::format("{}|{}|{}|{}|{}", settings.getToken("shadingModel"), settings.getFloat("kajiyaKay:diffuse"),
-                       settings.getFloat("kajiyaKay:specular"), settings.getFloat("kajiyaKay:shininess"),
-                       settings.getToken("marschner:azimuthal"));
+    return fmt::format("{}|{}|{}|{}|{}", settings.values().shadingModel, settings.values().kajiyaKayDiffuse,
+                       settings.values().kajiyaKaySpecular, settings.values().kajiyaKayShininess,
+                       settings.values().marschnerAzimuthal);
 }
 
 std::vector<glm::vec4> hairParameterPoints(const HairMaterial& material, const PreparedCurves& prepared) {

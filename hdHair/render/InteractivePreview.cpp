@@ -12,16 +12,16 @@ namespace hdhair {
 
 RenderSettings previewSettings(const RenderSettings& full) {
     RenderSettings preview = full;
-    preview.set("tessellationTolerance", std::to_string(std::max(full.getFloat("tessellationTolerance"), 1.0)));
-    preview.set("pixelsPerSegment", std::to_string(std::max(full.getFloat("pixelsPerSegment"), 16.0)));
-    preview.set("maxSegmentsPerSpan", std::to_string(std::min(full.getInt("maxSegmentsPerSpan"), 4)));
-    if (full.getToken("transparency") == "exact") preview.set("transparency", "binSorted");
-    preview.set("sortBins", std::to_string(std::min(full.getInt("sortBins"), 16)));
+    preview.set("tessellationTolerance", std::to_string(std::max(full.values().tessellationTolerance, 1.0)));
+    preview.set("pixelsPerSegment", std::to_string(std::max(full.values().pixelsPerSegment, 16.0)));
+    preview.set("maxSegmentsPerSpan", std::to_string(std::min(full.values().maxSegmentsPerSpan, 4)));
+    if (full.values().transparency == "exact") preview.set("transparency", "binSorted");
+    preview.set("sortBins", std::to_string(std::min(full.values().sortBins, 16)));
     preview.set("shadowMode", "off");
     preview.set("lightsPerPass", "16");
     preview.set("msaaSamples", "0");
     preview.set("supersampling", "1");
-    if (full.getToken("marschner:azimuthal") == "analytic") preview.set("marschner:azimuthal", "tables");
+    if (full.values().marschnerAzimuthal == "analytic") preview.set("marschner:azimuthal", "tables");
     preview.set("passTimings", "false");
     return preview;
 }

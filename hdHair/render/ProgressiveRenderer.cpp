@@ -82,7 +82,7 @@ void ProgressiveRenderer::loop() {
             rendering_ = number;
             cancellation_.clear();
         }
-        const int budget = request.settings.getInt("interactiveBudgetMs");
+        const int budget = request.settings.values().interactiveBudgetMs;
         bool superseded = false;
         const bool slow = lastFinalMilliseconds_ && *lastFinalMilliseconds_ > double(budget);
         if (budget > 0 && (slow || lastFinalStopped_)) {
@@ -104,7 +104,7 @@ bool ProgressiveRenderer::renderFrame(uint64_t number, const FrameRequest& reque
     frame.request = number;
     frame.quality = quality;
     const bool preview = quality == FrameQuality::Preview;
-    const double budget = double(request.settings.getInt("interactiveBudgetMs"));
+    const double budget = double(request.settings.values().interactiveBudgetMs);
     Clock::time_point start;
     try {
         std::lock_guard<std::mutex> lock(rendererMutex_);

@@ -4,6 +4,8 @@
 #include <charconv>
 #include <cmath>
 #include <stdexcept>
+#include <type_traits>
+#include <variant>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -38,83 +40,83 @@ const std::vector<SettingDescriptor>& RenderSettings::descriptors() {
          "reference (the yardstick: exact transparency that fails rather than fall back, reference shadows, "
          "analytic Marschner, the tightest tessellation, 4 x 4 supersampling); settings set explicitly, and a "
          "complexity above low, win over it (docs/settings.md, Quality presets)",
-         0, 0, {"preview", "default", "high", "reference"}},
+         0, 0, {"preview", "default", "high", "reference"}, &SettingValues::quality},
         {"tessellation", SettingType::Token, "screenError",
          "How finely each curve span is cut: screenError (as few segments as keep the polyline within "
          "tessellationTolerance pixels of the curve, from the span's curvature and projected size) or "
          "projectedLength (one segment every pixelsPerSegment pixels of projected length, straight or not)",
-         0, 0, {"screenError", "projectedLength"}},
+         0, 0, {"screenError", "projectedLength"}, &SettingValues::tessellation},
         {"tessellationTolerance", SettingType::Float, "0.12",
          "screenError tessellation: the most, in pixels, a strand's tessellated centre line may stray from the "
          "true curve (complexity: low 0.12, medium 0.06, high 0.03, veryhigh 0.015; docs/how-it-works.md, tessellation benchmark)",
-         0.001, 100.0, {}},
+         0.001, 100.0, {}, &SettingValues::tessellationTolerance},
         {"pixelsPerSegment", SettingType::Float, "8",
          "projectedLength tessellation: target on-screen length in pixels of one segment (complexity: low 8, "
          "medium 4, high 2, veryhigh 1)",
-         0.25, 1000.0, {}},
+         0.25, 1000.0, {}, &SettingValues::pixelsPerSegment},
         {"maxSegmentsPerSpan", SettingType::Int, "8",
          "Most segments one curve span is cut into, however close it is (complexity: low 8, "
          "medium 16, high 32, veryhigh 64)",
-         1, 64, {}},
+         1, 64, {}, &SettingValues::maxSegmentsPerSpan},
         {"meshRefineLevel", SettingType::Int, "0",
          "Uniform subdivision level of catmullClark, loop and bilinear meshes that do not set their own "
          "(complexity: low 0, medium 1, high 2, veryhigh 3, as Storm's refine levels; 0 draws the cage)",
-         0, 8, {}},
+         0, 8, {}, &SettingValues::meshRefineLevel},
         {"transparency", SettingType::Token, "binSorted",
          "How strands are composited: binSorted (depth bins, far to near), exact (per-pixel sorted "
          "fragment lists: the slow ground truth), unsorted, or opaque; stages whose strands are all "
          "opaque and wide take the opaque path by themselves",
-         0, 0, {"binSorted", "exact", "unsorted", "opaque"}},
-        {"sortBins", SettingType::Int, "256", "Depth bins for binSorted transparency", 1, 65536, {}},
+         0, 0, {"binSorted", "exact", "unsorted", "opaque"}, &SettingValues::transparency},
+        {"sortBins", SettingType::Int, "256", "Depth bins for binSorted transparency", 1, 65536, {}, &SettingValues::sortBins},
         {"minPixelWidth", SettingType::Float, "1",
          "Strands projecting thinner than this many pixels are drawn this wide with alpha scaled by "
          "true / drawn width (sub-pixel coverage)",
-         0.05, 16.0, {}},
+         0.05, 16.0, {}, &SettingValues::minPixelWidth},
         {"msaaSamples", SettingType::Int, "0", "Multisampling of the opaque path: 0, 2, 4 or 8 samples", 0, 8,
-         {"0", "2", "4", "8"}},
+         {"0", "2", "4", "8"}, &SettingValues::msaaSamples},
         {"exactMemoryMB", SettingType::Int, "512",
          "Memory for exact transparency's fragment lists; a frame needing more falls back to binSorted", 16,
-         65536, {}},
+         65536, {}, &SettingValues::exactMemoryMB},
         {"exactOverflow", SettingType::Token, "fallBack",
          "When exact transparency's fragments do not fit exactMemoryMB: fallBack (warn and render binSorted with "
          "1024 bins) or fail (the frame fails with the memory it needed: a reference must never be approximate)",
-         0, 0, {"fallBack", "fail"}},
+         0, 0, {"fallBack", "fail"}, &SettingValues::exactOverflow},
         {"supersampling", SettingType::Int, "1",
          "N x N samples per pixel: the frame is rendered N times as wide and high and box-filtered in linear "
          "pre-multiplied RGBA; depth and ids are those of the nearest of a pixel's samples (docs/settings.md, Quality presets)",
-         1, 8, {}},
+         1, 8, {}, &SettingValues::supersampling},
         {"lightsPerPass", SettingType::Int, "4",
          "Most lights shaded in one pass; more lights take more passes over the same sorted strands, "
          "their colours summed and alpha counted once",
-         1, 16, {}},
+         1, 16, {}, &SettingValues::lightsPerPass},
         {"shadingModel", SettingType::Token, "kajiyaKay",
          "Hair shading where a prim does not choose (primvars:hdHair:shadingModel): kajiyaKay, marschner, "
          "or flat (displayColor x opacity, no lighting)",
-         0, 0, {"kajiyaKay", "marschner", "flat"}},
-        {"kajiyaKay:diffuse", SettingType::Float, "1", "Kajiya-Kay diffuse weight Kd", 0.0, 100.0, {}},
-        {"kajiyaKay:specular", SettingType::Float, "0.35", "Kajiya-Kay specular weight Ks", 0.0, 100.0, {}},
-        {"kajiyaKay:shininess", SettingType::Float, "60", "Kajiya-Kay specular exponent p", 1.0, 10000.0, {}},
+         0, 0, {"kajiyaKay", "marschner", "flat"}, &SettingValues::shadingModel},
+        {"kajiyaKay:diffuse", SettingType::Float, "1", "Kajiya-Kay diffuse weight Kd", 0.0, 100.0, {}, &SettingValues::kajiyaKayDiffuse},
+        {"kajiyaKay:specular", SettingType::Float, "0.35", "Kajiya-Kay specular weight Ks", 0.0, 100.0, {}, &SettingValues::kajiyaKaySpecular},
+        {"kajiyaKay:shininess", SettingType::Float, "60", "Kajiya-Kay specular exponent p", 1.0, 10000.0, {}, &SettingValues::kajiyaKayShininess},
         {"marschner:azimuthal", SettingType::Token, "auto",
          "Marschner's azimuthal terms: auto (tables per material; per fragment where absorption or eta vary "
          "per curve or vertex), tables (always; such prims use their mean absorption and eta), or analytic "
          "(always per fragment: the reference)",
-         0, 0, {"auto", "tables", "analytic"}},
+         0, 0, {"auto", "tables", "analytic"}, &SettingValues::marschnerAzimuthal},
         {"shadowMode", SettingType::Token, "deepOpacity",
          "Hair self-shadowing from lights that cast shadows (inputs:shadow:enable): deepOpacity (deep opacity "
          "maps), reference (every light-view fragment kept and summed per lookup: slow, the yardstick), or off",
-         0, 0, {"deepOpacity", "reference", "off"}},
+         0, 0, {"deepOpacity", "reference", "off"}, &SettingValues::shadowMode},
         {"shadowLayers", SettingType::Int, "3",
          "Opacity layers of a deep opacity map behind the nearest hair (3 as in Yuksel & Keyser; up to 32, in "
          "RGBA16F targets of 4 layers)",
-         1, 32, {}},
+         1, 32, {}, &SettingValues::shadowLayers},
         {"shadowMapResolution", SettingType::Int, "512",
          "Texels across each light's square shadow map (512 as in Yuksel & Keyser; with 3 layers, finer maps "
          "cost time without lowering the error: docs/how-it-works.md, shadow benchmark)",
-         16, 16384, {}},
+         16, 16384, {}, &SettingValues::shadowMapResolution},
         {"shadowTessellationTolerance", SettingType::Float, "0.5",
          "screenError tessellation in the light views: the most, in texels of the light's map, a strand's "
          "polyline there may stray from the true curve (the lookups' bias is a texel; README, Shadows)",
-         0.001, 100.0, {}},
+         0.001, 100.0, {}, &SettingValues::shadowTessellationTolerance},
         {"shadowStrandLines", SettingType::Token, "auto",
          "How deep opacity maps draw the strands: auto (as one-texel lines, with alpha carrying the strand's "
          "coverage, when no strand is over 1.5 texels wide in the light's view: no geometry shader, the "
@@ -122,30 +124,30 @@ const std::vector<SettingDescriptor>& RenderSettings::descriptors() {
          "as plain lines, without the tessellator), tessellated (the same lines, every span through the "
          "tessellator) or off (always camera-facing ribbons, minPixelWidth wide at least, as the camera "
          "draws them)",
-         0, 0, {"auto", "tessellated", "off"}},
+         0, 0, {"auto", "tessellated", "off"}, &SettingValues::shadowStrandLines},
         {"shadowMemoryMB", SettingType::Int, "1024",
          "Memory for shadow maps; lights beyond what it holds at shadowMapResolution and shadowLayers shade "
          "unshadowed, with a warning",
-         16, 65536, {}},
+         16, 65536, {}, &SettingValues::shadowMemoryMB},
         {"shadowLayerSpacing", SettingType::Token, "linear",
          "Deep opacity layer spacing: linear (gaps growing linearly from the lit surface, Yuksel & Keyser's "
          "choice) or uniform",
-         0, 0, {"linear", "uniform"}},
+         0, 0, {"linear", "uniform"}, &SettingValues::shadowLayerSpacing},
         {"shadowLayerDepth", SettingType::Float, "1",
          "How deep the last opacity layer reaches behind the nearest hair, as a fraction of the hair's depth "
          "along the light; hair beyond it counts in the last layer",
-         0.01, 1.0, {}},
+         0.01, 1.0, {}, &SettingValues::shadowLayerDepth},
         {"shadowFilter", SettingType::Token, "bilinear",
          "Shadow lookup: nearest (one texel, as in the thesis) or bilinear (transmittance of the four nearest "
          "texels, each against its own nearest depth, weighted bilinearly)",
-         0, 0, {"nearest", "bilinear"}},
+         0, 0, {"nearest", "bilinear"}, &SettingValues::shadowFilter},
         {"shadowSampling", SettingType::Token, "auto",
          "Where deep opacity maps are looked up: vertex (each light's transmittance at the tessellated points of "
          "the strand's centre line, where every lookup is taken, interpolated along each segment; spans cut to "
          "2 texels of the finest map, up to 64 segments), fragment (at every fragment), or auto (vertex when "
          "every span is within 2 texels of the finest map, as in real grooms, else fragment). Reference shadows "
          "are always looked up per fragment (docs/how-it-works.md, Shadows)",
-         0, 0, {"auto", "vertex", "fragment"}},
+         0, 0, {"auto", "vertex", "fragment"}, &SettingValues::shadowSampling},
         {"domeLighting", SettingType::Token, "srbf",
          "How DomeLights light the frame: srbf (a textured dome as domeLights Gaussian SRBF lights, each "
          "convolved with the fibre model by table, Ren et al. 2010; an untextured dome as the exact integral of "
@@ -153,56 +155,56 @@ const std::vector<SettingDescriptor>& RenderSettings::descriptors() {
          "unshadowed: the old term, kept for comparison) or sampled (the reference: every dome as "
          "domeSampledLights importance-sampled distant lights, each with its own shadow map; slow, and a frame "
          "whose maps shadowMemoryMB cannot hold fails)",
-         0, 0, {"srbf", "ambient", "sampled"}},
+         0, 0, {"srbf", "ambient", "sampled"}, &SettingValues::domeLighting},
         {"domeLights", SettingType::Int, "30",
          "SRBF lights a textured dome is fitted with (the paper's 30-60; each costs a table lookup per fragment "
          "and lightsPerPass of them a pass)",
-         10, 60, {}},
+         10, 60, {}, &SettingValues::domeLights},
         {"domeShadowFilter", SettingType::Token, "mipmap",
          "How an SRBF light's shadow widens with depth behind the first hair (Ren et al. 2010 section 5): mipmap "
          "(the paper's convolution optical depth map: the opacity layers averaged over the footprint from a mip "
          "chain, then exponentiated; a third more opacity memory; half the error of taps against the reference "
          "on the dense clump) or taps (nine lookups of the map's transmittance over the footprint, averaged)",
-         0, 0, {"taps", "mipmap"}},
+         0, 0, {"taps", "mipmap"}, &SettingValues::domeShadowFilter},
         {"domeSampledLights", SettingType::Int, "1024",
          "Distant lights a dome becomes under domeLighting=sampled (importance-sampled from its radiance; each "
          "its own shadow map when the dome casts shadows, so lower shadowMapResolution or raise shadowMemoryMB)",
-         1, 65536, {}},
+         1, 65536, {}, &SettingValues::domeSampledLights},
         {"domeShadowLights", SettingType::Int, "4",
          "Of a dome's SRBF lights, the strongest (amplitude x solid angle) that get their own deep opacity map, "
          "as distant lights from their centres; each other SRBF reads the map of the shadowed one nearest in "
          "direction (0: dome lighting unshadowed)",
-         0, 60, {}},
+         0, 60, {}, &SettingValues::domeShadowLights},
         {"cameraLight", SettingType::Token, "auto",
          "Light from the camera: auto (only when the stage has no lights), on, off", 0, 0,
-         {"auto", "on", "off"}},
+         {"auto", "on", "off"}, &SettingValues::cameraLight},
         {"drawBatching", SettingType::Token, "auto",
          "How strand draws are cut: auto (batches of at most 2,048 tessellated vertices on llvmpipe, which "
          "draws larger tessellated draws wrongly; whole ranges elsewhere), on (batched on any driver) or off",
-         0, 0, {"auto", "on", "off"}},
+         0, 0, {"auto", "on", "off"}, &SettingValues::drawBatching},
         {"specializeShaders", SettingType::Bool, "true",
          "Compile each strand program with only the shading its draw can reach (its materials' models, its "
          "lights' kinds, its shadow lookups; the ids pass with none): the image is the same, and software "
          "rasterisers (llvmpipe), which pay for every branch of a shader, draw faster; false compiles everything",
-         0, 0, {}},
+         0, 0, {}, &SettingValues::specializeShaders},
         {"passTimings", SettingType::Bool, "false",
          "Time every pass of a frame for --stats and --verbose: GL timer queries where they measure whole passes, "
          "else (llvmpipe) the CPU clock with glFinish after each pass, which costs the overlap between passes; "
          "hdhair-record turns it on with --verbose, --explain or --stats",
-         0, 0, {}},
+         0, 0, {}, &SettingValues::passTimings},
         {"framing", SettingType::Token, "fitAll",
          "Camera when none is given: fitAll (every corner of the stage bounds in view) or usdrecord "
          "(usdrecord's exact framing, which can cut tall stages)",
-         0, 0, {"fitAll", "usdrecord"}},
+         0, 0, {"fitAll", "usdrecord"}, &SettingValues::framing},
         {"interactiveBudgetMs", SettingType::Int, "100",
          "Hydra hosts (usdview): when a full frame takes longer than this many milliseconds, each new view is "
          "first shown as a preview made to fit it (coarse tessellation, 16 bins, no shadows, fewer pixels as "
          "needed) and the full frame follows once the view stops changing; 0: no previews, full frames only",
-         0, 60000, {}},
+         0, 60000, {}, &SettingValues::interactiveBudgetMs},
         {"renderingSpace", SettingType::Token, "lin_rec709",
          "Scene-linear space the frame is shaded and written in: lin_rec709 or ACEScg; authored colours "
          "(linear Rec.709) are converted into it, EXRs are tagged with it, display transforms start from it",
-         0, 0, {"lin_rec709", "ACEScg"}},
+         0, 0, {"lin_rec709", "ACEScg"}, &SettingValues::renderingSpace},
     };
     return table;
 }
@@ -270,6 +272,7 @@ void RenderSettings::set(const std::string& name, const std::string& value) {
         break;
     }
     values_[name] = value;
+    updateValues();
 }
 
 void RenderSettings::setFromAssignment(const std::string& assignment) {
@@ -369,9 +372,25 @@ nlohmann::json RenderSettings::toJson() const {
     return json;
 }
 
+RenderSettings::RenderSettings() { updateValues(); }
+
+void RenderSettings::updateValues() {
+    for (const SettingDescriptor& descriptor : descriptors()) {
+        std::visit(
+            [&](auto field) {
+                using Value = std::remove_reference_t<decltype(typed_.*field)>;
+                if constexpr (std::is_same_v<Value, double>) typed_.*field = getFloat(descriptor.name);
+                else if constexpr (std::is_same_v<Value, int>) typed_.*field = getInt(descriptor.name);
+                else if constexpr (std::is_same_v<Value, bool>) typed_.*field = getBool(descriptor.name);
+                else typed_.*field = getToken(descriptor.name);
+            },
+            descriptor.field);
+    }
+}
+
 RenderingSpace RenderSettings::renderingSpace() const {
     RenderingSpace space = RenderingSpace::LinearRec709;
-    parseRenderingSpace(getToken("renderingSpace"), &space);
+    parseRenderingSpace(typed_.renderingSpace, &space);
     return space;
 }
 

@@ -12,6 +12,7 @@
 
 #include "hdHair/image/ColorSpaces.h"
 #include "hdHair/render/QualityPresets.h"
+#include "hdHair/render/SettingValues.h"
 
 namespace hdhair {
 
@@ -24,6 +25,7 @@ struct SettingDescriptor {
     std::string description;          // one line, for --help and usdview
     double minimum = 0.0, maximum = 0.0;  // Float and Int: inclusive range
     std::vector<std::string> tokens;  // Token (or Int): the only values allowed
+    SettingField field;               // where SettingValues holds its effective value
 };
 
 // usdrecord's --complexity levels; they set the tessellation density and
@@ -46,6 +48,8 @@ struct SettingOrigin {
 
 class RenderSettings {
 public:
+    RenderSettings();
+
     static const std::vector<SettingDescriptor>& descriptors();
     static const SettingDescriptor* find(const std::string& name);
 
@@ -69,9 +73,17 @@ public:
     SettingOrigin origin(const std::string& name) const;
 
     // Tessellation defaults for a complexity level; settings set explicitly win.
-    void setComplexity(Complexity complexity) { complexity_ = complexity; }
+    void setComplexity(Complexity complexity) {
+        complexity_ = complexity;
+        updateValues();
+    }
     Complexity complexity() const { return complexity_; }
 
+    // Every setting's effective value, typed (SettingValues.h): what code
+    // that needs a particular setting reads.
+    const SettingValues& values() const { return typed_; }
+
+    // A setting's effective value by name, for code generic over the table.
     double getFloat(const std::string& name) const;
     int getInt(const std::string& name) const;
     bool getBool(const std::string& name) const;
@@ -84,8 +96,12 @@ public:
 
 private:
     std::string effectiveText(const std::string& name) const;
+    // Fills typed_ from the descriptors, after anything that changes an
+    // effective value.
+    void updateValues();
     std::map<std::string, std::string> values_;  // explicitly set, validated
     Complexity complexity_ = Complexity::Low;
+    SettingValues typed_;
 };
 
 }  // namespace hdhair

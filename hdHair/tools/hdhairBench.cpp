@@ -428,8 +428,8 @@ void printTessellationTable(BenchStage& stage) {
             if (base == 0.0) base = seconds;
             const ImageComparison error = errorOf(result);
             const std::string parameter = std::string(rule) == "screenError"
-                                              ? fmt::format("{} px", settings.getFloat("tessellationTolerance"))
-                                              : fmt::format("{} px a segment", settings.getFloat("pixelsPerSegment"));
+                                              ? fmt::format("{} px", settings.values().tessellationTolerance)
+                                              : fmt::format("{} px a segment", settings.values().pixelsPerSegment);
             std::printf("| %s | %s (%s) | %llu | %.2fx | %.5f | %.5f | %.4f |\n", level.label.c_str(), rule,
                         parameter.c_str(), static_cast<unsigned long long>(result.stats.strandTriangles),
                         seconds / base, error.rootMeanSquare, error.rootMeanSquare - floor.rootMeanSquare,

@@ -243,12 +243,12 @@ std::optional<CameraView> cameraPrimView(const Options& options, const Scene& sc
 // the framing setting says.
 CameraView framingView(const Options& options, const RenderSettings& settings, const Scene& scene,
                        const SceneBounds& bounds) {
-    FramingStyle style = settings.getToken("framing") == "usdrecord" ? FramingStyle::UsdRecord : FramingStyle::FitAll;
+    FramingStyle style = settings.values().framing == "usdrecord" ? FramingStyle::UsdRecord : FramingStyle::FitAll;
     return frameBounds(bounds.min, bounds.max, scene.info().upAxis, options.imageWidth, style);
 }
 
 std::string cameraDescription(const Options& options, const RenderSettings& settings) {
-    return options.camera.empty() ? "framing camera (" + settings.getToken("framing") + ")" : options.camera;
+    return options.camera.empty() ? "framing camera (" + settings.values().framing + ")" : options.camera;
 }
 
 // The OpenUSD path: UsdStage, UsdImagingGL and the hdHair plugin, as
@@ -275,7 +275,7 @@ int runThroughUsdImaging(const Options& options, const usda::SceneReadOptions& p
         request.proxyPurpose = purposes.proxyPurpose;
         request.guidePurpose = purposes.guidePurpose;
         const RenderSettings settings = RenderSettings::fromAssignments(complexity, request.settings);
-        request.framing = settings.getToken("framing");
+        request.framing = settings.values().framing;
         request.pluginPath = hydraPluginResources();
         Clock::time_point start = Clock::now();
         hydra::UsdImagingRecordResult result = hydra::recordWithUsdImaging(request);
@@ -466,10 +466,10 @@ int run(const Options& options) {
                                     "'");
     RenderSettings settings = RenderSettings::fromAssignments(complexity, settingAssignments(options));
     const RenderSettings asked = RenderSettings::fromAssignments(complexity, options.settings);
-    if (asked.getInt("interactiveBudgetMs") != 0 && asked.isExplicitlySet("interactiveBudgetMs"))
+    if (asked.values().interactiveBudgetMs != 0 && asked.isExplicitlySet("interactiveBudgetMs"))
         std::fprintf(stderr, "hdhair-record: warning: interactiveBudgetMs=%d has no effect here: it sets the previews "
                              "interactive Hydra hosts (usdview) show, and hdhair-record writes full frames only\n",
-                     asked.getInt("interactiveBudgetMs"));
+                     asked.values().interactiveBudgetMs);
     if (options.imageWidth < 1 || options.imageWidth > 16384)
         throw std::invalid_argument("--imageWidth must be between 1 and 16384");
     if (!isSupportedImagePath(options.outputPath))

@@ -1,5 +1,7 @@
+#include <set>
 #include <stdexcept>
 #include <string>
+#include <variant>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -29,6 +31,43 @@ TEST(RenderSettings, DefaultsComeFromTheDescriptors) {
     EXPECT_EQ(settings.getInt("interactiveBudgetMs"), 100);
     for (const SettingDescriptor& descriptor : RenderSettings::descriptors())
         EXPECT_TRUE(settings.toJson().contains(descriptor.name)) << descriptor.name;
+}
+
+// Each descriptor fills its own field of SettingValues, of its own type.
+TEST(RenderSettings, EveryDescriptorFillsOneTypedFieldOfItsType) {
+    std::set<size_t> fields;
+    for (const SettingDescriptor& descriptor : RenderSettings::descriptors()) {
+        EXPECT_EQ(descriptor.field.index(), size_t(descriptor.type)) << descriptor.name;
+        // Distinct fields have distinct offsets in one SettingValues.
+        SettingValues values;
+        const size_t offset = std::visit(
+            [&](auto field) {
+                return size_t(reinterpret_cast<const char*>(&(values.*field)) - reinterpret_cast<const char*>(&values));
+            },
+            descriptor.field);
+        EXPECT_TRUE(fields.insert(offset).second) << descriptor.name << " shares a field";
+    }
+}
+
+// The typed values are the effective values, through whatever chose them.
+TEST(RenderSettings, TypedValuesFollowAssignmentsComplexityAndPresets) {
+    RenderSettings settings;
+    EXPECT_EQ(settings.values().shadowLayers, 3);
+    EXPECT_EQ(settings.values().cameraLight, "auto");
+    EXPECT_TRUE(settings.values().specializeShaders);
+    settings.set("quality", "high");
+    EXPECT_EQ(settings.values().shadowLayers, settings.getInt("shadowLayers"));
+    EXPECT_NE(settings.values().shadowLayers, 3);
+    settings.setComplexity(Complexity::High);
+    EXPECT_EQ(settings.values().maxSegmentsPerSpan, 32);
+    settings.setFromAssignment("kajiyaKay:shininess=12.5");
+    EXPECT_DOUBLE_EQ(settings.values().kajiyaKayShininess, 12.5);
+    settings.setFromAssignment("passTimings=on");
+    EXPECT_TRUE(settings.values().passTimings);
+    const nlohmann::json json = settings.toJson();
+    for (const SettingDescriptor& descriptor : RenderSettings::descriptors())
+        std::visit([&](auto field) { EXPECT_EQ(json[descriptor.name], settings.values().*field) << descriptor.name; },
+                   descriptor.field);
 }
 
 TEST(RenderSettings, ComplexityScalesTessellationUnlessSetExplicitly) {
