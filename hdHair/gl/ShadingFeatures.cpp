@@ -73,40 +73,4 @@ ShadingFeatures materialShadingFeatures(const std::vector<GpuHairMaterial>& mate
     return features;
 }
 
-ShadingFeatures strandShadingFeatures(const FrameUniforms& frame, const LightUniforms& lights,
-                                      const ShadowUniforms& shadows, ShadingFeatures materials) {
-    ShadingFeatures features;
-    if (frame.drawMode == 2) return features;  // strand.frag's ids: no shading at all
-    features.add(ShadingFeature::Shade).add(materials);
-    if (lights.ambient.w > 0.5f) features.add(ShadingFeature::UniformDome);
-    // The shaders read lights 0 .. lightCount.x - 1 and take their kind from
-    // lightVector.w: < 0.5 distant, > 1.5 SRBF, else local.
-    const int count = std::min(std::max(lights.lightCount.x, 0), kMaxLightsPerPass);
-    const int mode = shadows.mode.x;
-    for (int i = 0; i < count; ++i) {
-        const float kind = lights.lightVector[i].w;
-        const bool srbf = kind > 1.5f;
-        if (srbf) features.add(ShadingFeature::SrbfLights);
-        else if (kind >= 0.5f) features.add(ShadingFeature::LocalLights);
-        // shadows.glsl: no shadow with mode off or a light without a map.
-        if (mode == kShadowModeOff || shadows.lightMap[i].x < 0.0f) continue;
-        features.add(mode == kShadowModeReference ? ShadingFeature::ShadowReference : ShadingFeature::DeepOpacity);
-        if (mode != kShadowModeReference) features.setShadowLayers(shadows.mode.y);
-        if (shadows.occluders.x != 0) features.add(ShadingFeature::MeshOccluders);
-        if (shadows.mode.z != 0) features.add(ShadingFeature::BilinearShadows);
-        if (srbf)
-            features.add(shadows.occluders.y != 0 ? ShadingFeature::SrbfShadowMipmap : ShadingFeature::SrbfShadowTaps);
-    }
-    return features;
-}
-
-int vertexShadowLights(const LightUniforms& lights, const ShadowUniforms& shadows) {
-    if (shadows.mode.x != kShadowModeDeepOpacity) return 0;
-    const int count = std::min(std::max(lights.lightCount.x, 0), kMaxLightsPerPass);
-    int looked = 0;
-    for (int i = 0; i < count; ++i)
-        if (shadows.lightMap[i].x >= 0.0f) looked = i + 1;
-    return looked;
-}
-
 }  // namespace hdhair::gl

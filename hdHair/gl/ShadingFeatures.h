@@ -1,7 +1,8 @@
 #pragma once
-// Which parts of the strand shading a draw can reach, read from the very
-// uniforms and materials it draws with, and the GLSL that compiles only
-// those parts (it replaces shaders/include/shadingFeatures.glsl, whose
+// Which parts of the strand shading a draw can reach (decided from the
+// frame's plan: hdHair/render/StrandShadingFeatures.h; the materials' part
+// from the material table, below), and the GLSL that compiles only those
+// parts (it replaces shaders/include/shadingFeatures.glsl, whose
 // switches this mirrors). Why: llvmpipe runs a fragment shader as masked
 // SIMD and pays for every branch whether a fragment takes it or not, so a
 // Kajiya-Kay frame with one deep-opacity light ran the Marschner, SRBF and
@@ -121,11 +122,6 @@ private:
     bool strandLines_ = false;
 };
 
-// How many lights of a strand draw with these uniforms vertex shadows look
-// up: up to the last that reads a deep opacity map (0: none; a draw of
-// reference shadows, whose lookups are always per fragment, neither).
-int vertexShadowLights(const LightUniforms& lights, const ShadowUniforms& shadows);
-
 // Every switch: its feature, its GLSL macro and the name describe() uses.
 struct ShadingFeatureSwitch {
     ShadingFeature feature;
@@ -136,11 +132,5 @@ const std::vector<ShadingFeatureSwitch>& shadingFeatureSwitches();
 
 // The features a table of materials calls for, whichever prims read them.
 ShadingFeatures materialShadingFeatures(const std::vector<GpuHairMaterial>& materials);
-
-// The features a strand draw with these uniforms reaches, its materials
-// calling for `materials`: nothing but the ids for the ids pass (drawMode 2).
-// The layer count is set whenever a deep opacity map is read.
-ShadingFeatures strandShadingFeatures(const FrameUniforms& frame, const LightUniforms& lights,
-                                      const ShadowUniforms& shadows, ShadingFeatures materials);
 
 }  // namespace hdhair::gl

@@ -29,7 +29,7 @@ public:
     // Uploads and binds the frame's uniform blocks (also used by other
     // passes): frame at 0, lights at 1, their shadows at 2. The draws after
     // it use the strand program compiled with `features`
-    // (strandShadingFeatures() of these uniforms, or ShadingFeatures::all()),
+    // (what the frame's plan says the draw reaches, or ShadingFeatures::all()),
     // compiled now if no draw has used it before; throws on driver errors.
     void setUniforms(const FrameUniforms& frame, const LightUniforms& lights, const ShadowUniforms& shadows,
                      ShadingFeatures features);

@@ -71,6 +71,21 @@ bool FrameGraph::isEnabled(const std::string& name) const {
     return pass && pass->enabled;
 }
 
+const FramePass* FrameGraph::find(PassKind kind, size_t subject) const {
+    auto it = std::find_if(passes_.begin(), passes_.end(),
+                           [&](const FramePass& pass) { return pass.kind == kind && pass.subject == subject; });
+    return it == passes_.end() ? nullptr : &*it;
+}
+
+FramePass* FrameGraph::find(PassKind kind, size_t subject) {
+    return const_cast<FramePass*>(static_cast<const FrameGraph*>(this)->find(kind, subject));
+}
+
+bool FrameGraph::isEnabled(PassKind kind, size_t subject) const {
+    const FramePass* pass = find(kind, subject);
+    return pass && pass->enabled;
+}
+
 std::string FrameGraph::reasonFor(const FramePass& pass) {
     if (pass.wanted && !pass.enabled)
         return pass.reason + fmt::format("; not built: nothing reads its output ({})", joined(pass.writes));

@@ -20,7 +20,31 @@ namespace hdhair {
 
 using FrameResource = std::string;
 
+// What a pass does. The renderer runs a pass by its kind (FramePasses.cpp
+// has one function per kind, named as the kind is in --explain: a pass
+// "deepOpacity /World/key" runs deepOpacity()); the pass's name is only its
+// label.
+enum class PassKind {
+    Upload,
+    MeshUpload,
+    Sort,
+    ShadowDepth,
+    DeepOpacity,
+    ShadowFragments,
+    MeshShadow,
+    OpacityMipmaps,
+    Clear,
+    Meshes,
+    Strands,
+    Ids,
+    Resolve,
+    LightBatch,
+    Readback,
+    DisplayTransform,
+};
+
 struct FramePass {
+    PassKind kind;
     std::string name;                  // "strands", "lightBatch 2", "shadowDepth /World/key"
     std::vector<FrameResource> reads;  // what it needs, written by earlier passes or inputs
     std::vector<FrameResource> writes;
@@ -28,6 +52,9 @@ struct FramePass {
     std::string reason;                // why it is wanted, or why not
     bool enabled = false;              // wanted, and its output is read: it runs (compile())
     double milliseconds = 0.0;         // measured when it ran (with timing on)
+    // What the pass works on: its light batch (LightBatch, from 0), or its
+    // light's planned shadow (the shadow-map kinds: ShadowPlan::lights).
+    size_t subject = 0;
 };
 
 class FrameGraph {
@@ -49,9 +76,14 @@ public:
     const std::vector<FramePass>& passes() const { return passes_; }
     std::vector<FramePass>& passes() { return passes_; }
     const std::vector<FrameResource>& outputs() const { return outputs_; }
+    // By label (--explain's names: tests and tools).
     const FramePass* find(const std::string& name) const;
     FramePass* find(const std::string& name);
     bool isEnabled(const std::string& name) const;
+    // By kind and subject (what the renderer uses).
+    const FramePass* find(PassKind kind, size_t subject = 0) const;
+    FramePass* find(PassKind kind, size_t subject = 0);
+    bool isEnabled(PassKind kind, size_t subject = 0) const;
 
     // One line per pass: on/off, reads -> writes, reason (and time).
     std::string describe() const;

@@ -17,6 +17,7 @@
 #include "hdHair/render/RenderSettings.h"
 #include "hdHair/render/RenderResult.h"
 #include "hdHair/render/ShadowPassUniforms.h"
+#include "hdHair/render/StrandShadingFeatures.h"
 
 namespace hdhair {
 
@@ -93,18 +94,17 @@ void meshUpload(FrameContext& context) {
     for (size_t i = 0; i < meshes.meshes.size(); ++i) geometry.write(meshes.draws[i].first, meshes.meshes[i]->vertices);
 }
 
-// The parts of the strand shading a draw with these uniforms can reach
-// (hdHair/gl/ShadingFeatures.h); all of them with specializeShaders off.
-// Either way its deep opacity lookups are taken per point with
-// shadowSampling=vertex. Each set the frame uses is named once in the stats.
-gl::ShadingFeatures strandFeatures(FrameContext& context, const gl::FrameUniforms& frame,
-                                   const gl::LightUniforms& lights, const gl::ShadowUniforms& shadows) {
-    gl::ShadingFeatures features =
-        context.inputs.settings->getBool("specializeShaders")
-            ? gl::strandShadingFeatures(frame, lights, shadows, context.resources.materials.features())
-            : gl::ShadingFeatures::all();
-    if (context.plan.shadows.perVertex && frame.drawMode != 2)
-        features.setVertexShadowLights(gl::vertexShadowLights(lights, shadows));
+// The parts of the strand shading a draw of light batch `batch` can reach
+// (StrandShadingFeatures.h), or the ids pass's (`ids`: none); all of them
+// with specializeShaders off. Either way a colour draw's deep opacity
+// lookups are taken per point when the plan says so (shadowSampling). Each
+// set the frame uses is named once in the stats.
+gl::ShadingFeatures strandFeatures(FrameContext& context, size_t batch, bool ids) {
+    const RenderPlan& plan = context.plan;
+    gl::ShadingFeatures features = !plan.specializeShaders ? gl::ShadingFeatures::all()
+                                   : ids                   ? gl::ShadingFeatures()
+                                           : batchShadingFeatures(plan, batch, context.resources.materials.features());
+    if (plan.shadows.perVertex && !ids) features.setVertexShadowLights(batchVertexShadowLights(plan, batch));
     std::vector<std::string>& named = context.result.stats.strandShaders;
     const std::string name = features.describe();
     if (std::find(named.begin(), named.end(), name) == named.end()) named.push_back(name);
@@ -124,7 +124,7 @@ gl::ShadingFeatures bindBatchInputs(FrameContext& context, gl::RenderTarget& tar
     resources.shadowReference.bindForLookup();
     const gl::LightUniforms lights = lightUniforms(context.plan, batch);
     const gl::ShadowUniforms shadows = batchShadowUniforms(context.plan, batch);
-    const gl::ShadingFeatures features = strandFeatures(context, context.inputs.frame, lights, shadows);
+    const gl::ShadingFeatures features = strandFeatures(context, batch, false);
     resources.strandPass.setUniforms(context.inputs.frame, lights, shadows, features);
     return features;
 }
@@ -216,14 +216,14 @@ void drawStrands(FrameContext& context, gl::RenderTarget& target, size_t batch) 
                                                             target.images().ids, features);
         context.result.stats.fragments = fragments;
         if (fragments <= inputs.fragmentListCapacity) return;
-        const int memoryMB = inputs.settings->getInt("exactMemoryMB");
+        const int memoryMB = plan.exactMemoryMB;
         const std::string needed = fmt::format("exact transparency needs {} MB for {} fragments, more than "
                                                "exactMemoryMB={}",
                                                (fragments * gl::kFragmentNodeBytes + (1 << 20) - 1) >> 20,
                                                fragments, memoryMB);
         // A reference that quietly became an approximation would be measured
         // against as if it were exact: exactOverflow=fail stops the frame.
-        if (inputs.settings->getToken("exactOverflow") == "fail") {
+        if (plan.exactOverflowFails) {
             context.failure = needed + " (exactOverflow=fail: raise exactMemoryMB or lower supersampling)";
             context.stopped = true;
             return;
@@ -234,7 +234,7 @@ void drawStrands(FrameContext& context, gl::RenderTarget& target, size_t batch) 
         sortAndSend(context);
         inputs.frame.orderedDraw = 1;
         target.bindAndClear(glm::vec4(0.0f));
-        if (plan.isEnabled("meshes")) drawMeshes(context, target, batch);
+        if (plan.isEnabled(PassKind::Meshes)) drawMeshes(context, target, batch);
         bindBatchInputs(context, target, batch);
     }
     drawStrandPieces(context, inputs.frame.orderedDraw != 0,
@@ -248,8 +248,7 @@ void ids(FrameContext& context) {
     idsFrame.orderedDraw = 0;
     const gl::LightUniforms lights = lightUniforms(context.plan, 0);
     const gl::ShadowUniforms noShadows{};
-    context.resources.strandPass.setUniforms(idsFrame, lights, noShadows,
-                                             strandFeatures(context, idsFrame, lights, noShadows));
+    context.resources.strandPass.setUniforms(idsFrame, lights, noShadows, strandFeatures(context, 0, true));
     drawStrandPieces(context, false, gl::StrandBlending::IdsOnly);
 }
 
@@ -260,17 +259,10 @@ void lightBatch(FrameContext& context, size_t batch) {
     gl::RenderTarget& batchTarget =
         context.resources.lightBatchTarget(camera.imageWidth, camera.imageHeight, context.inputs.samples);
     batchTarget.bindAndClear(glm::vec4(0.0f));
-    if (context.plan.isEnabled("meshes")) drawMeshes(context, batchTarget, batch);
-    if (context.plan.isEnabled("strands")) drawStrands(context, batchTarget, batch);
+    if (context.plan.isEnabled(PassKind::Meshes)) drawMeshes(context, batchTarget, batch);
+    if (context.plan.isEnabled(PassKind::Strands)) drawStrands(context, batchTarget, batch);
     batchTarget.resolve();
     context.resources.lightBatchAccumulation.add(*context.target, batchTarget);
-}
-
-// The planned shadow a pass "<kind> <key>" builds.
-size_t shadowNamed(const RenderPlan& plan, const std::string& key) {
-    for (size_t i = 0; i < plan.shadows.lights.size(); ++i)
-        if (plan.shadows.lights[i].key == key) return i;
-    throw std::logic_error("frame graph: no shadow-casting light '" + key + "'");
 }
 
 void prepareShadowMaps(FrameContext& context) {
@@ -285,25 +277,26 @@ gl::LightViewStrands lightViewStrands(const PlannedShadow& shadow) {
     return shadow.straightSpans ? gl::LightViewStrands::Lines : gl::LightViewStrands::TessellatedLines;
 }
 
-// "shadowDepth L": the nearest hair in light L's view.
-void shadowDepth(FrameContext& context, size_t shadow) {
+// The hair in light L's view, as shadowDepth or deepOpacity draws it.
+void hairShadowMap(FrameContext& context, size_t shadow, PassKind kind) {
     prepareShadowMaps(context);
     FrameResources& resources = context.resources;
-    resources.shadowMapPass.renderDepth(resources.shadowMaps, resources.strands, context.inputs.uploads.drawRanges,
-                                        lightViewFrameUniforms(context.plan, shadow, context.inputs.frame),
-                                        lightShadowUniforms(context.plan, shadow),
-                                        lightViewStrands(context.plan.shadows.lights[shadow]));
+    const gl::FrameUniforms view = lightViewFrameUniforms(context.plan, shadow, context.inputs.frame);
+    const gl::ShadowUniforms uniforms = lightShadowUniforms(context.plan, shadow);
+    const gl::LightViewStrands drawn = lightViewStrands(context.plan.shadows.lights[shadow]);
+    if (kind == PassKind::ShadowDepth)
+        resources.shadowMapPass.renderDepth(resources.shadowMaps, resources.strands, context.inputs.uploads.drawRanges,
+                                            view, uniforms, drawn);
+    else
+        resources.shadowMapPass.renderOpacity(resources.shadowMaps, resources.strands,
+                                              context.inputs.uploads.drawRanges, view, uniforms, drawn);
 }
 
+// "shadowDepth L": the nearest hair in light L's view.
+void shadowDepth(FrameContext& context, size_t shadow) { hairShadowMap(context, shadow, PassKind::ShadowDepth); }
+
 // "deepOpacity L": light L's opacity layers behind that hair.
-void deepOpacity(FrameContext& context, size_t shadow) {
-    prepareShadowMaps(context);
-    FrameResources& resources = context.resources;
-    resources.shadowMapPass.renderOpacity(resources.shadowMaps, resources.strands, context.inputs.uploads.drawRanges,
-                                          lightViewFrameUniforms(context.plan, shadow, context.inputs.frame),
-                                          lightShadowUniforms(context.plan, shadow),
-                                          lightViewStrands(context.plan.shadows.lights[shadow]));
-}
+void deepOpacity(FrameContext& context, size_t shadow) { hairShadowMap(context, shadow, PassKind::DeepOpacity); }
 
 // "meshShadow L": the nearest mesh in light L's view.
 void meshShadow(FrameContext& context, size_t shadow) {
@@ -379,43 +372,47 @@ void displayTransform(FrameContext& context) {
 
 }  // namespace
 
-bool isCpuPass(const FramePass& pass) { return pass.name == "sort"; }
+bool isCpuPass(const FramePass& pass) { return pass.kind == PassKind::Sort; }
 
 bool stopRequested(FrameContext& context) {
     if (!context.stopped && context.cancellation && context.cancellation->requested()) context.stopped = true;
     return context.stopped;
 }
 
-bool runsWhenStopped(const FramePass& pass) { return pass.name == "upload" || pass.name == "meshUpload"; }
+bool runsWhenStopped(const FramePass& pass) {
+    return pass.kind == PassKind::Upload || pass.kind == PassKind::MeshUpload;
+}
 
-std::optional<std::string> shadowMapBuiltBy(const FramePass& pass) {
-    for (const char* kind : {"shadowDepth ", "deepOpacity ", "meshShadow ", "shadowFragments "}) {
-        const std::string prefix(kind);
-        if (pass.name.rfind(prefix, 0) == 0) return pass.name.substr(prefix.size());
+std::optional<size_t> shadowMapBuiltBy(const FramePass& pass) {
+    switch (pass.kind) {
+    case PassKind::ShadowDepth:
+    case PassKind::DeepOpacity:
+    case PassKind::MeshShadow:
+    case PassKind::ShadowFragments: return pass.subject;
+    default: return std::nullopt;
     }
-    return std::nullopt;
 }
 
 void runFramePass(const FramePass& pass, FrameContext& context) {
-    const std::string& name = pass.name;
-    if (name == "upload") return upload(context);
-    if (name == "meshUpload") return meshUpload(context);
-    if (name == "sort") return sortAndSend(context);
-    if (name == "clear") return clear(context);
-    if (name == "meshes") return drawMeshes(context, *context.target, 0);
-    if (name == "strands") return drawStrands(context, *context.target, 0);
-    if (name == "ids") return ids(context);
-    if (name == "resolve") return context.target->resolve();
-    if (name.rfind("lightBatch ", 0) == 0) return lightBatch(context, std::stoul(name.substr(11)) - 1);
-    if (name.rfind("shadowDepth ", 0) == 0) return shadowDepth(context, shadowNamed(context.plan, name.substr(12)));
-    if (name.rfind("deepOpacity ", 0) == 0) return deepOpacity(context, shadowNamed(context.plan, name.substr(12)));
-    if (name.rfind("meshShadow ", 0) == 0) return meshShadow(context, shadowNamed(context.plan, name.substr(11)));
-    if (name.rfind("shadowFragments ", 0) == 0)
-        return shadowFragments(context, shadowNamed(context.plan, name.substr(16)));
-    if (name == "opacityMipmaps") return opacityMipmaps(context);
-    if (name == "readback") return readback(context);
-    if (name == "displayTransform") return displayTransform(context);
-    throw std::logic_error("frame graph: no pass called '" + name + "'");
+    switch (pass.kind) {
+    case PassKind::Upload: return upload(context);
+    case PassKind::MeshUpload: return meshUpload(context);
+    case PassKind::Sort: return sortAndSend(context);
+    case PassKind::ShadowDepth: return shadowDepth(context, pass.subject);
+    case PassKind::DeepOpacity: return deepOpacity(context, pass.subject);
+    case PassKind::ShadowFragments: return shadowFragments(context, pass.subject);
+    case PassKind::MeshShadow: return meshShadow(context, pass.subject);
+    case PassKind::OpacityMipmaps: return opacityMipmaps(context);
+    case PassKind::Clear: return clear(context);
+    case PassKind::Meshes: return drawMeshes(context, *context.target, 0);
+    case PassKind::Strands: return drawStrands(context, *context.target, 0);
+    case PassKind::Ids: return ids(context);
+    case PassKind::Resolve: return context.target->resolve();
+    case PassKind::LightBatch: return lightBatch(context, pass.subject);
+    case PassKind::Readback: return readback(context);
+    case PassKind::DisplayTransform: return displayTransform(context);
+    }
+    throw std::logic_error("frame graph: pass '" + pass.name + "' has no kind the renderer runs");
 }
 
 }  // namespace hdhair

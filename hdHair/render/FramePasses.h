@@ -25,7 +25,6 @@
 namespace hdhair {
 
 class Diagnostics;
-class RenderSettings;
 struct PreparedMesh;
 struct FrameResources;
 struct RenderResult;
@@ -57,7 +56,6 @@ struct MeshUpload {
 // Everything a frame's passes need, gathered on the CPU before any GL work.
 struct FrameInputs {
     const CameraView* camera = nullptr;
-    const RenderSettings* settings = nullptr;
     bool idsRequested = false;
     bool depthRequested = true;
     const DisplayShader* gpuDisplay = nullptr;  // the displayTransform pass's shader
@@ -108,9 +106,9 @@ bool stopRequested(FrameContext& context);
 // the material table, the mesh buffer).
 bool runsWhenStopped(const FramePass& pass);
 
-// The light whose shadow map a pass builds ("shadowDepth L" and the other
-// map passes), or nothing.
-std::optional<std::string> shadowMapBuiltBy(const FramePass& pass);
+// The planned shadow (ShadowPlan::lights) whose map a pass builds
+// ("shadowDepth L" and the other map passes), or nothing.
+std::optional<size_t> shadowMapBuiltBy(const FramePass& pass);
 
 // The passes that run on the CPU (timed by the CPU clock).
 bool isCpuPass(const FramePass& pass);

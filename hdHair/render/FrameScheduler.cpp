@@ -10,8 +10,8 @@ void runFrameGraph(FrameContext& context, gl::PassTiming timing) {
     for (size_t i = 0; i < passes.size(); ++i) {
         if (!passes[i].enabled) continue;
         if (stopRequested(context) && !runsWhenStopped(passes[i])) {
-            if (std::optional<std::string> light = shadowMapBuiltBy(passes[i]))
-                context.unbuiltShadowMaps.push_back(*light);
+            if (std::optional<size_t> shadow = shadowMapBuiltBy(passes[i]))
+                context.unbuiltShadowMaps.push_back(context.plan.shadows.lights[*shadow].key);
             continue;
         }
         timer.begin(i, isCpuPass(passes[i]));

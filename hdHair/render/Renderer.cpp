@@ -45,14 +45,14 @@ gl::FrameUniforms frameUniforms(const CameraView& camera, const RenderSettings& 
     frame.cameraPosition = glm::vec4(glm::vec3(camera.position()), camera.orthographic ? 0.0f : 1.0f);
     frame.cameraForward = glm::vec4(glm::vec3(camera.forward()), 0.0f);
     frame.viewportSize = glm::vec2(float(camera.imageWidth), float(camera.imageHeight));
-    frame.pixelsPerSegment = float(settings.getFloat("pixelsPerSegment"));
+    frame.pixelsPerSegment = float(settings.values().pixelsPerSegment);
     frame.tessellationTolerance =
-        settings.getToken("tessellation") == "screenError" ? float(settings.getFloat("tessellationTolerance")) : 0.0f;
-    frame.maxSegmentsPerSpan = float(settings.getInt("maxSegmentsPerSpan"));
+        settings.values().tessellation == "screenError" ? float(settings.values().tessellationTolerance) : 0.0f;
+    frame.maxSegmentsPerSpan = float(settings.values().maxSegmentsPerSpan);
     frame.pixelsPerUnit = float(camera.pixelsPerUnit());
     bool opaque = plan.transparency == TransparencyPath::Opaque;
     // The opaque path draws true widths; every blended path applies coverage.
-    frame.minPixelWidth = opaque ? 0.0f : float(settings.getFloat("minPixelWidth"));
+    frame.minPixelWidth = opaque ? 0.0f : float(settings.values().minPixelWidth);
     frame.drawMode = opaque ? 0 : 1;
     frame.orderedDraw = plan.transparency == TransparencyPath::BinSorted ? 1 : 0;
     frame.nearestStrandMinAlpha = kNearestStrandMinAlpha;
@@ -60,17 +60,6 @@ gl::FrameUniforms frameUniforms(const CameraView& camera, const RenderSettings& 
     for (int column = 0; column < 3; ++column) frame.colorToRec709[column] = glm::vec4(toRec709[column], 0.0f);
     frame.shadowSegmentLength = float(plan.shadows.vertexSegmentLength);
     return frame;
-}
-
-// Everything a shadow map depends on besides its light view and the
-// casters: the settings that shape it.
-std::string shadowSettingsKey(const RenderSettings& settings) {
-    std::string key;
-    for (const char* name : {"shadowMode", "shadowLayers", "shadowMapResolution", "shadowLayerSpacing",
-                             "shadowLayerDepth", "minPixelWidth", "tessellation", "shadowTessellationTolerance",
-                             "pixelsPerSegment", "maxSegmentsPerSpan", "shadowSampling", "shadowStrandLines"})
-        key += settings.getToken(name) + ";";
-    return key;
 }
 
 // The thinnest projected width of any strand: its thinnest span end at the
@@ -227,7 +216,7 @@ void Renderer::prepareMeshes(const Scene& scene, const RenderSettings& settings,
         CachedMesh* cached;
     };
     std::vector<Change> changed;
-    const int settingLevel = settings.getInt("meshRefineLevel");
+    const int settingLevel = settings.values().meshRefineLevel;
     for (const auto& [path, entry] : scene.meshes()) {
         CachedMesh& cached = meshes_[path];
         const int level = entry.prim->refineLevel >= 0 ? entry.prim->refineLevel : settingLevel;
@@ -299,19 +288,16 @@ void Renderer::decideShadowMaps(RenderPlan& plan, const StrandSummary& summary, 
             "domeLighting=sampled: {} lights cast shadows, more than the {} maps shadowMemoryMB={} holds at "
             "shadowMapResolution={} ({} would be drawn unshadowed); lower domeSampledLights or "
             "shadowMapResolution, or raise shadowMemoryMB",
-            shadows.lights.size(), shadows.maxMaps, settings.getInt("shadowMemoryMB"), shadows.resolution,
+            shadows.lights.size(), shadows.maxMaps, shadows.memoryMB, shadows.resolution,
             shadows.overBudget));
     if (shadowsDrawn)
         diagnostics.warn("render", fmt::format("{} lights cast shadows, more than the {} maps shadowMemoryMB={} holds "
                                                "at shadowMapResolution={}; the last {} in path order shade "
                                                "unshadowed",
                                                shadows.lights.size(), shadows.maxMaps,
-                                               settings.getInt("shadowMemoryMB"), shadows.resolution,
+                                               shadows.memoryMB, shadows.resolution,
                                                shadows.overBudget));
-    // A mip chain added or dropped reallocates the opacity layers, losing every map.
-    const std::string storageKey = shadowSettingsKey(settings) + (shadows.convolvedOpacity ? "mipmapped;" : "");
-    const ShadowFrame frame =
-        shadowMaps_.update(requests, storageKey, castersVersion_, shadows.mode == ShadowMode::Reference);
+    const ShadowFrame frame = shadowMaps_.update(requests, shadows, castersVersion_, shadows.mode == ShadowMode::Reference);
     shadows.capacity = frame.capacity;
     for (size_t r = 0; r < requests.size(); ++r) {
         const ShadowMapDecision& decision = frame.maps[r];
@@ -395,7 +381,7 @@ std::optional<MaterialUpload> Renderer::materialUpload(const std::vector<HairMat
 
 RenderResult Renderer::render(const Scene& scene, const CameraView& camera, const RenderSettings& settings,
                               Diagnostics& diagnostics, const RenderOutputs& outputs, const FrameControl& control) {
-    const int factor = settings.getInt("supersampling");
+    const int factor = settings.values().supersampling;
     if (factor == 1) return renderSamples(scene, camera, settings, diagnostics, outputs, control);
     // The display transform must see the resolved linear pixels: a display
     // image of the samples, averaged, would filter in display space.
@@ -419,21 +405,8 @@ RenderResult Renderer::render(const Scene& scene, const CameraView& camera, cons
     return result;
 }
 
-RenderResult Renderer::renderSamples(const Scene& scene, const CameraView& camera, const RenderSettings& settings,
-                                     Diagnostics& diagnostics, const RenderOutputs& outputs,
-                                     const FrameControl& control) {
-    Clock::time_point frameStart = Clock::now();
-    if (!isFiniteTransform(camera.view) || !isFiniteTransform(camera.projection))
-        throw std::invalid_argument("the camera's view or projection is not finite (a NaN or infinite transform, "
-                                    "lens or clipping range)");
-    if (control.preview && settings.getToken("shadowMode") != "off")
-        throw std::invalid_argument("a preview frame must not cast shadows (shadowMode=off): it keeps the full "
-                                    "frames' shadow maps as they are");
-    if (control.previewCurveStride < 1 || (!control.preview && control.previewCurveStride != 1))
-        throw std::invalid_argument("only a preview leaves curves out (previewCurveStride 1 otherwise)");
-    RenderResult result;
-    RenderStats& stats = result.stats;
-    size_t warningsBefore = diagnostics.warningCount();
+void Renderer::prepareFrame(const Scene& scene, const RenderSettings& settings, Diagnostics& diagnostics,
+                            RenderStats& stats) {
     if (!glWarningReported_ && !glThread_->softwareRendererWarning().empty())
         diagnostics.warn("gl", glThread_->softwareRendererWarning());
     glWarningReported_ = true;
@@ -442,24 +415,21 @@ RenderResult Renderer::renderSamples(const Scene& scene, const CameraView& camer
     stats.preparedPrims = pendingPreparedPrims_;
     pendingPrepareMilliseconds_ = 0.0;
     pendingPreparedPrims_ = 0;
-    if (!scene.meshes().empty() || !meshes_.empty()) {
-        Clock::time_point meshStart = Clock::now();
-        prepareMeshes(scene, settings, diagnostics);
-        stats.passes.push_back({"prepareMeshes", millisecondsSince(meshStart)});
-        stats.preparedMeshes = pendingPreparedMeshes_;
-        pendingPreparedMeshes_ = 0;
-    }
+    if (scene.meshes().empty() && meshes_.empty()) return;
+    Clock::time_point meshStart = Clock::now();
+    prepareMeshes(scene, settings, diagnostics);
+    stats.passes.push_back({"prepareMeshes", millisecondsSince(meshStart)});
+    stats.preparedMeshes = pendingPreparedMeshes_;
+    pendingPreparedMeshes_ = 0;
+}
 
-    // The drawn prims, their materials, and what the plan needs to know of them.
-    FrameInputs inputs;
-    std::vector<CachedCurves*> drawnCurves;
+void Renderer::gatherDrawnCurves(const Scene& scene, const CameraView& camera, const RenderSettings& settings,
+                                 Diagnostics& diagnostics, GatheredFrame& frame, RenderStats& stats) {
     Diagnostics repeated;  // later instances' material warnings (reportingFor)
     const std::string materialSettings = hairMaterialSettingsKey(settings);
-    std::vector<HairMaterial> materials;
-    StrandSummary summary;
+    StrandSummary& summary = frame.strands;
     summary.minProjectedWidthPixels = std::numeric_limits<double>::infinity();
     summary.anyLit = false;
-    uint64_t curveCount = 0;
     for (const auto& [path, entry] : scene.curves()) {
         CachedCurves& cached = curves_.at(path);
         if (!entry.prim->visible || cached.prepared->empty()) continue;
@@ -472,11 +442,11 @@ RenderResult Renderer::renderSamples(const Scene& scene, const CameraView& camer
         const HairMaterial& material = *cached.material;
         summary.perPointPrims += material.perPoint() ? 1 : 0;
         summary.analyticPrims += material.analyticAzimuthal ? 1 : 0;
-        auto found = std::find(materials.begin(), materials.end(), material);
-        if (found == materials.end()) found = materials.insert(materials.end(), material);
-        inputs.drawn.push_back({path, cached.prepared, glm::ivec2(entry.prim->primId, entry.prim->instanceId),
-                                int32_t(found - materials.begin())});
-        drawnCurves.push_back(&cached);
+        auto found = std::find(frame.materials.begin(), frame.materials.end(), material);
+        if (found == frame.materials.end()) found = frame.materials.insert(frame.materials.end(), material);
+        frame.inputs.drawn.push_back({path, cached.prepared, glm::ivec2(entry.prim->primId, entry.prim->instanceId),
+                                      int32_t(found - frame.materials.begin())});
+        frame.drawnCurves.push_back(&cached);
         summary.anyLit = summary.anyLit || material.model != ShadingModel::Flat;
         if (summary.shadingModels.find(toString(material.model)) == std::string::npos)
             summary.shadingModels += (summary.shadingModels.empty() ? "" : "+") + std::string(toString(material.model));
@@ -493,9 +463,17 @@ RenderResult Renderer::renderSamples(const Scene& scene, const CameraView& camer
         casters.max = first ? high : glm::max(casters.max, high);
         casters.maxWidth = std::max(casters.maxWidth, double(cached.maxWidth));
         summary.spanLengths.push_back(&cached.spanLengths);
-        curveCount += cached.prepared->curveCount;
+        frame.curves += cached.prepared->curveCount;
         stats.authoredPoints += entry.prim->points.size();
     }
+}
+
+Renderer::GatheredFrame Renderer::gatherFrame(const Scene& scene, const CameraView& camera,
+                                              const RenderSettings& settings, Diagnostics& diagnostics,
+                                              const FrameControl& control, RenderStats& stats) {
+    GatheredFrame frame;
+    FrameInputs& inputs = frame.inputs;
+    gatherDrawnCurves(scene, camera, settings, diagnostics, frame, stats);
     inputs.uploads = uploads_.update(inputs.drawn);
     // Any strand written, moved or dropped changes what casts shadows.
     const bool castersChanged =
@@ -506,38 +484,30 @@ RenderResult Renderer::renderSamples(const Scene& scene, const CameraView& camer
     castersRanges_ = inputs.uploads.drawRanges;
     // The domes as lighting (DomeLighting.h): fitted through the fit cache,
     // and the materials' SRBF tables with them.
-    const std::vector<DomeEnvironment> domes = frameDomeEnvironments(scene, settings, diagnostics);
-    inputs.materials = materialUpload(materials, drawnCurves, inputs.drawn, inputs.uploads, !domes.empty(), diagnostics);
+    frame.domes = frameDomeEnvironments(scene, settings, diagnostics);
+    inputs.materials = materialUpload(frame.materials, frame.drawnCurves, inputs.drawn, inputs.uploads,
+                                      !frame.domes.empty(), diagnostics);
     for (size_t i = 0; i < inputs.drawn.size(); ++i) {
         const PreparedCurves& curves = *inputs.drawn[i].curves;
         inputs.sortSpans.push_back(SortSpan{curves.controlPoints.data(), curves.segmentFirstControl.data(),
-                                            drawnCurves[i]->sortHashes.data(),
-                                            curves.segmentCount(), inputs.uploads.ranges[i].first});
+                                            frame.drawnCurves[i]->sortHashes.data(), curves.segmentCount(),
+                                            inputs.uploads.ranges[i].first});
     }
     if (control.preview) keepEveryNthCurve(inputs, control.previewCurveStride);
-
-    MeshSummary meshSummary;
-    inputs.meshes = meshUpload(scene, meshSummary);
+    inputs.meshes = meshUpload(scene, frame.meshes);
     // Meshes occlude the lights too: a changed mesh changes every shadow.
     if (inputs.meshes.changed) ++castersVersion_;
-    result.plan =
-        makeRenderPlan(scene, settings, camera, summary, outputs.ids, meshSummary, outputs.gpuDisplay != nullptr, domes);
-    RenderPlan& plan = result.plan;
-    inputs.camera = &camera;
-    inputs.settings = &settings;
-    inputs.idsRequested = outputs.ids;
-    inputs.depthRequested = outputs.depth;
-    inputs.gpuDisplay = outputs.gpuDisplay;
-    inputs.displayOverBlack = outputs.displayOverBlack;
-    // A preview leaves the shadow maps to the full frames.
-    if (!control.preview) decideShadowMaps(plan, summary, settings, diagnostics, stats);
-    inputs.frame = frameUniforms(camera, settings, plan);
-    inputs.fragmentListCapacity = size_t(settings.getInt("exactMemoryMB")) * 1024 * 1024 / gl::kFragmentNodeBytes;
-    const gl::PassTiming timing = settings.getBool("passTimings") ? passTiming_ : gl::PassTiming::Off;
+    return frame;
+}
 
+void Renderer::runFrame(FrameInputs& inputs, RenderResult& result, const RenderSettings& settings,
+                        Diagnostics& diagnostics, const FrameControl& control) {
+    RenderStats& stats = result.stats;
     const gl::PatchBatching batching =
-        gl::PatchBatching::choose(settings.getToken("drawBatching"), glThread_->contextDescription());
+        gl::PatchBatching::choose(settings.values().drawBatching, glThread_->contextDescription());
     stats.drawBatching = batching.describe();
+    const gl::PassTiming timing = settings.values().passTimings ? passTiming_ : gl::PassTiming::Off;
+    stats.passTiming = gl::toString(timing);
     for (const auto& [path, cached] : curves_) {
         stats.cpuBytes["preparedCurves"] += cached.prepared ? cached.prepared->heldBytes() : 0;
         stats.cpuBytes["sortHashes"] += cached.sortHashes.capacity() * sizeof(uint16_t);
@@ -547,8 +517,8 @@ RenderResult Renderer::renderSamples(const Scene& scene, const CameraView& camer
     std::string failure;
     const bool stopped = glThread_->run([&] {
         resources_->strands.setBatching(batching);
-        inputs.samples = std::min(plan.msaaSamples, resources_->maxSamples);
-        FrameContext context{inputs, plan, *resources_, diagnostics, result, {}, nullptr, false, {}};
+        inputs.samples = std::min(result.plan.msaaSamples, resources_->maxSamples);
+        FrameContext context{inputs, result.plan, *resources_, diagnostics, result, {}, nullptr, false, {}};
         context.cancellation = control.cancellation;
         context.strandPieceSegments = control.strandPieceSegments;
         runFrameGraph(context, timing);
@@ -565,34 +535,70 @@ RenderResult Renderer::renderSamples(const Scene& scene, const CameraView& camer
     });
     if (!failure.empty()) throw std::runtime_error(failure);
     if (stopped) throw FrameCancelled();
+}
+
+void Renderer::reportFrame(const Scene& scene, const CameraView& camera, const RenderSettings& settings,
+                           const GatheredFrame& frame, Diagnostics& diagnostics, RenderResult& result) {
+    const RenderPlan& plan = result.plan;
+    RenderStats& stats = result.stats;
     if (plan.lightsOverCap > 0)
         diagnostics.warn("render", fmt::format("the stage has {} lights, more than the {} a frame shades; the last {} "
                                                "in path order are left out",
                                                scene.lights().size(), kMaxLights, plan.lightsOverCap));
     replaceNonFinitePixels(result, diagnostics);
-    if (inputs.samples < plan.msaaSamples)
+    if (frame.inputs.samples < plan.msaaSamples)
         diagnostics.warn("render", fmt::format("msaaSamples={} is more than this GL driver offers; using {}",
-                                               plan.msaaSamples, inputs.samples));
+                                               plan.msaaSamples, frame.inputs.samples));
     stats.lightPasses = plan.lightBatches.size();
-    stats.uploadedSegments = inputs.uploads.writtenSegments;
-    stats.passTiming = gl::toString(timing);
-
+    stats.uploadedSegments = frame.inputs.uploads.writtenSegments;
     stats.imageWidth = camera.imageWidth;
     stats.imageHeight = camera.imageHeight;
     stats.curvesPrims = scene.curves().size();
     stats.meshPrims = scene.meshes().size();
     stats.lights = scene.lights().size();
-    stats.curves = curveCount;
-    stats.segments = summary.segments;
-    stats.meshTriangles = meshSummary.triangles;
+    stats.curves = frame.curves;
+    stats.segments = frame.strands.segments;
+    stats.meshTriangles = frame.meshes.triangles;
     stats.transparency = toString(plan.transparency);
     stats.glRenderer = glDescription();
     stats.glDevice = glDevice();
     stats.settings = settings.toJson();
     stats.settingOrigins = settingOriginsJson(settings);
     stats.plan = plan.toJson();
-    stats.warnings = diagnostics.warningCount() - warningsBefore;
-    stats.totalMilliseconds = millisecondsSince(frameStart);
+}
+
+RenderResult Renderer::renderSamples(const Scene& scene, const CameraView& camera, const RenderSettings& settings,
+                                     Diagnostics& diagnostics, const RenderOutputs& outputs,
+                                     const FrameControl& control) {
+    Clock::time_point frameStart = Clock::now();
+    if (!isFiniteTransform(camera.view) || !isFiniteTransform(camera.projection))
+        throw std::invalid_argument("the camera's view or projection is not finite (a NaN or infinite transform, "
+                                    "lens or clipping range)");
+    if (control.preview && settings.values().shadowMode != "off")
+        throw std::invalid_argument("a preview frame must not cast shadows (shadowMode=off): it keeps the full "
+                                    "frames' shadow maps as they are");
+    if (control.previewCurveStride < 1 || (!control.preview && control.previewCurveStride != 1))
+        throw std::invalid_argument("only a preview leaves curves out (previewCurveStride 1 otherwise)");
+    RenderResult result;
+    const size_t warningsBefore = diagnostics.warningCount();
+    prepareFrame(scene, settings, diagnostics, result.stats);
+    GatheredFrame frame = gatherFrame(scene, camera, settings, diagnostics, control, result.stats);
+    result.plan = makeRenderPlan(scene, settings, camera, frame.strands, outputs.ids, frame.meshes,
+                                 outputs.gpuDisplay != nullptr, frame.domes);
+    // A preview leaves the shadow maps to the full frames.
+    if (!control.preview) decideShadowMaps(result.plan, frame.strands, settings, diagnostics, result.stats);
+    FrameInputs& inputs = frame.inputs;
+    inputs.camera = &camera;
+    inputs.idsRequested = outputs.ids;
+    inputs.depthRequested = outputs.depth;
+    inputs.gpuDisplay = outputs.gpuDisplay;
+    inputs.displayOverBlack = outputs.displayOverBlack;
+    inputs.frame = frameUniforms(camera, settings, result.plan);
+    inputs.fragmentListCapacity = size_t(result.plan.exactMemoryMB) * 1024 * 1024 / gl::kFragmentNodeBytes;
+    runFrame(inputs, result, settings, diagnostics, control);
+    reportFrame(scene, camera, settings, frame, diagnostics, result);
+    result.stats.warnings = diagnostics.warningCount() - warningsBefore;
+    result.stats.totalMilliseconds = millisecondsSince(frameStart);
     return result;
 }
 

@@ -80,9 +80,43 @@ public:
     const std::string& glDevice() const;
 
 private:
-    // A frame at the camera's own size: what render() does without supersampling.
+    // A frame at the camera's own size: what render() does without
+    // supersampling. It prepares what changed (prepareFrame), gathers what
+    // the frame draws (gatherFrame), plans it (makeRenderPlan,
+    // decideShadowMaps), runs the plan's passes on the GL thread (runFrame)
+    // and reports what it did (reportFrame).
     RenderResult renderSamples(const Scene& scene, const CameraView& camera, const RenderSettings& settings,
                                Diagnostics& diagnostics, const RenderOutputs& outputs, const FrameControl& control);
+
+    struct CachedCurves;
+    // What a frame draws, gathered on the CPU before it is planned.
+    struct GatheredFrame {
+        FrameInputs inputs;
+        std::vector<CachedCurves*> drawnCurves;  // the cache entries of inputs.drawn
+        std::vector<HairMaterial> materials;     // the distinct materials inputs.drawn index
+        StrandSummary strands;
+        MeshSummary meshes;
+        std::vector<DomeEnvironment> domes;      // the visible domes, fitted (frameDomeEnvironments)
+        uint64_t curves = 0;
+    };
+    // The software-renderer warning once, and the curves and meshes that
+    // changed since the last frame prepared.
+    void prepareFrame(const Scene& scene, const RenderSettings& settings, Diagnostics& diagnostics,
+                      RenderStats& stats);
+    // The visible curves prims in draw order, their materials and the
+    // strands' summary (gatherDrawnCurves); their uploads, the domes, the
+    // materials' upload, the sort's spans and the meshes.
+    GatheredFrame gatherFrame(const Scene& scene, const CameraView& camera, const RenderSettings& settings,
+                              Diagnostics& diagnostics, const FrameControl& control, RenderStats& stats);
+    void gatherDrawnCurves(const Scene& scene, const CameraView& camera, const RenderSettings& settings,
+                           Diagnostics& diagnostics, GatheredFrame& frame, RenderStats& stats);
+    // The plan's passes on the GL thread. Throws FrameCancelled, or
+    // std::runtime_error when the frame failed (exactOverflow=fail).
+    void runFrame(FrameInputs& inputs, RenderResult& result, const RenderSettings& settings,
+                  Diagnostics& diagnostics, const FrameControl& control);
+    // The frame's warnings and statistics.
+    void reportFrame(const Scene& scene, const CameraView& camera, const RenderSettings& settings,
+                     const GatheredFrame& frame, Diagnostics& diagnostics, RenderResult& result);
 
     // Prepares the curves prims that changed since they were last prepared
     // (or were prepared for another rendering space).
@@ -121,6 +155,19 @@ private:
     void decideShadowMaps(RenderPlan& plan, const StrandSummary& summary, const RenderSettings& settings,
                           Diagnostics& diagnostics, RenderStats& stats);
 
+    // What the renderer keeps between frames, and who owns each: the
+    // prepared curves and their materials, by prim path (curves_,
+    // prepareChangedCurves); the prepared meshes (meshes_, prepareMeshes);
+    // where each prim's strands sit on the GPU (uploads_, StrandUploads.h);
+    // the materials last sent and their Marschner tables (uploadedMaterials_
+    // and the three below it, marschnerTables_, srbfTables_: materialUpload);
+    // the mesh buffer's contents (uploadedMeshes_, meshUpload); the shadow
+    // maps (shadowMaps_, ShadowMapCache.h, with castersVersion_:
+    // decideShadowMaps); the GPU objects themselves (resources_, on the GL
+    // thread). Dome fits are cached by DomeTextureFitCache, outside the
+    // renderer. Prepared curves and meshes leave with their prims; the
+    // Marschner tables are kept, one per material ever drawn, for the
+    // renderer's life.
     std::unique_ptr<gl::GlRenderThread> glThread_;
     std::unique_ptr<FrameResources> resources_;  // created and destroyed on the GL thread
     gl::PassTiming passTiming_ = gl::PassTiming::CpuSynchronised;  // when passTimings is on

@@ -7,8 +7,12 @@
 
 namespace hdhair {
 
-ShadowFrame ShadowMapCache::update(const std::vector<ShadowMapRequest>& requests, const std::string& settingsKey,
+ShadowFrame ShadowMapCache::update(const std::vector<ShadowMapRequest>& requests, const ShadowPlan& shadows,
                                    uint64_t castersVersion, bool rebuildTogether) {
+    // What shapes the maps, without this frame's lights (each light's view
+    // is compared on its own below).
+    ShadowPlan shape = shadows;
+    shape.lights.clear();
     // Lights that no longer cast give their slots back.
     std::set<std::string> keys;
     for (const ShadowMapRequest& request : requests) keys.insert(request.key);
@@ -48,7 +52,7 @@ ShadowFrame ShadowMapCache::update(const std::vector<ShadowMapRequest>& requests
             why[i] = "a new shadow-casting light";
         } else if (grew) {
             why[i] = fmt::format("the map storage grew to {} lights", capacity_);
-        } else if (it->second.settingsKey != settingsKey) {
+        } else if (it->second.shape != shape) {
             why[i] = "the shadow or tessellation settings changed";
         } else if (it->second.castersVersion != castersVersion) {
             why[i] = "the hair changed";
@@ -75,7 +79,7 @@ ShadowFrame ShadowMapCache::update(const std::vector<ShadowMapRequest>& requests
                                            : "kept: light, hair and settings unchanged since it was built";
         frame.maps.push_back(decision);
         Held& held = held_[requests[i].key];
-        held = Held{slots[i], requests[i].view, settingsKey, castersVersion};
+        held = Held{slots[i], requests[i].view, shape, castersVersion};
     }
     return frame;
 }

@@ -9,7 +9,7 @@
 //     and the casters' bounds it is fitted to; the camera light's view
 //     follows the camera, so its map does too);
 //   - the casters: any change of the strands on the GPU (castersVersion);
-//   - the shadow and tessellation settings (settingsKey).
+//   - the shadow and tessellation settings (ShadowPlan's operator==).
 // Intensity, colour and other shading-only edits keep the map. Otherwise
 // the map is kept: a light view tessellates the strands by its own texels
 // (ShadowPassUniforms.h), not the camera's pixels, so moving only the
@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "hdHair/render/ShadowLightView.h"
+#include "hdHair/render/ShadowPlanner.h"
 
 namespace hdhair {
 
@@ -45,7 +46,7 @@ class ShadowMapCache {
 public:
     // rebuildTogether: the maps share storage that cannot be rebuilt light by
     // light (shadowMode=reference's fragment pool): any rebuild rebuilds all.
-    ShadowFrame update(const std::vector<ShadowMapRequest>& requests, const std::string& settingsKey,
+    ShadowFrame update(const std::vector<ShadowMapRequest>& requests, const ShadowPlan& shadows,
                        uint64_t castersVersion, bool rebuildTogether);
     // Drops a light's map (it could not be built): the next frame builds it again.
     void forget(const std::string& key) { held_.erase(key); }
@@ -54,7 +55,7 @@ private:
     struct Held {
         int slot = 0;
         ShadowLightView view;
-        std::string settingsKey;
+        ShadowPlan shape;  // what shaped it (its lights left out)
         uint64_t castersVersion = 0;
     };
     std::map<std::string, Held> held_;

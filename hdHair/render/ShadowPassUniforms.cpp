@@ -33,7 +33,7 @@ void setEntry(gl::ShadowUniforms& uniforms, int entry, const ShadowPlan& shadows
     uniforms.lightViewProjection[entry] = glm::mat4(view.projection * view.view);
     uniforms.lightEye[entry] = glm::vec4(glm::vec3(view.eye), 0.0f);
     uniforms.lightForward[entry] = glm::vec4(glm::vec3(view.forward), 0.0f);
-    const bool mapped = view.valid && shadow.slot >= 0 && shadows.mode != ShadowMode::Off;
+    const bool mapped = shadows.isMapped(shadow);
     uniforms.lightMap[entry] = glm::vec4(mapped ? float(shadow.slot) : -1.0f,
                                          float(shadows.layerDepth * (view.farDepth - view.nearDepth)),
                                          float(view.texelSize), view.orthographic ? 0.0f : 1.0f);

@@ -1,9 +1,10 @@
-// Which parts of the strand shading a draw reaches (hdHair/gl/ShadingFeatures.h):
-// each uniform and material condition turns on its feature and nothing
-// else, the switches are those shaders/include/shadingFeatures.glsl
-// defines, and every program one switch short of all, or with one switch
+// The strand shading's feature sets (hdHair/gl/ShadingFeatures.h): each
+// material condition turns on its feature and nothing else, the switches
+// are those shaders/include/shadingFeatures.glsl defines, the layer count
+// and vertex shadows make programs of their own, and every program one switch short of all, or with one switch
 // alone, compiles and links. That the programs draw what the complete one
-// draws is testenv's testShaderSpecialization.
+// draws is testenv's testShaderSpecialization; which features a frame's
+// draws reach is render's testStrandShadingFeatures.
 
 #include <ostream>
 #include <regex>
@@ -17,36 +18,11 @@
 #include "hdHair/gl/ShaderSources.h"
 #include "hdHair/gl/ShadingFeatures.h"
 #include "hdHair/gl/ShadingPrograms.h"
+#include "hdHair/gl/tests/ShadingFeatureSets.h"
 
 using namespace hdhair::gl;
 
-namespace hdhair::gl {
-// Failures name the features, not the bytes.
-void PrintTo(const ShadingFeatures& features, std::ostream* out) { *out << features.describe(); }
-}  // namespace hdhair::gl
-
 namespace {
-
-ShadingFeatures only(std::initializer_list<ShadingFeature> features) {
-    ShadingFeatures set;
-    for (ShadingFeature feature : features) set.add(feature);
-    return set;
-}
-
-// A colour draw of distant lights without shadows or materials' needs.
-struct Draw {
-    FrameUniforms frame;
-    LightUniforms lights;
-    ShadowUniforms shadows;
-    Draw() {
-        frame.drawMode = 1;
-        lights.lightCount.x = 1;
-        shadows.lightMap[0].x = -1.0f;
-    }
-    ShadingFeatures features(ShadingFeatures materials = {}) const {
-        return strandShadingFeatures(frame, lights, shadows, materials);
-    }
-};
 
 GpuHairMaterial material(int model, int flags = 0) {
     GpuHairMaterial entry;
@@ -92,94 +68,26 @@ TEST(ShadingFeatures, MaterialsCallForTheirModelsAndFlags) {
               only({ShadingFeature::KajiyaKay, ShadingFeature::MarschnerTabled}));
 }
 
-TEST(ShadingFeatures, EachUniformConditionTurnsOnItsFeature) {
-    const ShadingFeatures shade = only({ShadingFeature::Shade});
-    Draw draw;
-    EXPECT_EQ(draw.features(), shade);
-    EXPECT_EQ(draw.features(only({ShadingFeature::KajiyaKay})), only({ShadingFeature::Shade, ShadingFeature::KajiyaKay}));
-
-    Draw ids;  // the ids pass shades nothing, whatever else it binds
-    ids.frame.drawMode = 2;
-    ids.lights.ambient.w = 1.0f;
-    EXPECT_EQ(ids.features(ShadingFeatures::all()), ShadingFeatures());
-
-    Draw dome;
-    dome.lights.ambient.w = 1.0f;
-    EXPECT_EQ(dome.features(), only({ShadingFeature::Shade, ShadingFeature::UniformDome}));
-
-    Draw local;
-    local.lights.lightVector[0].w = 1.0f;
-    EXPECT_EQ(local.features(), only({ShadingFeature::Shade, ShadingFeature::LocalLights}));
-    Draw lobe;
-    lobe.lights.lightVector[0].w = 2.0f;
-    EXPECT_EQ(lobe.features(), only({ShadingFeature::Shade, ShadingFeature::SrbfLights}));
-    // Lights past the pass's count are not read.
-    Draw unused;
-    unused.lights.lightVector[1].w = 2.0f;
-    EXPECT_EQ(unused.features(), shade);
-
-    Draw deep;
-    deep.shadows.mode.x = kShadowModeDeepOpacity;
-    EXPECT_EQ(deep.features(), shade) << "a mode with no light that has a map looks nothing up";
-    deep.shadows.lightMap[0].x = 0.0f;
-    EXPECT_EQ(deep.features(), only({ShadingFeature::Shade, ShadingFeature::DeepOpacity}));
-    deep.shadows.occluders.x = 1;
-    EXPECT_EQ(deep.features(), only({ShadingFeature::Shade, ShadingFeature::DeepOpacity, ShadingFeature::MeshOccluders}));
-    deep.shadows.mode.z = 1;  // shadowFilter=bilinear
-    EXPECT_EQ(deep.features(), only({ShadingFeature::Shade, ShadingFeature::DeepOpacity, ShadingFeature::MeshOccluders,
-                                     ShadingFeature::BilinearShadows}));
-
-    Draw reference;
-    reference.shadows.mode.x = kShadowModeReference;
-    reference.shadows.lightMap[0].x = 0.0f;
-    EXPECT_EQ(reference.features(), only({ShadingFeature::Shade, ShadingFeature::ShadowReference}));
-    Draw off;
-    off.shadows.lightMap[0].x = 0.0f;  // a map, but shadows off
-    EXPECT_EQ(off.features(), shade);
-
-    Draw taps = lobe;
-    taps.shadows.mode.x = kShadowModeDeepOpacity;
-    taps.shadows.lightMap[0].x = 3.0f;
-    EXPECT_EQ(taps.features(), only({ShadingFeature::Shade, ShadingFeature::SrbfLights, ShadingFeature::DeepOpacity,
-                                     ShadingFeature::SrbfShadowTaps}));
-    Draw mipmap = taps;
-    mipmap.shadows.occluders.y = 1;
-    EXPECT_EQ(mipmap.features(), only({ShadingFeature::Shade, ShadingFeature::SrbfLights,
-                                       ShadingFeature::DeepOpacity, ShadingFeature::SrbfShadowMipmap}));
-}
-
 // Where a deep opacity map is read, its layer count is compiled in: a
 // program of its own per count, named in the stats.
 TEST(ShadingFeatures, ADeepOpacityLookupCompilesItsLayerCountIn) {
-    Draw deep;
-    deep.shadows.mode = glm::ivec4(kShadowModeDeepOpacity, 3, 1, 512);
-    deep.shadows.lightMap[0].x = 0.0f;
-    const ShadingFeatures three = deep.features();
+    ShadingFeatures three = only({ShadingFeature::Shade, ShadingFeature::DeepOpacity, ShadingFeature::BilinearShadows});
+    three.setShadowLayers(3);
     EXPECT_EQ(three.shadowLayers(), 3);
     EXPECT_NE(three.glsl().find("#define HDHAIR_SHADOW_LAYERS 3\n"), std::string::npos);
     EXPECT_EQ(three.describe(), "shade deepOpacity bilinearShadows shadowLayers=3");
-    deep.shadows.mode.y = 7;
-    EXPECT_NE(deep.features(), three);
-    EXPECT_NE(deep.features().key(), three.key());
-
-    Draw reference = deep;  // the fragment lists have no layers
-    reference.shadows.mode.x = kShadowModeReference;
-    EXPECT_EQ(reference.features().shadowLayers(), 0);
-    Draw off = deep;
-    off.shadows.mode.x = kShadowModeOff;
-    EXPECT_EQ(off.features().shadowLayers(), 0);
+    ShadingFeatures seven = three;
+    seven.setShadowLayers(7);
+    EXPECT_NE(seven, three);
+    EXPECT_NE(seven.key(), three.key());
     EXPECT_EQ(ShadingFeatures::all().glsl().find("HDHAIR_SHADOW_LAYERS"), std::string::npos);
 }
 
-// Vertex shadows (shadowSampling=vertex) are asked for by the frame, not
-// read from the uniforms: a program of their own per count of lights looked
-// up (to the last with a deep opacity map), named in the stats.
+// Vertex shadows (shadowSampling) are a program of their own per count of
+// lights looked up, named in the stats.
 TEST(ShadingFeatures, VertexShadowsAreAProgramOfTheirOwn) {
-    Draw deep;
-    deep.shadows.mode = glm::ivec4(kShadowModeDeepOpacity, 3, 1, 512);
-    deep.shadows.lightMap[0].x = 0.0f;
-    EXPECT_EQ(vertexShadowLights(deep.lights, deep.shadows), 1);
-    const ShadingFeatures perFragment = deep.features();
+    ShadingFeatures perFragment = only({ShadingFeature::Shade, ShadingFeature::DeepOpacity, ShadingFeature::BilinearShadows});
+    perFragment.setShadowLayers(3);
     ShadingFeatures perPoint = perFragment;
     perPoint.setVertexShadowLights(1);
     EXPECT_NE(perPoint.key(), perFragment.key());
@@ -188,23 +96,9 @@ TEST(ShadingFeatures, VertexShadowsAreAProgramOfTheirOwn) {
     EXPECT_EQ(perFragment.glsl().find("HDHAIR_VERTEX_SHADOWS"), std::string::npos);
     EXPECT_EQ(ShadingFeatures::all().glsl().find("HDHAIR_VERTEX_SHADOWS"), std::string::npos);
     EXPECT_EQ(perPoint.describe(), "shade deepOpacity bilinearShadows shadowLayers=3 vertexShadows=1");
-
-    Draw six;  // six lights, the fifth (index 4) the last with a map
-    six.shadows.mode = deep.shadows.mode;
-    six.lights.lightCount.x = 6;
-    for (glm::vec4& map : six.shadows.lightMap) map.x = -1.0f;
-    six.shadows.lightMap[1].x = 0.0f;
-    six.shadows.lightMap[4].x = 1.0f;
-    EXPECT_EQ(vertexShadowLights(six.lights, six.shadows), 5);
     ShadingFeatures five = perFragment;
     five.setVertexShadowLights(5);
     EXPECT_NE(five.glsl().find("#define HDHAIR_VERTEX_SHADOW_VECTORS 2\n"), std::string::npos);
-    Draw none = deep;  // no light with a map: nothing to look up
-    none.shadows.lightMap[0].x = -1.0f;
-    EXPECT_EQ(vertexShadowLights(none.lights, none.shadows), 0);
-    Draw reference = deep;  // the reference is looked up per fragment
-    reference.shadows.mode.x = kShadowModeReference;
-    EXPECT_EQ(vertexShadowLights(reference.lights, reference.shadows), 0);
 }
 
 TEST(ShadingFeatures, EveryProgramOneSwitchFromAllOrWithOneAloneCompiles) {

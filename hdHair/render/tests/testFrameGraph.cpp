@@ -14,7 +14,9 @@ namespace {
 
 FramePass pass(const char* name, std::vector<FrameResource> reads, std::vector<FrameResource> writes,
                bool wanted = true) {
-    return FramePass{name, std::move(reads), std::move(writes), wanted, std::string("because ") + name};
+    // The graph decides by reads and writes alone; the kind is the renderer's.
+    return FramePass{PassKind::Strands, name, std::move(reads), std::move(writes), wanted,
+                     std::string("because ") + name};
 }
 
 // A small frame: shadows feed the colour pass only when it reads them.

@@ -26,19 +26,44 @@ ShadowMapRequest request(const std::string& key, glm::vec3 towardsLight) {
     return {key, fitShadowLightView(light, unitBox(), 64), false};
 }
 
+// The shadow plan the cache keys its maps by, and one with other maps.
+ShadowPlan shadowPlan(int layers = 3) {
+    ShadowPlan plan;
+    plan.mode = ShadowMode::DeepOpacity;
+    plan.layers = layers;
+    return plan;
+}
+
 }  // namespace
 
+TEST(ShadowMapCache, APlanKeysTheMapsByWhatShapesThemAlone) {
+    const ShadowPlan plan = shadowPlan();
+    ShadowPlan lookupOnly = plan;
+    lookupOnly.bilinear = !plan.bilinear;  // how the maps are read, not drawn
+    lookupOnly.lights.push_back(PlannedShadow{});
+    lookupOnly.capacity = 8;
+    EXPECT_EQ(plan, lookupOnly);
+    ShadowPlan tessellated = plan;
+    tessellated.pixelsPerSegment = 2.0;
+    EXPECT_NE(plan, tessellated);
+    ShadowPlan mipmapped = plan;
+    mipmapped.convolvedOpacity = true;  // reallocates the opacity layers
+    EXPECT_NE(plan, mipmapped);
+    EXPECT_NE(plan, shadowPlan(7));
+}
+
 TEST(ShadowMapCache, OnlyWhatChangedIsRebuilt) {
+    const ShadowPlan s = shadowPlan(), t = shadowPlan(7);
     ShadowMapCache cache;
     std::vector<ShadowMapRequest> lights = {request("/key", {0, 1, 0}), request("/fill", {1, 0, 1})};
-    ShadowFrame first = cache.update(lights, "s", 1, false);
+    ShadowFrame first = cache.update(lights, s, 1, false);
     ASSERT_EQ(first.maps.size(), 2u);
     EXPECT_TRUE(first.maps[0].rebuild && first.maps[1].rebuild);
     EXPECT_NE(first.maps[0].slot, first.maps[1].slot);
     EXPECT_GE(first.capacity, 2);
 
     // Nothing changed: both kept, in their slots.
-    ShadowFrame same = cache.update(lights, "s", 1, false);
+    ShadowFrame same = cache.update(lights, s, 1, false);
     EXPECT_FALSE(same.maps[0].rebuild);
     EXPECT_FALSE(same.maps[1].rebuild);
     EXPECT_EQ(same.maps[0].slot, first.maps[0].slot);
@@ -46,41 +71,42 @@ TEST(ShadowMapCache, OnlyWhatChangedIsRebuilt) {
 
     // One light moves: its map alone.
     lights[1] = request("/fill", {1, 0.2f, 1});
-    ShadowFrame moved = cache.update(lights, "s", 1, false);
+    ShadowFrame moved = cache.update(lights, s, 1, false);
     EXPECT_FALSE(moved.maps[0].rebuild);
     EXPECT_TRUE(moved.maps[1].rebuild);
     EXPECT_EQ(moved.maps[1].reason, "rebuilt: the light moved");
 
     // The hair or the settings change: all of them.
-    ShadowFrame hair = cache.update(lights, "s", 2, false);
+    ShadowFrame hair = cache.update(lights, s, 2, false);
     EXPECT_TRUE(hair.maps[0].rebuild && hair.maps[1].rebuild);
     EXPECT_EQ(hair.maps[0].reason, "rebuilt: the hair changed");
-    ShadowFrame settings = cache.update(lights, "t", 2, false);
+    ShadowFrame settings = cache.update(lights, t, 2, false);
     EXPECT_TRUE(settings.maps[0].rebuild && settings.maps[1].rebuild);
 
     // Sharing one pool (the reference): one change rebuilds all.
     lights[0] = request("/key", {0.1f, 1, 0});
-    ShadowFrame together = cache.update(lights, "t", 2, true);
+    ShadowFrame together = cache.update(lights, t, 2, true);
     EXPECT_TRUE(together.maps[0].rebuild && together.maps[1].rebuild);
 }
 
 TEST(ShadowMapCache, NewLightsTakeFreeSlotsAndGrowingStorageRebuildsAll) {
+    const ShadowPlan s = shadowPlan();
     ShadowMapCache cache;
     std::vector<ShadowMapRequest> lights = {request("/a", {0, 1, 0})};
-    EXPECT_EQ(cache.update(lights, "s", 1, false).capacity, 1);
+    EXPECT_EQ(cache.update(lights, s, 1, false).capacity, 1);
     lights.push_back(request("/b", {1, 1, 0}));
-    ShadowFrame grown = cache.update(lights, "s", 1, false);
+    ShadowFrame grown = cache.update(lights, s, 1, false);
     EXPECT_EQ(grown.capacity, 2);
     EXPECT_EQ(grown.maps[0].reason, "rebuilt: the map storage grew to 2 lights");
     // /a goes: its slot is free for /c, with no growth and /b kept.
     lights = {request("/b", {1, 1, 0}), request("/c", {0, 1, 1})};
-    ShadowFrame swapped = cache.update(lights, "s", 1, false);
+    ShadowFrame swapped = cache.update(lights, s, 1, false);
     EXPECT_EQ(swapped.capacity, 2);
     EXPECT_FALSE(swapped.maps[0].rebuild);
     EXPECT_EQ(swapped.maps[1].slot, grown.maps[0].slot);
     // A map that could not be built is forgotten and built again.
     cache.forget("/b");
-    EXPECT_TRUE(cache.update(lights, "s", 1, false).maps[0].rebuild);
+    EXPECT_TRUE(cache.update(lights, s, 1, false).maps[0].rebuild);
 }
 
 TEST(DeepOpacityLayers, LinearSpacingGrowsItsGapsLinearly) {

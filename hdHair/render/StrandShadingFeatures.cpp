@@ -1,0 +1,60 @@
+#include "hdHair/render/StrandShadingFeatures.h"
+
+#include <algorithm>
+
+#include <glm/geometric.hpp>
+
+#include "hdHair/gl/UniformBlocks.h"
+
+namespace hdhair {
+
+namespace {
+
+// The lights a batch's draw reads: its range, at most a pass's worth.
+std::pair<size_t, size_t> batchLights(const RenderPlan& plan, size_t batch) {
+    const auto [begin, end] = plan.lightBatches[batch];
+    return {begin, std::min(end, begin + size_t(gl::kMaxLightsPerPass))};
+}
+
+}  // namespace
+
+gl::ShadingFeatures batchShadingFeatures(const RenderPlan& plan, size_t batch, const gl::ShadingFeatures& materials) {
+    using gl::ShadingFeature;
+    gl::ShadingFeatures features;
+    features.add(ShadingFeature::Shade).add(materials);
+    if (batch == 0 && glm::length(plan.lights.uniformDome) > 0.0f) features.add(ShadingFeature::UniformDome);
+    const ShadowPlan& shadows = plan.shadows;
+    const auto [begin, end] = batchLights(plan, batch);
+    for (size_t light = begin; light < end; ++light) {
+        const bool srbf = plan.lights.lights[light].isSrbf();
+        if (srbf) features.add(ShadingFeature::SrbfLights);
+        else if (plan.lights.lights[light].isLocal) features.add(ShadingFeature::LocalLights);
+        const int shadow = shadows.shadowOf(light);
+        if (shadow < 0 || !shadows.isMapped(shadows.lights[size_t(shadow)])) continue;
+        if (shadows.mode == ShadowMode::Reference) {
+            features.add(ShadingFeature::ShadowReference);
+        } else {
+            features.add(ShadingFeature::DeepOpacity);
+            features.setShadowLayers(shadows.layers);
+        }
+        if (shadows.meshesCast) features.add(ShadingFeature::MeshOccluders);
+        if (shadows.bilinear) features.add(ShadingFeature::BilinearShadows);
+        if (srbf)
+            features.add(shadows.convolvedOpacity ? ShadingFeature::SrbfShadowMipmap : ShadingFeature::SrbfShadowTaps);
+    }
+    return features;
+}
+
+int batchVertexShadowLights(const RenderPlan& plan, size_t batch) {
+    const ShadowPlan& shadows = plan.shadows;
+    if (shadows.mode != ShadowMode::DeepOpacity) return 0;
+    const auto [begin, end] = batchLights(plan, batch);
+    int looked = 0;
+    for (size_t light = begin; light < end; ++light) {
+        const int shadow = shadows.shadowOf(light);
+        if (shadow >= 0 && shadows.isMapped(shadows.lights[size_t(shadow)])) looked = int(light - begin) + 1;
+    }
+    return looked;
+}
+
+}  // namespace hdhair

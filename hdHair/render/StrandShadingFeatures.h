@@ -1,0 +1,28 @@
+#pragma once
+// The parts of the strand shading (hdHair/gl/ShadingFeatures.h) a draw of
+// one light batch reaches, read from the plan: the strand programs compile
+// only those (specializeShaders). Nothing is decoded from the uniforms the
+// draw binds; ShadowPassUniforms.h and the light uniforms are made from the
+// same plan.
+
+#include <cstddef>
+
+#include "hdHair/gl/ShadingFeatures.h"
+#include "hdHair/render/RenderPlan.h"
+
+namespace hdhair {
+
+// Batch `batch`'s draw, its materials calling for `materials`: shading; the
+// uniform dome's response (the first batch only, which alone carries it);
+// local and SRBF lights; and for each light with a map (ShadowPlan::isMapped)
+// its lookup: deep opacity with the plan's layer count compiled in, or the
+// reference's fragment lists; the meshes' depth, the bilinear filter, and an
+// SRBF light's widening (mip chain or taps) as planned.
+gl::ShadingFeatures batchShadingFeatures(const RenderPlan& plan, size_t batch, const gl::ShadingFeatures& materials);
+
+// How many of batch `batch`'s lights vertex shadows look up: up to the last
+// that reads a deep opacity map (0: none; reference shadows are always
+// looked up per fragment).
+int batchVertexShadowLights(const RenderPlan& plan, size_t batch);
+
+}  // namespace hdhair

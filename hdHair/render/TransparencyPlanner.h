@@ -1,0 +1,21 @@
+#pragma once
+// How a frame's strands are composited: what the transparency setting asks
+// for, unless the strands do not need it (every one opaque and at least
+// minPixelWidth wide: no blending, no sort).
+
+#include <string>
+
+namespace hdhair {
+
+struct FrameRecipe;
+struct SettingValues;
+struct StrandSummary;
+
+enum class TransparencyPath { Opaque, BinSorted, Exact, Unsorted };
+const char* toString(TransparencyPath path);
+
+// Sets the recipe's transparency, sortBins, msaaSamples, transparencyReason
+// and exact transparency's budget (exactMemoryMB, exactOverflowFails).
+void planTransparency(FrameRecipe& recipe, const SettingValues& settings, const StrandSummary& strands);
+
+}  // namespace hdhair
