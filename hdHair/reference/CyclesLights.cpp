@@ -8,6 +8,7 @@
 
 #include "hdHair/base/Diagnostics.h"
 #include "hdHair/render/CameraView.h"
+#include "hdHair/render/LightPlanner.h"
 #include "hdHair/scene/Scene.h"
 #include "hdHair/shading/ShadingLight.h"
 
@@ -108,7 +109,7 @@ CyclesDome domeOf(const LightPrim& prim, const glm::mat3& toSpace, Diagnostics& 
 }  // namespace
 
 CyclesLighting cyclesLighting(const Scene& scene, const CameraView& camera, bool addCameraLight,
-                              RenderingSpace space, Diagnostics& diagnostics) {
+                              bool cameraLightShadows, RenderingSpace space, Diagnostics& diagnostics) {
     CyclesLighting lighting;
     const glm::mat3 toSpace = rec709To(space);
     for (const auto& [path, entry] : scene.lights()) {
@@ -123,9 +124,7 @@ CyclesLighting cyclesLighting(const Scene& scene, const CameraView& camera, bool
             lighting.lights.push_back(fromShadingLight(prim, shading.lights.front(), toSpace, diagnostics));
     }
     if (addCameraLight) {
-        const glm::dmat4 cameraToWorld = glm::inverse(camera.view);
-        const glm::vec3 towardsCamera = glm::normalize(glm::vec3(cameraToWorld * glm::dvec4(0.0, 0.0, 1.0, 0.0)));
-        const ShadingLight shading = cameraLight(towardsCamera);
+        const ShadingLight shading = cameraLightOf(camera, cameraLightShadows);
         CyclesLight light;
         light.kind = CyclesLight::Kind::Sun;
         light.lightToWorld = sunFacing(shading.directionOrPosition);

@@ -70,10 +70,11 @@ struct CyclesLighting {
 
 // The visible lights of `scene` in Cycles' units, in the rendering space.
 // `addCameraLight`: the frame uses hdHair's camera light (a stage without
-// lights, RenderPlan::cameraLight); it becomes a sun at the camera. Problems
+// lights, RenderPlan::cameraLight); it becomes a sun at the camera, casting
+// shadows with `cameraLightShadows` as hdHair's does. Problems
 // that change the picture (a cone Cycles cannot make, a dome texture format
 // other than latlong) warn through `diagnostics`, naming the light.
 CyclesLighting cyclesLighting(const Scene& scene, const CameraView& camera, bool addCameraLight,
-                              RenderingSpace space, Diagnostics& diagnostics);
+                              bool cameraLightShadows, RenderingSpace space, Diagnostics& diagnostics);
 
 }  // namespace hdhair

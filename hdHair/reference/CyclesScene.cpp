@@ -173,11 +173,11 @@ CyclesScene exportCyclesScene(const Scene& scene, const CyclesFraming& framing, 
         result.curves += result.strands.back().keysPerCurve.size();
         result.keys += result.strands.back().keyCount();
     }
-    const bool meshesLit = settings.getToken("shadingModel") != "flat";
+    const bool meshesLit = settings.values().shadingModel != "flat";
     for (const auto& [path, entry] : scene.meshes()) {
         if (!entry.prim->visible) continue;
         if (!framing.camera) framingPoints.push_back(meshFramingPoints(*entry.prim));
-        const PreparedMesh prepared = prepareMesh(*entry.prim, settings.getInt("meshRefineLevel"), diagnostics);
+        const PreparedMesh prepared = prepareMesh(*entry.prim, settings.values().meshRefineLevel, diagnostics);
         if (prepared.empty()) continue;
         if (!meshesLit)
             diagnostics.warn(path, "shadingModel=flat draws meshes unlit; the reference lights them (diffuse)");
@@ -196,8 +196,9 @@ CyclesScene exportCyclesScene(const Scene& scene, const CyclesFraming& framing, 
     const CameraView camera = framing.camera ? *framing.camera : framing.frame(framingBounds(framingPoints, diagnostics));
     if (view) *view = camera;
     result.camera = cyclesCamera(camera);
-    const bool cameraLight = usesCameraLight(settings.getToken("cameraLight"), stageHasLight(scene), anyLit);
-    result.lighting = cyclesLighting(scene, camera, cameraLight, space, diagnostics);
+    const bool cameraLight = usesCameraLight(settings.values().cameraLight, stageHasLight(scene), anyLit);
+    result.lighting = cyclesLighting(scene, camera, cameraLight, settings.values().cameraLightShadows == "on", space,
+                                     diagnostics);
     return result;
 }
 

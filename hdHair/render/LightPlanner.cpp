@@ -15,12 +15,11 @@ namespace hdhair {
 namespace {
 
 // hdHair's camera light, or the host's when it gave one: the host's light
-// follows its camera, and is used as it is.
-std::vector<ShadingLight> cameraLightsFor(const CameraView& camera, const LightPrim* hostCameraLight) {
+// follows its camera, and is used as it is (its own shadow:enable).
+std::vector<ShadingLight> cameraLightsFor(const CameraView& camera, const LightPrim* hostCameraLight,
+                                          bool castsShadow) {
     if (hostCameraLight) return toShadingLights({hostCameraLight}).lights;
-    // The camera looks down its -Z: the light comes from +Z of the view.
-    const glm::dmat4 cameraToWorld = glm::inverse(camera.view);
-    return {cameraLight(glm::normalize(glm::vec3(cameraToWorld * glm::dvec4(0.0, 0.0, 1.0, 0.0))))};
+    return {cameraLightOf(camera, castsShadow)};
 }
 
 // Batches of at most `perPass` of the first `count` lights; always at
@@ -33,6 +32,12 @@ std::vector<std::pair<size_t, size_t>> lightBatches(size_t count, size_t perPass
 }
 
 }  // namespace
+
+ShadingLight cameraLightOf(const CameraView& camera, bool castsShadow) {
+    // The camera looks down its -Z: the light comes from +Z of the view.
+    const glm::dmat4 cameraToWorld = glm::inverse(camera.view);
+    return cameraLight(glm::normalize(glm::vec3(cameraToWorld * glm::dvec4(0.0, 0.0, 1.0, 0.0))), castsShadow);
+}
 
 bool usesCameraLight(const std::string& cameraLightSetting, bool stageHasLight, bool anythingLit) {
     return anythingLit && (cameraLightSetting == "on" || (cameraLightSetting == "auto" && !stageHasLight));
@@ -70,7 +75,7 @@ void planLights(FrameRecipe& recipe, const Scene& scene, const RenderSettings& s
                                glm::length(recipe.lights.uniformDome) > 0.0f;
     recipe.cameraLight = usesCameraLight(values.cameraLight, stageHasLight, !recipe.flatShading);
     if (recipe.cameraLight)
-        for (const ShadingLight& light : cameraLightsFor(camera, hostCameraLight)) recipe.lights.lights.push_back(light);
+        for (const ShadingLight& light : cameraLightsFor(camera, hostCameraLight, values.cameraLightShadows == "on")) recipe.lights.lights.push_back(light);
     // Light colours (and colour temperatures) are linear Rec.709, as every
     // authored colour: shading happens in the rendering space.
     const glm::mat3 toRenderingSpace = rec709To(settings.renderingSpace());

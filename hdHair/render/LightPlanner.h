@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "hdHair/shading/ShadingLight.h"
+
 namespace hdhair {
 
 struct CameraView;
@@ -28,6 +30,9 @@ constexpr size_t kMaxLights = 1024;
 // eye): the cameraLight setting says on, or auto and the stage has no light
 // of its own; never when nothing is lit (flat shading only).
 bool usesCameraLight(const std::string& cameraLightSetting, bool stageHasLight, bool anythingLit);
+
+// hdHair's camera light for `camera`: a distant light from the eye.
+ShadingLight cameraLightOf(const CameraView& camera, bool castsShadow);
 
 // Sets the recipe's lights, domes (and the SRBF lights' shared maps),
 // cameraLight, flatShading, meshesLit, lightBatches and lightsOverCap.

@@ -207,8 +207,12 @@ std::string shadingDescription(const RenderPlan& plan, const StrandSummary& stra
         models += fmt::format(" (per-curve/vertex parameters on {} prim(s))", strands.perPointPrims);
     if (strands.analyticPrims > 0)
         models += fmt::format(" (Marschner azimuthal terms per fragment on {} prim(s))", strands.analyticPrims);
-    std::string shading = fmt::format("{}, {} light(s){}", models, plan.lights.lights.size(),
-                                      plan.cameraLight ? " incl. the camera light" : "");
+    // The camera light, when used, is the last light.
+    const std::string cameraLight =
+        !plan.cameraLight || plan.lights.lights.empty() ? ""
+        : plan.lights.lights.back().castsShadow ? " incl. the camera light"
+                                                 : " incl. the camera light, which casts no shadow (cameraLightShadows)";
+    std::string shading = fmt::format("{}, {} light(s){}", models, plan.lights.lights.size(), cameraLight);
     for (const PlannedDome& dome : plan.domes) shading += "; " + dome.describe(lightsPerPass);
     if (!plan.shadows.sampling.empty()) shading += "; " + plan.shadows.sampling;
     return shading;

@@ -178,6 +178,11 @@ const std::vector<SettingDescriptor>& RenderSettings::descriptors() {
         {"cameraLight", SettingType::Token, "auto",
          "Light from the camera: auto (only when the stage has no lights), on, off", 0, 0,
          {"auto", "on", "off"}, &SettingValues::cameraLight},
+        {"cameraLightShadows", SettingType::Token, "off",
+         "Whether hdHair's camera light casts shadows: off (a light at the eye darkens only what the eye cannot "
+         "see behind the hair, and hosts' camera lights, Storm's default light among them, cast none) or on (a "
+         "deep opacity map from the eye, as any light's)",
+         0, 0, {"off", "on"}, &SettingValues::cameraLightShadows},
         {"drawBatching", SettingType::Token, "auto",
          "How strand draws are cut: auto (batches of at most 2,048 tessellated vertices on llvmpipe, which "
          "draws larger tessellated draws wrongly; whole ranges elsewhere), on (batched on any driver) or off",

@@ -48,6 +48,7 @@ struct SettingValues {
     int domeSampledLights = 0;
     int domeShadowLights = 0;
     std::string cameraLight;
+    std::string cameraLightShadows;
     std::string drawBatching;
     bool specializeShaders = true;
     bool passTimings = false;

@@ -80,10 +80,11 @@ ShadingLights toShadingLights(const std::vector<const LightPrim*>& lights) {
     return result;
 }
 
-ShadingLight cameraLight(const glm::vec3& directionTowardsCamera) {
+ShadingLight cameraLight(const glm::vec3& directionTowardsCamera, bool castsShadow) {
     ShadingLight light;
     light.directionOrPosition = glm::normalize(directionTowardsCamera);
     light.scale = glm::vec3(1.0f);
+    light.castsShadow = castsShadow;
     return light;
 }
 

@@ -83,8 +83,11 @@ float coneFalloff(const ShadingLight& light, float cosAngle);
 ShadingLights toShadingLights(const std::vector<const LightPrim*>& lights);
 
 // A distant light shining from the camera, used when a stage has no lights
-// (as usdview's and usdrecord's default camera light does).
-ShadingLight cameraLight(const glm::vec3& directionTowardsCamera);
+// (as usdview's and usdrecord's default camera light does). It casts
+// shadows only when asked (the cameraLightShadows setting): a light at the
+// eye darkens only what the eye cannot see behind the hair, and hosts'
+// camera lights (Storm's default light) cast none.
+ShadingLight cameraLight(const glm::vec3& directionTowardsCamera, bool castsShadow);
 
 // Irradiance at `position` and the unit direction towards the light, with
 // the one-sided emitters' cosine and the cone applied; the same formula as

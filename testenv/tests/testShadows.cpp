@@ -290,12 +290,14 @@ TEST(Shadows, MapsAreKeptHoweverTheCameraMovesAndRebuiltWhenALightDoes) {
 
 TEST(Shadows, TheCameraLightsMapFollowsTheCamera) {
     Scene scene = slabScene();
-    scene.remove("/light");  // no stage light: the camera light shines, and casts
+    scene.remove("/light");  // no stage light: the camera light shines, and casts when asked
     CameraView camera = orthographicView(2.4, 48);
-    EXPECT_EQ(render(scene, camera, {"shadowMapResolution=64"}).stats.shadowMapsRebuilt, 1u);
-    EXPECT_EQ(render(scene, camera, {"shadowMapResolution=64"}).stats.shadowMapsKept, 1u);
+    const std::vector<std::string> casting{"shadowMapResolution=64", "cameraLightShadows=on"};
+    EXPECT_EQ(render(scene, camera, {"shadowMapResolution=64"}).stats.shadowMapsRebuilt, 0u);
+    EXPECT_EQ(render(scene, camera, casting).stats.shadowMapsRebuilt, 1u);
+    EXPECT_EQ(render(scene, camera, casting).stats.shadowMapsKept, 1u);
     camera.view = glm::rotate(glm::dmat4(1.0), 0.05, glm::dvec3(0, 1, 0)) * camera.view;
-    RenderResult moved = render(scene, camera, {"shadowMapResolution=64"});
+    RenderResult moved = render(scene, camera, casting);
     EXPECT_EQ(moved.stats.shadowMapsRebuilt, 1u);
     EXPECT_EQ(moved.stats.shadowMaps[0]["reason"], "rebuilt: the camera moved, and the camera light with it");
 }

@@ -119,7 +119,7 @@ TEST(CyclesLights, UnitsFollowWhatHdHairDelivers) {
     scene.setLight(disk);
     Diagnostics diagnostics;
     const CyclesLighting lighting =
-        cyclesLighting(scene, cameraFor(Projection::Perspective), false, RenderingSpace::LinearRec709, diagnostics);
+        cyclesLighting(scene, cameraFor(Projection::Perspective), false, false, RenderingSpace::LinearRec709, diagnostics);
     ASSERT_EQ(lighting.lights.size(), 4u);
     std::map<std::string, CyclesLight> byPath;
     for (const CyclesLight& light : lighting.lights) byPath[light.path] = light;
@@ -141,10 +141,16 @@ TEST(CyclesLights, UnitsFollowWhatHdHairDelivers) {
 TEST(CyclesLights, ACameraLightIsASunFromTheEye) {
     Diagnostics diagnostics;
     const CyclesLighting lighting =
-        cyclesLighting(Scene{}, cameraFor(Projection::Perspective), true, RenderingSpace::LinearRec709, diagnostics);
+        cyclesLighting(Scene{}, cameraFor(Projection::Perspective), true, false, RenderingSpace::LinearRec709, diagnostics);
     ASSERT_EQ(lighting.lights.size(), 1u);
     const CyclesLight& light = lighting.lights.front();
     EXPECT_EQ(light.kind, CyclesLight::Kind::Sun);
+    // As hdHair's: no shadow unless cameraLightShadows=on.
+    EXPECT_FALSE(light.castShadow);
+    EXPECT_TRUE(cyclesLighting(Scene{}, cameraFor(Projection::Perspective), true, true, RenderingSpace::LinearRec709,
+                               diagnostics)
+                    .lights.front()
+                    .castShadow);
     EXPECT_NEAR(light.strength.r, 1.0f, 1e-6f);
     // It shines down −Z of its frame, which is the camera's viewing direction.
     EXPECT_NEAR(light.lightToWorld[2].z, 1.0, 1e-9);
@@ -158,7 +164,7 @@ TEST(CyclesLights, AShapedRectWarnsThatCyclesCannotCutIt) {
     rect.coneAngle = 30.0f;
     scene.setLight(rect);
     Diagnostics diagnostics;
-    cyclesLighting(scene, cameraFor(Projection::Perspective), false, RenderingSpace::LinearRec709, diagnostics);
+    cyclesLighting(scene, cameraFor(Projection::Perspective), false, false, RenderingSpace::LinearRec709, diagnostics);
     ASSERT_EQ(diagnostics.warningCount(), 1u);
     EXPECT_EQ(diagnostics.warnings().front().where, "/rect");
 }
@@ -174,7 +180,7 @@ TEST(CyclesLights, TheDomeLooksUpUsdsLatlongInBlendersFrame) {
     scene.setLight(dome);
     Diagnostics diagnostics;
     const CyclesLighting lighting =
-        cyclesLighting(scene, cameraFor(Projection::Perspective), false, RenderingSpace::LinearRec709, diagnostics);
+        cyclesLighting(scene, cameraFor(Projection::Perspective), false, false, RenderingSpace::LinearRec709, diagnostics);
     ASSERT_EQ(lighting.domes.size(), 1u);
     const glm::dmat3& m = lighting.domes.front().worldToTexture;
     const glm::dvec3 up = m * glm::dvec3(0.0, 1.0, 0.0);

@@ -141,9 +141,12 @@ TEST(FrameGpuMemory, TheTotalIsTheSumAndEveryUseIsNamed) {
     larger.setCurves(strands("/hair", 40, 8, 0.5f));
     EXPECT_EQ(bytesOf(renderFresh(larger, 96), "other"), bytesOf(stats, "other"));
     EXPECT_GT(bytesOf(stats, "other"), 0u);
-    // The camera light casts: one slot of 512 x 512 texels, each a nearest
-    // hair depth (R32F), one RGBA16F target of 3 layers and a mesh depth (R32F).
-    EXPECT_EQ(bytesOf(stats, "shadowMaps"), 512u * 512u * (4 + 8 + 4));
+    // The camera light casts no shadow by default: no map, only the
+    // one-texel placeholders the lookups bind (hair depth, layers, mesh depth).
+    EXPECT_EQ(bytesOf(stats, "shadowMaps"), 1u * 1u * (4 + 8 + 4));
+    // Asked to cast: one slot of 512 x 512 texels, each a nearest hair depth
+    // (R32F), one RGBA16F target of 3 layers and a mesh depth (R32F).
+    EXPECT_EQ(bytesOf(renderFresh(scene, 48, {}, {"cameraLightShadows=on"}), "shadowMaps"), 512u * 512u * (4 + 8 + 4));
 }
 
 TEST(FrameGpuMemory, GrowthReservesHalfAgainAndResizingFreesTheOldTarget) {

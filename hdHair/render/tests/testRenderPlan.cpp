@@ -318,8 +318,19 @@ TEST(RenderPlan, ALightInsideTheHairCastsNothingAndSaysWhy) {
     EXPECT_TRUE(plan.isEnabled("strands"));
 }
 
-TEST(RenderPlan, TheCameraLightCastsToo) {
-    RenderPlan plan = makeRenderPlan(Scene{}, RenderSettings{}, cameraAtPlusZ(), castingStrands());
+// Like hosts' camera lights, hdHair's casts no shadow unless asked: a light
+// at the eye darkens only what the eye cannot see, at the cost of a map.
+TEST(RenderPlan, TheCameraLightCastsOnlyWhenAsked) {
+    const RenderPlan unshadowed = makeRenderPlan(Scene{}, RenderSettings{}, cameraAtPlusZ(), castingStrands());
+    ASSERT_TRUE(unshadowed.cameraLight);
+    EXPECT_TRUE(unshadowed.shadows.lights.empty());
+    EXPECT_TRUE(shadowPassNames(unshadowed).empty());
+    EXPECT_NE(unshadowed.describe().find("incl. the camera light, which casts no shadow (cameraLightShadows)"),
+              std::string::npos)
+        << unshadowed.describe();
+    RenderSettings settings;
+    settings.set("cameraLightShadows", "on");
+    RenderPlan plan = makeRenderPlan(Scene{}, settings, cameraAtPlusZ(), castingStrands());
     ASSERT_TRUE(plan.cameraLight);
     EXPECT_EQ(shadowPassNames(plan), (std::vector<std::string>{"shadowDepth camera light", "deepOpacity camera light"}));
     EXPECT_TRUE(reads(plan, "strands", "deepOpacity camera light"));
