@@ -1,6 +1,7 @@
 # What `cmake --install` deploys, in two components:
 #
-#   tools      bin/hdhair-record, bin/hdhair-convert, share/doc/hdhair/{README.md,LICENSE},
+#   tools      bin/hdhair-record, bin/hdhair-convert, share/doc/hdhair/{README.md,LICENSE,docs/}
+#              (docs/ beside README, so that its links hold),
 #              share/hdhair/ocio/config.ocio (hdhair-record's OCIO config, found beside bin/)
 #   usdPlugin  plugin/usd/plugInfo.json            (includes */resources/, as OpenUSD's own)
 #              plugin/usd/hdHairSchema/resources/  the HdHairAPI schema (no library)
@@ -21,6 +22,7 @@ include(GNUInstallDirs)
 install(TARGETS hdhair-record hdhair-convert RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR} COMPONENT tools)
 install(FILES ${PROJECT_SOURCE_DIR}/README.md ${PROJECT_SOURCE_DIR}/LICENSE
         DESTINATION ${CMAKE_INSTALL_DATAROOTDIR}/doc/hdhair COMPONENT tools)
+install(DIRECTORY ${PROJECT_SOURCE_DIR}/docs/ DESTINATION ${CMAKE_INSTALL_DATAROOTDIR}/doc/hdhair/docs COMPONENT tools)
 install(FILES ${PROJECT_SOURCE_DIR}/hdHair/image/ocio/config.ocio
         DESTINATION ${CMAKE_INSTALL_DATAROOTDIR}/hdhair/ocio COMPONENT tools)
 install(FILES ${PROJECT_SOURCE_DIR}/hdHair/reference/cycles/renderCyclesScene.py

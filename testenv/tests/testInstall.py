@@ -16,6 +16,7 @@ CTest sets HDHAIR_BUILD_DIR, HDHAIR_SOURCE_DIR, HDHAIR_CMAKE, HDHAIR_CPACK,
 HDHAIR_WITH_USD and, with OpenUSD, HDHAIR_PXR_BIN and PYTHONPATH.
 """
 import os
+import re
 import shutil
 import struct
 import subprocess
@@ -28,6 +29,13 @@ CMAKE = os.environ["HDHAIR_CMAKE"]
 CPACK = os.environ["HDHAIR_CPACK"]
 WITH_USD = os.environ.get("HDHAIR_WITH_USD") == "1"
 STAGE = os.path.join(SOURCE, "examples", "straight_strands.usda")
+DOCS = "share/doc/hdhair/docs/"
+
+
+def readmeDocLinks(readme):
+    """The files under docs/ that a README links to, without anchors."""
+    with open(readme, encoding="utf-8") as text:
+        return sorted(set(re.findall(r"\]\((docs/[^)#\s]+)", text.read())))
 
 
 def run(command, environment=None, cwd=None):
@@ -92,6 +100,11 @@ class InstallPrefix(unittest.TestCase):
                      "share/doc/hdhair/LICENSE", "share/hdhair/ocio/config.ocio",
                      "share/hdhair/cycles/renderCyclesScene.py"]:
             self.assertTrue(os.path.isfile(os.path.join(self.prefix, name)), name)
+        # The installed README's links into docs/ hold.
+        links = readmeDocLinks(os.path.join(self.prefix, "share/doc/hdhair/README.md"))
+        self.assertIn("docs/settings.md", links)
+        for link in links:
+            self.assertTrue(os.path.isfile(os.path.join(self.prefix, "share/doc/hdhair", link)), link)
         # The tools component is the tools alone.
         self.assertFalse(os.path.exists(os.path.join(self.prefix, "plugin")))
         installed, built = os.path.join(self.work, "installed.exr"), os.path.join(self.work, "built.exr")
@@ -168,6 +181,11 @@ class DebianPackage(unittest.TestCase):
         deb = os.path.join(self.work, packages[0])
         files = sorted(line.split()[-1] for line in run(["dpkg-deb", "-c", deb]).splitlines()
                        if not line.startswith("d"))
+        # The documentation README links to, beside it; the rest exactly.
+        docs = [name for name in files if name.startswith("./usr/" + DOCS)]
+        for link in readmeDocLinks(os.path.join(SOURCE, "README.md")):
+            self.assertIn("./usr/share/doc/hdhair/" + link, docs)
+        files = [name for name in files if name not in docs]
         self.assertEqual(files, ["./usr/bin/hdhair-convert", "./usr/bin/hdhair-record",
                                  "./usr/share/doc/hdhair/LICENSE", "./usr/share/doc/hdhair/README.md",
                                  "./usr/share/hdhair/cycles/renderCyclesScene.py",
