@@ -14,7 +14,6 @@ HairMaterialTable::HairMaterialTable() {
 void HairMaterialTable::update(const std::vector<GpuHairMaterial>& materials,
                                const std::vector<glm::vec4>& parameterPoints,
                                const std::vector<const std::vector<uint16_t>*>& tableTexels, int width, int height) {
-    features_ = materialShadingFeatures(materials);
     size_t count = std::max<size_t>(materials.size(), 1);
     if (count > materialCapacity_) {
         materialCapacity_ = count;

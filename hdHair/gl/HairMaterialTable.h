@@ -27,8 +27,6 @@ public:
     void update(const std::vector<GpuHairMaterial>& materials, const std::vector<glm::vec4>& parameterPoints,
                 const std::vector<const std::vector<uint16_t>*>& tableTexels, int width, int height);
     void bind() const;
-    // The shading the table's materials call for (materialShadingFeatures).
-    ShadingFeatures features() const { return features_; }
 
 private:
     Buffer materials_;
@@ -36,7 +34,6 @@ private:
     Buffer parameterPoints_;
     size_t parameterPointCapacity_ = 0;
     Texture tables_;
-    ShadingFeatures features_;
 };
 
 }  // namespace hdhair::gl

@@ -56,21 +56,4 @@ std::string ShadingFeatures::describe() const {
     return text;
 }
 
-ShadingFeatures materialShadingFeatures(const std::vector<GpuHairMaterial>& materials) {
-    ShadingFeatures features;
-    for (const GpuHairMaterial& material : materials) {
-        const int model = material.modelAndLayer.x, flags = material.modelAndLayer.z;
-        // hairMaterials.glsl's model: 0 flat, 2 Marschner, anything else Kajiya-Kay.
-        if (model == 2) {
-            features.add((flags & kHairMaterialAnalytic) != 0 ? ShadingFeature::MarschnerAnalytic
-                                                               : ShadingFeature::MarschnerTabled);
-            if ((flags & kHairMaterialSrbfLobes) != 0) features.add(ShadingFeature::SrbfAbsorption);
-        } else if (model != 0) {
-            features.add(ShadingFeature::KajiyaKay);
-        }
-        if ((flags & kHairMaterialPerPoint) != 0) features.add(ShadingFeature::PerPointParameters);
-    }
-    return features;
-}
-
 }  // namespace hdhair::gl

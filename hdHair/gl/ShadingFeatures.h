@@ -1,8 +1,7 @@
 #pragma once
 // Which parts of the strand shading a draw can reach (decided from the
-// frame's plan: hdHair/render/StrandShadingFeatures.h; the materials' part
-// from the material table, below), and the GLSL that compiles only those
-// parts (it replaces shaders/include/shadingFeatures.glsl, whose
+// frame's plan and materials: hdHair/render/StrandShadingFeatures.h), and
+// the GLSL that compiles only those parts (it replaces shaders/include/shadingFeatures.glsl, whose
 // switches this mirrors). Why: llvmpipe runs a fragment shader as masked
 // SIMD and pays for every branch whether a fragment takes it or not, so a
 // Kajiya-Kay frame with one deep-opacity light ran the Marschner, SRBF and
@@ -129,8 +128,5 @@ struct ShadingFeatureSwitch {
     const char* name;
 };
 const std::vector<ShadingFeatureSwitch>& shadingFeatureSwitches();
-
-// The features a table of materials calls for, whichever prims read them.
-ShadingFeatures materialShadingFeatures(const std::vector<GpuHairMaterial>& materials);
 
 }  // namespace hdhair::gl

@@ -103,7 +103,7 @@ gl::ShadingFeatures strandFeatures(FrameContext& context, size_t batch, bool ids
     const RenderPlan& plan = context.plan;
     gl::ShadingFeatures features = !plan.specializeShaders ? gl::ShadingFeatures::all()
                                    : ids                   ? gl::ShadingFeatures()
-                                           : batchShadingFeatures(plan, batch, context.resources.materials.features());
+                                           : batchShadingFeatures(plan, batch, context.inputs.materialFeatures);
     if (plan.shadows.perVertex && !ids) features.setVertexShadowLights(batchVertexShadowLights(plan, batch));
     std::vector<std::string>& named = context.result.stats.strandShaders;
     const std::string name = features.describe();

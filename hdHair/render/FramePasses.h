@@ -13,6 +13,7 @@
 #include <glm/vec4.hpp>
 
 #include "hdHair/gl/MeshPass.h"
+#include "hdHair/gl/ShadingFeatures.h"
 #include "hdHair/gl/UniformBlocks.h"
 #include "hdHair/image/DisplayShader.h"
 #include "hdHair/render/BinSort.h"
@@ -64,6 +65,8 @@ struct FrameInputs {
     StrandUploadPlan uploads;                // their GPU ranges and what to send
     std::vector<SortSpan> sortSpans;         // their segments for the bin sort
     std::optional<MaterialUpload> materials;
+    // The shading the frame's materials call for (materialShadingFeatures).
+    gl::ShadingFeatures materialFeatures;
     MeshUpload meshes;
     gl::FrameUniforms frame;
     int samples = 0;                         // multisampling the driver gives

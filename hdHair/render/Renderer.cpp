@@ -24,6 +24,7 @@
 #include "hdHair/render/InteractivePreview.h"
 #include "hdHair/render/NearestStrandRule.h"
 #include "hdHair/render/SettingOrigins.h"
+#include "hdHair/render/StrandShadingFeatures.h"
 #include "hdHair/render/SupersampleResolve.h"
 #include "hdHair/scene/Scene.h"
 #include "hdHair/scene/MeshPrim.h"
@@ -487,6 +488,7 @@ Renderer::GatheredFrame Renderer::gatherFrame(const Scene& scene, const CameraVi
     frame.domes = frameDomeEnvironments(scene, settings, diagnostics);
     inputs.materials = materialUpload(frame.materials, frame.drawnCurves, inputs.drawn, inputs.uploads,
                                       !frame.domes.empty(), diagnostics);
+    inputs.materialFeatures = materialShadingFeatures(frame.materials, !frame.domes.empty());
     for (size_t i = 0; i < inputs.drawn.size(); ++i) {
         const PreparedCurves& curves = *inputs.drawn[i].curves;
         inputs.sortSpans.push_back(SortSpan{curves.controlPoints.data(), curves.segmentFirstControl.data(),

@@ -5,6 +5,7 @@
 #include <glm/geometric.hpp>
 
 #include "hdHair/gl/UniformBlocks.h"
+#include "hdHair/render/SrbfMaterialTables.h"
 
 namespace hdhair {
 
@@ -17,6 +18,22 @@ std::pair<size_t, size_t> batchLights(const RenderPlan& plan, size_t batch) {
 }
 
 }  // namespace
+
+gl::ShadingFeatures materialShadingFeatures(const std::vector<HairMaterial>& materials, bool domeTables) {
+    using gl::ShadingFeature;
+    gl::ShadingFeatures features;
+    for (const HairMaterial& material : materials) {
+        if (material.model == ShadingModel::Marschner) {
+            features.add(material.analyticAzimuthal ? ShadingFeature::MarschnerAnalytic
+                                                    : ShadingFeature::MarschnerTabled);
+            if (domeTables && srbfAbsorbsPerFragment(material)) features.add(ShadingFeature::SrbfAbsorption);
+        } else if (material.model == ShadingModel::KajiyaKay) {
+            features.add(ShadingFeature::KajiyaKay);
+        }
+        if (material.perPoint()) features.add(ShadingFeature::PerPointParameters);
+    }
+    return features;
+}
 
 gl::ShadingFeatures batchShadingFeatures(const RenderPlan& plan, size_t batch, const gl::ShadingFeatures& materials) {
     using gl::ShadingFeature;

@@ -6,11 +6,19 @@
 // same plan.
 
 #include <cstddef>
+#include <vector>
 
 #include "hdHair/gl/ShadingFeatures.h"
+#include "hdHair/render/HairMaterial.h"
 #include "hdHair/render/RenderPlan.h"
 
 namespace hdhair {
+
+// What a frame's hair materials call for, whichever prims read them: each
+// lit model (Marschner tabled or analytic), parameters per curve or vertex,
+// and, when the frame has dome tables (`domeTables`), Marschner absorption
+// per fragment under the dome (srbfAbsorbsPerFragment).
+gl::ShadingFeatures materialShadingFeatures(const std::vector<HairMaterial>& materials, bool domeTables);
 
 // Batch `batch`'s draw, its materials calling for `materials`: shading; the
 // uniform dome's response (the first batch only, which alone carries it);

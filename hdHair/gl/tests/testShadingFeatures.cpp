@@ -1,10 +1,10 @@
-// The strand shading's feature sets (hdHair/gl/ShadingFeatures.h): each
-// material condition turns on its feature and nothing else, the switches
-// are those shaders/include/shadingFeatures.glsl defines, the layer count
-// and vertex shadows make programs of their own, and every program one switch short of all, or with one switch
-// alone, compiles and links. That the programs draw what the complete one
-// draws is testenv's testShaderSpecialization; which features a frame's
-// draws reach is render's testStrandShadingFeatures.
+// The strand shading's feature sets (hdHair/gl/ShadingFeatures.h): the
+// switches are those shaders/include/shadingFeatures.glsl defines, the layer
+// count and vertex shadows make programs of their own, and every program
+// one switch short of all, or with one switch alone, compiles and links.
+// That the programs draw what the complete one draws is testenv's
+// testShaderSpecialization; which features a frame's materials and draws
+// reach is render's testStrandShadingFeatures.
 
 #include <ostream>
 #include <regex>
@@ -21,16 +21,6 @@
 #include "hdHair/gl/tests/ShadingFeatureSets.h"
 
 using namespace hdhair::gl;
-
-namespace {
-
-GpuHairMaterial material(int model, int flags = 0) {
-    GpuHairMaterial entry;
-    entry.modelAndLayer = glm::ivec4(model, 0, flags, 0);
-    return entry;
-}
-
-}  // namespace
 
 TEST(ShadingFeatures, TheSwitchesAreThoseTheShaderFileDefines) {
     const std::string file = embeddedShaderSources().at("include/shadingFeatures.glsl");
@@ -50,22 +40,6 @@ TEST(ShadingFeatures, TheSwitchesAreThoseTheShaderFileDefines) {
     }
     EXPECT_EQ(only({ShadingFeature::Shade, ShadingFeature::DeepOpacity}).describe(), "shade deepOpacity");
     EXPECT_EQ(ShadingFeatures().describe(), "none");
-}
-
-TEST(ShadingFeatures, MaterialsCallForTheirModelsAndFlags) {
-    EXPECT_EQ(materialShadingFeatures({}), ShadingFeatures());
-    EXPECT_EQ(materialShadingFeatures({material(0)}), ShadingFeatures());  // flat: nothing to compile
-    EXPECT_EQ(materialShadingFeatures({material(1)}), only({ShadingFeature::KajiyaKay}));
-    EXPECT_EQ(materialShadingFeatures({material(2)}), only({ShadingFeature::MarschnerTabled}));
-    EXPECT_EQ(materialShadingFeatures({material(2, kHairMaterialAnalytic)}), only({ShadingFeature::MarschnerAnalytic}));
-    EXPECT_EQ(materialShadingFeatures({material(1, kHairMaterialPerPoint)}),
-              only({ShadingFeature::KajiyaKay, ShadingFeature::PerPointParameters}));
-    EXPECT_EQ(materialShadingFeatures({material(2, kHairMaterialSrbfLobes)}),
-              only({ShadingFeature::MarschnerTabled, ShadingFeature::SrbfAbsorption}));
-    // Absorption per fragment is Marschner's only (srbfAbsorption's test).
-    EXPECT_EQ(materialShadingFeatures({material(1, kHairMaterialSrbfLobes)}), only({ShadingFeature::KajiyaKay}));
-    EXPECT_EQ(materialShadingFeatures({material(0), material(1), material(2)}),
-              only({ShadingFeature::KajiyaKay, ShadingFeature::MarschnerTabled}));
 }
 
 // Where a deep opacity map is read, its layer count is compiled in: a

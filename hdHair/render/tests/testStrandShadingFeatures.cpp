@@ -38,7 +38,38 @@ ShadingFeatures featuresOf(const RenderPlan& plan, ShadingFeatures materials = {
     return batchShadingFeatures(plan, 0, materials);
 }
 
+HairMaterial material(ShadingModel model, uint32_t varies = kNothingVaries, bool analytic = false) {
+    HairMaterial entry;
+    entry.model = model;
+    entry.varies = varies;
+    entry.analyticAzimuthal = analytic;
+    return entry;
+}
+
 }  // namespace
+
+TEST(StrandShadingFeatures, MaterialsCallForTheirModelsAndParameters) {
+    using Model = ShadingModel;
+    EXPECT_EQ(materialShadingFeatures({}, false), ShadingFeatures());
+    EXPECT_EQ(materialShadingFeatures({material(Model::Flat)}, false), ShadingFeatures());  // nothing to compile
+    EXPECT_EQ(materialShadingFeatures({material(Model::KajiyaKay)}, false), only({ShadingFeature::KajiyaKay}));
+    EXPECT_EQ(materialShadingFeatures({material(Model::Marschner)}, false), only({ShadingFeature::MarschnerTabled}));
+    EXPECT_EQ(materialShadingFeatures({material(Model::Marschner, kNothingVaries, true)}, false),
+              only({ShadingFeature::MarschnerAnalytic}));
+    EXPECT_EQ(materialShadingFeatures({material(Model::KajiyaKay, kAbsorptionVaries)}, false),
+              only({ShadingFeature::KajiyaKay, ShadingFeature::PerPointParameters}));
+    // Absorption per fragment under a dome: Marschner's, and only with the dome's tables.
+    const HairMaterial varying = material(Model::Marschner, kAbsorptionVaries);
+    EXPECT_EQ(materialShadingFeatures({varying}, true),
+              only({ShadingFeature::MarschnerTabled, ShadingFeature::PerPointParameters, ShadingFeature::SrbfAbsorption}));
+    EXPECT_EQ(materialShadingFeatures({varying}, false),
+              only({ShadingFeature::MarschnerTabled, ShadingFeature::PerPointParameters}));
+    EXPECT_EQ(materialShadingFeatures({material(Model::KajiyaKay, kAbsorptionVaries)}, true),
+              only({ShadingFeature::KajiyaKay, ShadingFeature::PerPointParameters}));
+    EXPECT_EQ(materialShadingFeatures({material(Model::Flat), material(Model::KajiyaKay), material(Model::Marschner)},
+                                      false),
+              only({ShadingFeature::KajiyaKay, ShadingFeature::MarschnerTabled}));
+}
 
 TEST(StrandShadingFeatures, EachPlannedConditionTurnsOnItsFeature) {
     const ShadingFeatures shade = only({ShadingFeature::Shade});
