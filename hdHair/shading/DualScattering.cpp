@@ -43,6 +43,9 @@ void fibreQuantities(const DualScatteringFibre& fibre, glm::vec3 out[kDualScatte
     out[5] = fibre.nG[0];
     out[6] = fibre.nG[1];
     out[7] = fibre.nG[2];
+    out[8] = fibre.nGBack[0];
+    out[9] = fibre.nGBack[1];
+    out[10] = fibre.nGBack[2];
 }
 
 // a_f,p and a_b,p at one inclination: the midpoint rule over each half of
@@ -96,7 +99,8 @@ DualScatteringFibre dualScatteringFibre(const DualScatteringLobes& lobes, const 
         sumAlphaB += b * alpha[p];
         sumBetaF2 += f * b2;
         sumBetaB2 += b * b2;
-        fibre.nG[p] = f / kPiF;  // (2/π)∫_{π/2}^{π} N_p dφ = a_f,p/π (§4.2)
+        fibre.nG[p] = f / kPiF;      // (2/π)∫_{π/2}^{π} N_p dφ = a_f,p/π (§4.2)
+        fibre.nGBack[p] = b / kPiF;  // the backward half's mean, a_b,p/π
     }
     for (int c = 0; c < 3; ++c) {
         // Eqs. 13, 14: the lobes' shifts and variances weighted by their
@@ -187,6 +191,9 @@ DualScatteringFibre sampleDualScatteringTable(const DualScatteringTable& table, 
     fibre.nG[0] = q[5];
     fibre.nG[1] = q[6];
     fibre.nG[2] = q[7];
+    fibre.nGBack[0] = q[8];
+    fibre.nGBack[1] = q[9];
+    fibre.nGBack[2] = q[10];
     return fibre;
 }
 
@@ -210,22 +217,30 @@ glm::vec3 evaluateDualScattering(const glm::vec3& t, const glm::vec3& wi, const 
     const float shiftB = meanOf(fibre.deltaB), varianceB = meanOf(fibre.sigmaB2);
     const float mBack = longitudinal(angles, shiftB, varianceB + lobe);
     const float mBackG = longitudinal(angles, shiftB, varianceB + spreadF + lobe);
-    // Eqs. 9 and 15 (f_back, f_back^G) and §4.2 (f_s^G).
-    const glm::vec3 fBack = (2.0f / kPiF) * fibre.Ab * mBack;
-    const glm::vec3 fBackG = (2.0f / kPiF) * fibre.Ab * mBackG;
+    // The azimuthal weights (header): the light scattered forward to x
+    // arrives over the half circle about the light; seen at azimuth φ from
+    // it, x's lobes are averaged over the half circle about φ, a fraction
+    // φ/π of it forward. What comes back is spread as (π − φ)/π².
+    const float phi = std::clamp(angles.phi, 0.0f, kPiF);
+    const float forwardShare = phi / kPiF;
+    const float backAzimuthal = (kPiF - phi) / (kPiF * kPiF);
+    // Eqs. 9 and 15 (f_back, f_back^G), carrying A_b, and §4.2 (f_s^G).
+    const glm::vec3 fBack = fibre.Ab * (mBack * backAzimuthal);
+    const glm::vec3 fBackG = fibre.Ab * (mBackG * backAzimuthal);
     glm::vec3 fsG(0.0f);
     for (int p = 0; p < 3; ++p) {
         float b2 = std::max(parameters.beta[p] * parameters.beta[p], kMinVariance);
-        fsG += fibre.nG[p] * longitudinal(angles, parameters.alpha[p], b2 + spreadF + lobe);
+        glm::vec3 nG = forwardShare * fibre.nG[p] + (1.0f - forwardShare) * fibre.nGBack[p];
+        fsG += nG * longitudinal(angles, parameters.alpha[p], b2 + spreadF + lobe);
     }
     // Zinke §5, F() without its single scattering T f_s (the caller's).
     const glm::vec3 scattered = glm::max(Tf - glm::vec3(T), glm::vec3(0.0f));
-    return finiteNonNegative(T * db * fBack + df * scattered * (fsG + kPiF * db * fBackG));
+    return finiteNonNegative(T * db * fBack + df * scattered * (fsG + db * fBackG));
 }
 
 glm::vec3 dualScatteringUniformDome(const DualScatteringFibre& fibre, const DualScatteringDensities& densities) {
     const float db = std::clamp(finiteOr(densities.backward, 0.0f), 0.0f, 1.0f);
-    return finiteNonNegative(4.0f * db * fibre.Ab);
+    return finiteNonNegative(db * fibre.Ab);
 }
 
 float multipleScatteringGain(const MarschnerParameters& parameters, const DualScatteringDensities& densities) {
@@ -240,8 +255,10 @@ float multipleScatteringGain(const MarschnerParameters& parameters, const DualSc
     float gain = 0.0f;
     for (int c = 0; c < 3; ++c) {
         float Tf = std::exp(-(1.0f - fibre.aF[c]));
-        float added = T * db * 4.0f * fibre.Ab[c] +
-                      df * std::max(Tf - T, 0.0f) * (2.0f * fibre.aF[c] + kPiF * db * 4.0f * fibre.Ab[c]);
+        float added = T * db * fibre.Ab[c] +
+                      df * std::max(Tf - T, 0.0f) * (fibre.aF[c] + kPiF * fibre.nGBack[0][c] +
+                                                     kPiF * fibre.nGBack[1][c] + kPiF * fibre.nGBack[2][c] +
+                                                     db * fibre.Ab[c]);
         float reference = T * single[c];
         if (reference > 1e-8f) gain = std::max(gain, added / reference);
         else if (added > 0.0f) gain = std::max(gain, 1e6f);

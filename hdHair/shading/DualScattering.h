@@ -12,10 +12,12 @@
 // scattered forward by the fibres in between (the global term), and light
 // that passed x comes back from the fibres behind it (the local term):
 //
-//   f_dual = T (f_s + d_b f_back) + d_f (T_f − T) (f_s^G + π d_b f_back^G)   (Zinke §5, F())
+//   f_dual = T (f_s + d_b f_back) + d_f (T_f − T) (f_s^G + d_b f_back^G)   (Zinke §5, F())
 //
 // f_s is Marschner's single scattering (Marschner.h), d_f and d_b the
-// density factors (Zinke §4; 0.6 .. 0.8 for human hair, Ren §3.2).
+// density factors (Zinke §4; 0.6 .. 0.8 for human hair, Ren §3.2). Zinke's
+// F() has π d_b f_back^G: in his normalisation of f_back; in ours (below,
+// each term carrying the energy its derivation gives it) the π goes.
 //
 // Fibre quantities, from the azimuthal terms N_p (p = R, TT, TRT) at the
 // inclination θ of the table row:
@@ -31,7 +33,7 @@
 //   σ_b = (1 + d_b ā_f²)(ā_b √(2β_f² + β_b²) + ā_b³ √(2β_f² + 3β_b²))
 //         / (ā_b + ā_b³ (2β_f + 3β_b))                                        (eq. 17);
 //   N^G_p = (2/π) ∫_{π/2}^{π} N_p dφ = a_f,p/π: the azimuthal term averaged
-//     over the forward half (§4.2).
+//     over the forward half (§4.2), and a_b,p/π, over the backward half.
 // Light path quantities, from the deep opacity maps (Zinke §5 counts the
 // fibres n in front of x with an opacity map): T = exp(−k Ω) is the
 // probability that no fibre intercepted the light, so n = −ln T (k = 1, the
@@ -42,10 +44,22 @@
 // T_f − T is the light that reached x after at least one forward event.
 // The longitudinal functions: Zinke's g(θ_h − shift, σ²)/cos²θ_d in
 // Marschner's form becomes d'Eon's M(θ_i, θ_r; shift, v = 4σ²) here, the same
-// map that takes Marschner's single scattering to ours (Marschner.h), so
-//   f_back  = (2/π) A_b M(Δ_b, σ_b²)              f_back^G = (2/π) A_b M(Δ_b, σ_b² + σ̄_f²)   (eqs. 9, 15)
-//   f_s^G   = Σ_p M(α_p, β_p² + σ̄_f²) N^G_p                                                (§4.2)
-// all per unit irradiance from the light, as Marschner's f_p.
+// map that takes Marschner's single scattering to ours (Marschner.h), whose
+// ∫ M cos θ_i dθ_i = 1 makes each term's energy its azimuthal integral.
+// The azimuthal functions, at φ between the eye and the light:
+//   f_back  = A_b M(Δ_b, σ_b²) (π − φ)/π²     f_back^G = A_b M(Δ_b, σ_b² + σ̄_f²) (π − φ)/π²   (eqs. 9, 15)
+//   f_s^G   = Σ_p M(α_p, β_p² + σ̄_f²) (φ/π · a_f,p/π + (1 − φ/π) a_b,p/π)                 (§4.2)
+// all per unit irradiance from the light, as Marschner's f_p. What comes
+// back (A_b of the light that passed x) leaves towards the light's side,
+// spread linearly in azimuth so that it carries exactly A_b (Zinke spreads
+// it over a half circle, an edge at φ = π/2). The light scattered forward to
+// x arrives over the half circle about the light; x's lobes averaged over
+// that half circle, seen at φ, take a share φ/π of each lobe's forward half
+// and the rest of its backward half, each half's energy spread evenly.
+// At φ = π this is Zinke's N^G_p; unlike it, it carries ā_f + ā_b in total,
+// not 2ā_f, and does not show a blond fibre's forward scattering (ā_f ten
+// times ā_b) to an eye beside the light (measured: hdHair/shading/README.md,
+// "Dual scattering").
 //
 // SRBF lights (Ren 2010 eqs. 6-7): a lobe counts as a distant light from its
 // centre ξ, T_f and σ̄_f taken there, and its width adds to the first
@@ -96,7 +110,8 @@ struct DualScatteringFibre {
     glm::vec3 alphaF{0.0f}, alphaB{0.0f};    // α_f, α_b (radians)
     glm::vec3 betaF2{0.0f}, betaB2{0.0f};    // β_f², β_b²
     glm::vec3 Ab{0.0f}, deltaB{0.0f}, sigmaB2{0.0f};  // A_b, Δ_b, σ_b²
-    glm::vec3 nG[3] = {glm::vec3(0.0f), glm::vec3(0.0f), glm::vec3(0.0f)};  // N^G_p
+    glm::vec3 nG[3] = {glm::vec3(0.0f), glm::vec3(0.0f), glm::vec3(0.0f)};      // N^G_p: a_f,p/π
+    glm::vec3 nGBack[3] = {glm::vec3(0.0f), glm::vec3(0.0f), glm::vec3(0.0f)};  // a_b,p/π
 };
 DualScatteringFibre dualScatteringFibre(const DualScatteringLobes& lobes, const glm::vec3& alpha,
                                         const glm::vec3& beta, float backwardDensity);
@@ -105,10 +120,11 @@ DualScatteringFibre dualScatteringFibre(const DualScatteringLobes& lobes, const 
 // needs, rounded to half as uploaded. One layer of the material tables'
 // texture array (MarschnerTables.h), texel (q, j) holding quantity q at node
 // j, RGB:
-//   q = 0 ā_f, 1 A_b, 2 Δ_b, 3 σ_b², 4 β_f², 5..7 N^G_R, N^G_TT, N^G_TRT.
+//   q = 0 ā_f, 1 A_b, 2 Δ_b, 3 σ_b², 4 β_f², 5..7 N^G_R, N^G_TT, N^G_TRT,
+//   8..10 a_b,p/π for R, TT, TRT.
 // The shader samples it at s = (q + ½)/width, t = cos θ: bilinear there is
 // linear in cos θ between nodes, clamped at the end nodes.
-constexpr int kDualScatteringQuantities = 8;
+constexpr int kDualScatteringQuantities = 11;
 struct DualScatteringTable {
     int nodes = 0;
     std::vector<glm::vec3> values;  // kDualScatteringQuantities a node, node-major
@@ -133,18 +149,18 @@ glm::vec3 evaluateDualScattering(const glm::vec3& t, const glm::vec3& wi, const 
                                  float lobeVariance = 0.0f);
 
 // What a uniform dome of radiance 1 adds, unshadowed (T = 1, so only the
-// local term): d_b ∫ f_back dωi = d_b (2/π) A_b · 2π = 4 d_b A_b.
+// local term): d_b ∫ f_back dωi = d_b A_b.
 glm::vec3 dualScatteringUniformDome(const DualScatteringFibre& fibre, const DualScatteringDensities& densities);
 
 // How much light dual scattering adds to a fibre's single scattering, as a
 // ratio of energies over the sphere of eye directions, for a fibre seen and
 // lit across (θ = 0) one fibre deep (T = e^−1): the largest channel of
-//   (T d_b 4A_b + d_f (T^(1−ā_f) − T)(2ā_f + π d_b 4A_b)) / (T (ā_f + ā_b)).
+//   (T d_b A_b + d_f (T^(1−ā_f) − T)(ā_f + ā_b + d_b A_b)) / (T (ā_f + ā_b)).
 // multipleScattering=auto skips materials under kMultipleScatteringBound.
 float multipleScatteringGain(const MarschnerParameters& parameters, const DualScatteringDensities& densities);
 // The gain below which multiple scattering changes a frame by less than 10 %
-// of its light, calibrated on the Cycles comparison (hdHair/shading/README.md,
-// "Where multiple scattering pays").
-constexpr float kMultipleScatteringBound = 0.18f;
+// of its light: the gain tracks the light Cycles' later bounces add
+// (hdHair/shading/README.md, "Where multiple scattering pays").
+constexpr float kMultipleScatteringBound = 0.10f;
 
 }  // namespace hdhair

@@ -186,7 +186,7 @@ TEST(DualScattering, LightPathLimits) {
     glm::vec3 inside = evaluateDualScattering(t, wi, wo, parameters, fibre, std::exp(-2.0f), densities);
     // At T = e^-2 the local term is e^-2 of the front's; the global adds to it.
     for (int c = 0; c < 3; ++c) EXPECT_GT(inside[c], std::exp(-2.0f) * front[c]);
-    // The uniform dome's local term is d_b ∫ f_back dωi = 4 d_b A_b: check
+    // The uniform dome's local term is d_b ∫ f_back dωi = d_b A_b: check
     // against the integral of the T = 1 term over the sphere.
     glm::vec3 integral(0.0f);
     const int thetaSteps = 360, phiSteps = 360;
