@@ -9,6 +9,7 @@
 #include "include/kajiyaKay.glsl"
 #include "include/marschner.glsl"
 #include "include/marschnerAnalytic.glsl"
+#include "include/dualScattering.glsl"
 #include "include/catmullRom.glsl"
 #include "include/strandGeometry.glsl"
 #include "include/hairMaterials.glsl"

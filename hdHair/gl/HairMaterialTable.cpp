@@ -13,7 +13,7 @@ HairMaterialTable::HairMaterialTable() {
 
 void HairMaterialTable::update(const std::vector<GpuHairMaterial>& materials,
                                const std::vector<glm::vec4>& parameterPoints,
-                               const std::vector<const std::vector<uint16_t>*>& tableTexels, int width, int height) {
+                               const std::vector<MaterialTableLayers>& tables, int width, int height) {
     size_t count = std::max<size_t>(materials.size(), 1);
     if (count > materialCapacity_) {
         materialCapacity_ = count;
@@ -37,14 +37,18 @@ void HairMaterialTable::update(const std::vector<GpuHairMaterial>& materials,
     GLuint name = 0;
     glCreateTextures(GL_TEXTURE_2D_ARRAY, 1, &name);
     tables_ = Texture(name);
-    GLsizei layers = GLsizei(std::max<size_t>(2 * tableTexels.size(), 2));
-    glTextureStorage3D(tables_.get(), 1, GL_RGBA16F, tableTexels.empty() ? 1 : width,
-                       tableTexels.empty() ? 1 : height, layers);
-    recordTextureStorage(tables_.get(), GL_RGBA16F, tableTexels.empty() ? 1 : width, tableTexels.empty() ? 1 : height,
-                         layers, 0, "hairMaterials");
-    for (size_t k = 0; k < tableTexels.size(); ++k)
-        glTextureSubImage3D(tables_.get(), 0, 0, 0, GLint(2 * k), width, height, 2, GL_RGBA, GL_HALF_FLOAT,
-                            tableTexels[k]->data());
+    int stacked = 0;
+    for (const MaterialTableLayers& table : tables) stacked += table.layers;
+    const GLsizei layers = GLsizei(std::max(stacked, 2));
+    const GLsizei w = stacked == 0 ? 1 : width, h = stacked == 0 ? 1 : height;
+    glTextureStorage3D(tables_.get(), 1, GL_RGBA16F, w, h, layers);
+    recordTextureStorage(tables_.get(), GL_RGBA16F, w, h, layers, 0, "hairMaterials");
+    GLint first = 0;
+    for (const MaterialTableLayers& table : tables) {
+        glTextureSubImage3D(tables_.get(), 0, 0, 0, first, width, height, table.layers, GL_RGBA, GL_HALF_FLOAT,
+                            table.halfTexels->data());
+        first += table.layers;
+    }
     // Bilinear between texel centres, clamped at the edges: what the CPU
     // lookup (sampleMarschnerTables) does.
     glTextureParameteri(tables_.get(), GL_TEXTURE_MIN_FILTER, GL_LINEAR);

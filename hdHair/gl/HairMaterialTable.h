@@ -1,8 +1,9 @@
 #pragma once
 // The frame's hair materials on the GPU: a storage buffer of GpuHairMaterial
 // (binding 8), the per-point hair parameters of prims whose parameters vary
-// (binding 9), and every tabled Marschner material's azimuthal tables stacked
-// in one texture array, two layers a material (texture unit 1), as
+// (binding 9), and the materials' tables stacked in one texture array
+// (texture unit 1): a tabled Marschner material's azimuthal tables, two
+// layers, and a dual-scattering material's fibre layer, as
 // shaders/include/hairMaterials.glsl reads them.
 
 #include <cstdint>
@@ -16,16 +17,23 @@
 
 namespace hdhair::gl {
 
+// `layers` layers of width × height RGBA halves, one after the other.
+struct MaterialTableLayers {
+    const std::vector<uint16_t>* halfTexels = nullptr;
+    int layers = 0;
+};
+
 class HairMaterialTable {
 public:
     HairMaterialTable();
 
-    // `tableTexels`: per Marschner material, its tables as half floats, 2
-    // layers of width x height RGBA (MarschnerTables::halfTexels()), in the
-    // order the materials' modelAndLayer.y refer to (layer 2k for the k-th).
+    // `tables`: stacked in this order from layer 0 (what the materials'
+    // modelAndLayer.y and segments.w refer to): Marschner tables
+    // (MarschnerTables::halfTexels(), 2 layers) and dual-scattering layers
+    // (DualScatteringTable::halfLayer(), 1 layer).
     // `parameterPoints`: two vec4s a record, what materials' modelAndLayer.w index.
     void update(const std::vector<GpuHairMaterial>& materials, const std::vector<glm::vec4>& parameterPoints,
-                const std::vector<const std::vector<uint16_t>*>& tableTexels, int width, int height);
+                const std::vector<MaterialTableLayers>& tables, int width, int height);
     void bind() const;
 
 private:

@@ -12,6 +12,7 @@ const std::vector<ShadingFeatureSwitch>& shadingFeatureSwitches() {
         {ShadingFeature::MarschnerAnalytic, "HDHAIR_FEATURE_MARSCHNER_ANALYTIC", "marschnerAnalytic"},
         {ShadingFeature::PerPointParameters, "HDHAIR_FEATURE_PER_POINT_PARAMETERS", "perPointParameters"},
         {ShadingFeature::SrbfAbsorption, "HDHAIR_FEATURE_SRBF_ABSORPTION", "srbfAbsorption"},
+        {ShadingFeature::DualScattering, "HDHAIR_FEATURE_DUAL_SCATTERING", "dualScattering"},
         {ShadingFeature::LocalLights, "HDHAIR_FEATURE_LOCAL_LIGHTS", "localLights"},
         {ShadingFeature::SrbfLights, "HDHAIR_FEATURE_SRBF_LIGHTS", "srbfLights"},
         {ShadingFeature::UniformDome, "HDHAIR_FEATURE_UNIFORM_DOME", "uniformDome"},

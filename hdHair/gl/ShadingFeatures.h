@@ -25,6 +25,7 @@ enum class ShadingFeature : uint32_t {
     MarschnerAnalytic = 1u << 3,    // a Marschner material evaluated per fragment
     PerPointParameters = 1u << 4,   // a material whose parameters vary per curve or vertex
     SrbfAbsorption = 1u << 5,       // a Marschner material with absorption per fragment under a dome
+    DualScattering = 1u << 15,      // a Marschner material with multiple scattering
     LocalLights = 1u << 6,          // a light with a position
     SrbfLights = 1u << 7,           // a dome's SRBF lobe
     UniformDome = 1u << 8,          // the uniform dome's exact response

@@ -87,18 +87,21 @@ constexpr int kShadowModeOff = 0, kShadowModeDeepOpacity = 1, kShadowModeReferen
 // One element of the HairMaterials storage buffer (shaders/include/hairMaterials.glsl).
 struct GpuHairMaterial {
     // x: model (0 flat, 1 Kajiya-Kay, 2 Marschner); y: first table layer;
-    // z: flags (kHairMaterialPerPoint, kHairMaterialAnalytic); w: first per-point record.
+    // z: flags (kHairMaterial*); w: first per-point record.
     glm::ivec4 modelAndLayer{1, 0, 0, 0};
-    glm::ivec4 segments{0};               // x: the prim's first segment (per-point materials)
+    // x: the prim's first segment (per-point materials); y, z: its SRBF table
+    // and uniform-dome row; w: its dual-scattering layer (kHairMaterialDualScattering)
+    glm::ivec4 segments{0};
     glm::vec4 kajiyaKay{0.0f};            // Kd, Ks, p
     glm::vec4 alphaEta{0.0f};             // Marschner alpha_R, alpha_TT, alpha_TRT; eta
     glm::vec4 betaGlint{0.0f};            // Marschner beta_R, beta_TT, beta_TRT; glint scale k_G
     glm::vec4 sigmaA{0.0f};               // Marschner sigma_a; caustic width w_c
-    glm::vec4 caustic{0.0f};              // caustic fade, caustic limit
+    glm::vec4 caustic{0.0f};              // caustic fade, caustic limit; dual scattering's d_f, d_b
 };
 static_assert(sizeof(GpuHairMaterial) == 112, "std430 layout of HairMaterial");
 constexpr int kHairMaterialPerPoint = 1;  // HAIR_MATERIAL_PER_POINT
 constexpr int kHairMaterialAnalytic = 2;  // HAIR_MATERIAL_ANALYTIC
 constexpr int kHairMaterialSrbfLobes = 4;  // HAIR_MATERIAL_SRBF_LOBES
+constexpr int kHairMaterialDualScattering = 8;  // HAIR_MATERIAL_DUAL_SCATTERING
 
 }  // namespace hdhair::gl

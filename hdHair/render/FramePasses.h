@@ -12,6 +12,7 @@
 
 #include <glm/vec4.hpp>
 
+#include "hdHair/gl/HairMaterialTable.h"
 #include "hdHair/gl/MeshPass.h"
 #include "hdHair/gl/ShadingFeatures.h"
 #include "hdHair/gl/UniformBlocks.h"
@@ -39,7 +40,7 @@ class RenderTarget;
 struct MaterialUpload {
     std::vector<gl::GpuHairMaterial> materials;
     std::vector<glm::vec4> parameterPoints;
-    std::vector<const std::vector<uint16_t>*> tables;
+    std::vector<gl::MaterialTableLayers> tables;
     int tableWidth = 1, tableHeight = 1;
     // Dome lighting's tables (empty without a dome: 1-texel placeholders).
     SrbfTableUpload srbfTables;

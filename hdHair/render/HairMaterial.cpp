@@ -28,12 +28,18 @@ bool HairMaterial::sharesTablesWith(const HairMaterial& other) const {
            a.causticWidth == b.causticWidth && a.causticFade == b.causticFade && a.causticLimit == b.causticLimit;
 }
 
+bool HairMaterial::sharesDualScatteringTableWith(const HairMaterial& other) const {
+    return sharesTablesWith(other) && marschner.alpha == other.marschner.alpha &&
+           marschner.beta == other.marschner.beta && densities.backward == other.densities.backward;
+}
+
 bool HairMaterial::operator==(const HairMaterial& other) const {
     return model == other.model && kajiyaKay.diffuse == other.kajiyaKay.diffuse &&
            kajiyaKay.specular == other.kajiyaKay.specular && kajiyaKay.shininess == other.kajiyaKay.shininess &&
            marschner.alpha == other.marschner.alpha && marschner.beta == other.marschner.beta &&
            sharesTablesWith(other) && varies == other.varies && analyticAzimuthal == other.analyticAzimuthal &&
-           perPointPrim == other.perPointPrim;
+           perPointPrim == other.perPointPrim && dualScattering == other.dualScattering &&
+           densities.forward == other.densities.forward && densities.backward == other.densities.backward;
 }
 
 namespace {
@@ -188,6 +194,40 @@ const std::vector<ShadingPrimvarRequest>& hairParameterPrimvars() {
     return requests;
 }
 
+namespace {
+
+// multipleScattering per material: the setting, and under auto the gain
+// against kMultipleScatteringBound; the reason says which.
+void decideMultipleScattering(HairMaterial& material, const RenderSettings& settings) {
+    const std::string& mode = settings.values().multipleScattering;
+    material.densities = {float(settings.values().multipleScatteringForwardDensity),
+                          float(settings.values().multipleScatteringBackDensity)};
+    if (material.model != ShadingModel::Marschner) {
+        material.multipleScatteringReason = fmt::format("{} shading has no multiple scattering", toString(material.model));
+        return;
+    }
+    if (mode == "off") {
+        material.multipleScatteringReason = "multipleScattering=off";
+        return;
+    }
+    material.multipleScatteringGain = multipleScatteringGain(material.marschner, material.densities);
+    const std::string means = material.perPoint() ? " (of its mean parameters: they vary per curve or vertex)" : "";
+    if (mode == "dualScattering") {
+        material.dualScattering = true;
+        material.multipleScatteringReason =
+            fmt::format("multipleScattering=dualScattering (gain {:.3f}{})", material.multipleScatteringGain, means);
+        return;
+    }
+    material.dualScattering = material.multipleScatteringGain >= kMultipleScatteringBound;
+    material.multipleScatteringReason =
+        fmt::format("auto: gain {:.3f}{} {} the bound {:.2f}: {}", material.multipleScatteringGain, means,
+                    material.dualScattering ? "reaches" : "is under", kMultipleScatteringBound,
+                    material.dualScattering ? "dual scattering runs"
+                                            : "its fibres absorb too much for multiple scattering to show; skipped");
+}
+
+}  // namespace
+
 HairMaterial hairMaterialFor(const CurvesPrim& prim, const PreparedCurves& prepared, const RenderSettings& settings,
                              Diagnostics& diagnostics) {
     HairMaterial material;
@@ -215,13 +255,15 @@ HairMaterial hairMaterialFor(const CurvesPrim& prim, const PreparedCurves& prepa
     if (material.perPoint()) material.perPointPrim = prim.path;
     material.analyticAzimuthal = material.model == ShadingModel::Marschner &&
                                  (azimuthal == "analytic" || (material.varies & (kAbsorptionVaries | kEtaVaries)) != 0);
+    decideMultipleScattering(material, settings);
     return material;
 }
 
 std::string hairMaterialSettingsKey(const RenderSettings& settings) {
-    return fmt::format("{}|{}|{}|{}|{}", settings.values().shadingModel, settings.values().kajiyaKayDiffuse,
-                       settings.values().kajiyaKaySpecular, settings.values().kajiyaKayShininess,
-                       settings.values().marschnerAzimuthal);
+    const SettingValues& values = settings.values();
+    return fmt::format("{}|{}|{}|{}|{}|{}|{}|{}", values.shadingModel, values.kajiyaKayDiffuse, values.kajiyaKaySpecular,
+                       values.kajiyaKayShininess, values.marschnerAzimuthal, values.multipleScattering,
+                       values.multipleScatteringForwardDensity, values.multipleScatteringBackDensity);
 }
 
 std::vector<glm::vec4> hairParameterPoints(const HairMaterial& material, const PreparedCurves& prepared) {

@@ -16,6 +16,7 @@
 #include <glm/vec4.hpp>
 
 #include "hdHair/curves/PreparedCurves.h"
+#include "hdHair/shading/DualScattering.h"
 #include "hdHair/shading/KajiyaKay.h"
 #include "hdHair/shading/Marschner.h"
 
@@ -51,12 +52,22 @@ struct HairMaterial {
     // The prim a material with per-point parameters belongs to (such a
     // material is never shared); empty otherwise.
     std::string perPointPrim;
+    // Multiple scattering (hdHair/shading/DualScattering.h), Marschner only:
+    // with multipleScattering=dualScattering, or auto where the material's
+    // multipleScatteringGain reaches kMultipleScatteringBound. From the
+    // material's parameters (their means where they vary per point).
+    bool dualScattering = false;
+    DualScatteringDensities densities;
+    float multipleScatteringGain = 0.0f;
+    std::string multipleScatteringReason;  // why on or off, for --explain and --stats
 
     bool perPoint() const { return varies != kNothingVaries; }
     bool usesTables() const { return model == ShadingModel::Marschner && !analyticAzimuthal; }
     bool operator==(const HairMaterial& other) const;
     // Marschner's tables depend only on these: prims that share them share tables.
     bool sharesTablesWith(const HairMaterial& other) const;
+    // Likewise the dual-scattering layer (buildDualScatteringTable).
+    bool sharesDualScatteringTableWith(const HairMaterial& other) const;
 };
 
 // The HdHairAPI primvars prepareCurves carries, each with the value an

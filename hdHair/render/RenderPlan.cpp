@@ -215,6 +215,9 @@ std::string shadingDescription(const RenderPlan& plan, const StrandSummary& stra
     std::string shading = fmt::format("{}, {} light(s){}", models, plan.lights.lights.size(), cameraLight);
     for (const PlannedDome& dome : plan.domes) shading += "; " + dome.describe(lightsPerPass);
     if (!plan.shadows.sampling.empty()) shading += "; " + plan.shadows.sampling;
+    for (const std::string& material : strands.multipleScattering) shading += "; multiple scattering on " + material;
+    if (strands.dualScatteringMaterials > 0 && plan.shadows.mode == ShadowMode::Off)
+        shading += " (shadowMode=off: every light reaches every fibre, so only the local back scattering adds)";
     return shading;
 }
 

@@ -101,6 +101,20 @@ const std::vector<SettingDescriptor>& RenderSettings::descriptors() {
          "per curve or vertex), tables (always; such prims use their mean absorption and eta), or analytic "
          "(always per fragment: the reference)",
          0, 0, {"auto", "tables", "analytic"}, &SettingValues::marschnerAzimuthal},
+        {"multipleScattering", SettingType::Token, "auto",
+         "Light scattered through several fibres, on Marschner prims: dualScattering (Zinke et al. 2008, from the "
+         "deep opacity maps' transmittance), off (single scattering only), or auto (dual scattering where the "
+         "material's fibres let enough light through for it to show: not on black hair; hdHair/shading/README.md, "
+         "Dual scattering)",
+         0, 0, {"auto", "dualScattering", "off"}, &SettingValues::multipleScattering},
+        {"multipleScattering:forwardDensity", SettingType::Float, "0.7",
+         "Dual scattering's forward density factor d_f: how densely the fibres a light path crosses are packed "
+         "(0.6 to 0.8 for human hair)",
+         0.0, 1.0, {}, &SettingValues::multipleScatteringForwardDensity},
+        {"multipleScattering:backDensity", SettingType::Float, "0.7",
+         "Dual scattering's backward density factor d_b: how much of the light that passes a fibre its neighbours "
+         "scatter back (0.6 to 0.8 for human hair; 0 drops the back scattering)",
+         0.0, 1.0, {}, &SettingValues::multipleScatteringBackDensity},
         {"shadowMode", SettingType::Token, "deepOpacity",
          "Hair self-shadowing from lights that cast shadows (inputs:shadow:enable): deepOpacity (deep opacity "
          "maps), reference (every light-view fragment kept and summed per lookup: slow, the yardstick), or off",

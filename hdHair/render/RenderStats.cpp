@@ -41,6 +41,7 @@ nlohmann::json RenderStats::toJson() const {
     json["shadowMapsRebuilt"] = shadowMapsRebuilt;
     json["shadowMapsKept"] = shadowMapsKept;
     json["shadowMaps"] = shadowMaps;
+    json["multipleScattering"] = multipleScattering;
     // Each use, and their total: what the frame's memory is made of.
     auto byUse = [](const std::map<std::string, uint64_t>& uses) {
         nlohmann::json memory = nlohmann::json::object();

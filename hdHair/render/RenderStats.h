@@ -58,6 +58,10 @@ struct RenderStats {
     // map is "rebuilt", "kept" or "none").
     size_t shadowMapsRebuilt = 0, shadowMapsKept = 0;
     nlohmann::json shadowMaps = nlohmann::json::array();
+    // Per hair material of the frame, its multiple scattering ({"material":
+    // its index, "prims": how many prims, "prim": the first, "model",
+    // "dualScattering": whether it runs, "gain", "reason"}).
+    nlohmann::json multipleScattering = nlohmann::json::array();
     // Bytes of GL storage the renderer holds after the frame, by use
     // (hdHair/gl/GpuMemory.h): strandGeometry, drawOrder, frameTarget, ...
     std::map<std::string, uint64_t> gpuBytes;

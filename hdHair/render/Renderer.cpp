@@ -316,6 +316,24 @@ void Renderer::decideShadowMaps(RenderPlan& plan, const StrandSummary& summary, 
     }
 }
 
+namespace {
+
+// The first layer of `texels` (`layers` layers) in the upload's stack,
+// added at its end unless already there.
+int tableLayer(MaterialUpload& upload, const std::vector<uint16_t>& texels, int layers) {
+    int first = 0;
+    for (const gl::MaterialTableLayers& table : upload.tables) {
+        if (table.halfTexels == &texels) return first;
+        first += table.layers;
+    }
+    upload.tables.push_back({&texels, layers});
+    upload.tableWidth = kMarschnerTableWidth;
+    upload.tableHeight = kMarschnerTableHeight;
+    return first;
+}
+
+}  // namespace
+
 std::optional<MaterialUpload> Renderer::materialUpload(const std::vector<HairMaterial>& materials,
                                                       const std::vector<CachedCurves*>& drawnCurves,
                                                       const std::vector<DrawnPrim>& drawn,
@@ -353,11 +371,24 @@ std::optional<MaterialUpload> Renderer::materialUpload(const std::vector<HairMat
                 marschnerTables_.push_back({material, built.halfTexels(), built.width, built.height});
                 cached = std::prev(marschnerTables_.end());
             }
-            upload.tableWidth = cached->width;
-            upload.tableHeight = cached->height;
-            auto layer = std::find(upload.tables.begin(), upload.tables.end(), &cached->halfTexels);
-            if (layer == upload.tables.end()) layer = upload.tables.insert(upload.tables.end(), &cached->halfTexels);
-            entry.modelAndLayer.y = int(2 * (layer - upload.tables.begin()));
+            entry.modelAndLayer.y = tableLayer(upload, cached->halfTexels, 2);
+        }
+        if (material.dualScattering) {
+            // The fibre's layer: the same cache, keyed by what the layer depends on.
+            auto cached = std::find_if(dualScatteringTables_.begin(), dualScatteringTables_.end(), [&](const CachedTables& c) {
+                return c.material.sharesDualScatteringTableWith(material);
+            });
+            if (cached == dualScatteringTables_.end()) {
+                DualScatteringTable built =
+                    buildDualScatteringTable(material.marschner, material.densities.backward, kMarschnerTableHeight);
+                dualScatteringTables_.push_back({material, built.halfLayer(kMarschnerTableWidth, kMarschnerTableHeight),
+                                                 kMarschnerTableWidth, kMarschnerTableHeight});
+                cached = std::prev(dualScatteringTables_.end());
+            }
+            entry.segments.w = tableLayer(upload, cached->halfTexels, 1);
+            entry.modelAndLayer.z |= gl::kHairMaterialDualScattering;
+            entry.caustic.z = material.densities.forward;
+            entry.caustic.w = material.densities.backward;
         }
         upload.materials.push_back(entry);
     }
@@ -466,6 +497,25 @@ void Renderer::gatherDrawnCurves(const Scene& scene, const CameraView& camera, c
         summary.spanLengths.push_back(&cached.spanLengths);
         frame.curves += cached.prepared->curveCount;
         stats.authoredPoints += entry.prim->points.size();
+    }
+    // Each material's multiple scattering, with the prims that use it.
+    for (size_t m = 0; m < frame.materials.size(); ++m) {
+        const HairMaterial& material = frame.materials[m];
+        size_t prims = 0;
+        std::string first;
+        for (const DrawnPrim& drawn : frame.inputs.drawn)
+            if (size_t(drawn.material) == m && prims++ == 0) first = drawn.path;
+        stats.multipleScattering.push_back({{"material", m},
+                                            {"prims", prims},
+                                            {"prim", first},
+                                            {"model", toString(material.model)},
+                                            {"dualScattering", material.dualScattering},
+                                            {"gain", material.multipleScatteringGain},
+                                            {"reason", material.multipleScatteringReason}});
+        summary.dualScatteringMaterials += material.dualScattering ? 1 : 0;
+        if (material.model == ShadingModel::Marschner)
+            summary.multipleScattering.push_back(fmt::format("{}{}: {}", first, prims > 1 ? fmt::format(" and {} more", prims - 1) : "",
+                                                             material.multipleScatteringReason));
     }
 }
 

@@ -185,6 +185,9 @@ private:
     // A deque: material uploads keep pointers to the texels of earlier entries
     // while later ones are added (a vector would move them).
     std::deque<CachedTables> marschnerTables_;
+    // Dual-scattering materials' fibre layers (DualScatteringTable::halfLayer),
+    // likewise, the size of a Marschner table's layer.
+    std::deque<CachedTables> dualScatteringTables_;
     std::map<std::string, CachedCurves> curves_;
 
     struct CachedMesh {

@@ -25,6 +25,10 @@ struct StrandSummary {
     std::string shadingModels;   // the models in use, e.g. "kajiyaKay+marschner"
     size_t perPointPrims = 0;    // prims whose hair parameters vary per curve or vertex
     size_t analyticPrims = 0;    // Marschner prims shaded with per-fragment azimuthal terms
+    // Per Marschner material, whether multiple scattering runs and why
+    // (HairMaterial::multipleScatteringReason), for the strand pass's reason.
+    std::vector<std::string> multipleScattering;
+    size_t dualScatteringMaterials = 0;  // those where it runs
     CasterBounds casters;        // what casts shadows: every drawn strand
     // Each drawn prim's span lengths (Bezier control polygons).
     std::vector<const std::vector<float>*> spanLengths;

@@ -32,6 +32,9 @@ struct SettingValues {
     double kajiyaKaySpecular = 0.0;   // kajiyaKay:specular
     double kajiyaKayShininess = 0.0;  // kajiyaKay:shininess
     std::string marschnerAzimuthal;   // marschner:azimuthal
+    std::string multipleScattering;
+    double multipleScatteringForwardDensity = 0.0;  // multipleScattering:forwardDensity
+    double multipleScatteringBackDensity = 0.0;     // multipleScattering:backDensity
     std::string shadowMode;
     int shadowLayers = 0;
     int shadowMapResolution = 0;

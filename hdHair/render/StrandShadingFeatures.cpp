@@ -27,6 +27,7 @@ gl::ShadingFeatures materialShadingFeatures(const std::vector<HairMaterial>& mat
             features.add(material.analyticAzimuthal ? ShadingFeature::MarschnerAnalytic
                                                     : ShadingFeature::MarschnerTabled);
             if (domeTables && srbfAbsorbsPerFragment(material)) features.add(ShadingFeature::SrbfAbsorption);
+            if (material.dualScattering) features.add(ShadingFeature::DualScattering);
         } else if (material.model == ShadingModel::KajiyaKay) {
             features.add(ShadingFeature::KajiyaKay);
         }

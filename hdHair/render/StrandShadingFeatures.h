@@ -15,8 +15,8 @@
 namespace hdhair {
 
 // What a frame's hair materials call for, whichever prims read them: each
-// lit model (Marschner tabled or analytic), parameters per curve or vertex,
-// and, when the frame has dome tables (`domeTables`), Marschner absorption
+// lit model (Marschner tabled or analytic), multiple scattering, parameters
+// per curve or vertex, and, when the frame has dome tables (`domeTables`), Marschner absorption
 // per fragment under the dome (srbfAbsorbsPerFragment).
 gl::ShadingFeatures materialShadingFeatures(const std::vector<HairMaterial>& materials, bool domeTables);
 

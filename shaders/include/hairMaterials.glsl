@@ -6,16 +6,19 @@
 struct HairMaterial {
     ivec4 modelAndLayer;  // x: 0 flat, 1 Kajiya-Kay, 2 Marschner; y: first layer of its Marschner tables;
                           // z: flags (HAIR_MATERIAL_*); w: its prim's first per-point record
-    ivec4 segments;       // x: its prim's first control point (per-point materials only)
+    ivec4 segments;       // x: its prim's first control point (per-point materials only); y, z: its SRBF
+                          // table and uniform-dome row (srbfLighting.glsl); w: its dual-scattering layer
     vec4 kajiyaKay;       // x: Kd, y: Ks, z: shininess p
     vec4 alphaEta;        // Marschner alpha_R, alpha_TT, alpha_TRT (radians); w: eta
     vec4 betaGlint;       // Marschner beta_R, beta_TT, beta_TRT (radians); w: glint scale k_G
     vec4 sigmaA;          // Marschner sigma_a (per fibre radius); w: caustic width w_c
-    vec4 caustic;         // x: caustic fade delta eta', y: caustic limit delta h_M
+    vec4 caustic;         // x: caustic fade delta eta', y: caustic limit delta h_M;
+                          // z, w: dual scattering's densities d_f, d_b (dualScattering.glsl)
 };
 const int HAIR_MATERIAL_PER_POINT = 1;  // parameters come from the per-point records
 const int HAIR_MATERIAL_ANALYTIC = 2;   // Marschner's azimuthal terms per fragment, not from tables
 const int HAIR_MATERIAL_SRBF_LOBES = 4; // dome lighting: absorption per fragment (srbfLighting.glsl)
+const int HAIR_MATERIAL_DUAL_SCATTERING = 8; // multiple scattering (dualScattering.glsl)
 
 layout(std430, binding = 8) readonly buffer HairMaterials {
     HairMaterial materials[];
@@ -28,8 +31,9 @@ layout(std430, binding = 8) readonly buffer HairMaterials {
 layout(std430, binding = 9) readonly buffer HairParameterPoints {
     vec4 hairParameterPoints[];
 };
-// Every Marschner material's azimuthal tables, two layers each
-// (hdHair/shading/MarschnerTables.h).
+// Every tabled Marschner material's azimuthal tables, two layers each
+// (hdHair/shading/MarschnerTables.h), and every dual-scattering material's
+// fibre layer (hdHair/shading/DualScattering.h).
 layout(binding = 1) uniform sampler2DArray marschnerTables;
 
 // A fragment's hair parameters: its material's, or its prim's per-point values
@@ -39,6 +43,8 @@ struct HairShading {
     int model;
     int flags;
     float tableLayer;
+    float dualLayer;      // its dual-scattering layer (HAIR_MATERIAL_DUAL_SCATTERING)
+    vec2 dualDensities;   // d_f, d_b
     vec3 kajiyaKay;
     MarschnerFibre fibre;
 };
@@ -49,6 +55,8 @@ HairShading hairShadingAt(int materialIndex, int segment, float u) {
     shading.model = material.modelAndLayer.x;
     shading.flags = material.modelAndLayer.z;
     shading.tableLayer = float(material.modelAndLayer.y);
+    shading.dualLayer = float(material.segments.w);
+    shading.dualDensities = material.caustic.zw;
     shading.kajiyaKay = material.kajiyaKay.xyz;
     shading.fibre.sigmaA = material.sigmaA.xyz;
     shading.fibre.eta = material.alphaEta.w;

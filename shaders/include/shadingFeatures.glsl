@@ -19,6 +19,7 @@
 #define HDHAIR_FEATURE_MARSCHNER_ANALYTIC 1   // a model 2 material with it
 #define HDHAIR_FEATURE_PER_POINT_PARAMETERS 1 // a material with HAIR_MATERIAL_PER_POINT
 #define HDHAIR_FEATURE_SRBF_ABSORPTION 1      // a Marschner material with HAIR_MATERIAL_SRBF_LOBES
+#define HDHAIR_FEATURE_DUAL_SCATTERING 1      // a Marschner material with HAIR_MATERIAL_DUAL_SCATTERING
 #define HDHAIR_FEATURE_LOCAL_LIGHTS 1         // a light of kind 1 (lightVector.w)
 #define HDHAIR_FEATURE_SRBF_LIGHTS 1          // a light of kind 2: a dome's SRBF lobe
 #define HDHAIR_FEATURE_UNIFORM_DOME 1         // ambient.w 1: the uniform dome's exact response

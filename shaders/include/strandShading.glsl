@@ -8,9 +8,11 @@
 // centre line `centre`, or as strand.tese looked it up there with vertex
 // shadows (the same for Kajiya-Kay and Marschner; the ambient and uniform
 // dome terms are not shadowed). `segment` and `u` locate the fragment on its
-// span, for parameters that vary along the prim.
+// span, for parameters that vary along the prim. Marschner materials with
+// HAIR_MATERIAL_DUAL_SCATTERING add multiple scattering (dualScattering.glsl),
+// from the same shadow transmittance.
 // Needs frameUniforms.glsl, lights.glsl, kajiyaKay.glsl, marschner.glsl,
-// marschnerAnalytic.glsl, catmullRom.glsl, hairMaterials.glsl,
+// marschnerAnalytic.glsl, dualScattering.glsl, catmullRom.glsl, hairMaterials.glsl,
 // shadowFragmentLists.glsl, shadows.glsl and srbfLighting.glsl, after
 // shadingFeatures.glsl, whose switches cut out what the frame does not use.
 #ifdef HDHAIR_VERTEX_SHADOWS
@@ -57,18 +59,51 @@ vec3 strandRadiance(vec3 worldPosition, vec3 centre, vec3 worldTangent, vec3 hai
     vec3 radiance = lights.ambient.rgb * hairColor;
 #endif
     bool analytic = (shading.flags & HAIR_MATERIAL_ANALYTIC) != 0;
+#if HDHAIR_FEATURE_DUAL_SCATTERING
+    // Multiple scattering: the fibre's quantities at the eye's inclination
+    // (as N_p is taken at theta_r), once a fragment; then each light adds
+    // what its light scatters through the groom (dualScattering.glsl).
+    bool dual = (shading.flags & HAIR_MATERIAL_DUAL_SCATTERING) != 0;
+    DualScatteringFibre dualFibre;
+    if (dual) {
+        dualFibre = dualScatteringFibre(marschnerTables, shading.dualLayer, sqrt(max(0.0, 1.0 - dot(t, e) * dot(t, e))));
+#if HDHAIR_FEATURE_UNIFORM_DOME
+        if (lights.ambient.w > 0.5) radiance += lights.ambient.rgb * dualScatteringUniformDome(dualFibre, shading.dualDensities);
+#endif
+    }
+#endif
     for (int i = 0; i < lights.lightCount.x; ++i) {
 #if HDHAIR_FEATURE_SRBF_LIGHTS
         if (isSrbfLight(i)) {
             vec3 lobe = srbfLightRadiance(i, materialIndex, shading, absorption, t, e, hairColor);
+#if HDHAIR_FEATURE_DUAL_SCATTERING
+            // The lobe as a distant light from its centre, its width added to
+            // the first event's spread (Ren 2010 section 3.2; DualScattering.h).
+            if (dual) {
+                vec3 toLobe;
+                vec3 lobeIrradiance = lightIrradiance(i, worldPosition, toLobe);
+                float shadow = strandSrbfShadowTransmittance(i, centre);
+                radiance += lobe * shadow +
+                            lobeIrradiance * dualScattering(t, toLobe, e, dualFibre, shading.fibre.alpha,
+                                                            shading.fibre.beta, shadow, shading.dualDensities,
+                                                            0.25 / max(lights.lightScale[i].w, 1e-6));
+                continue;
+            }
+#endif
             if (any(greaterThan(lobe, vec3(0.0)))) radiance += lobe * strandSrbfShadowTransmittance(i, centre);
             continue;
         }
 #endif
         vec3 l;
-        vec3 irradiance = lightIrradiance(i, worldPosition, l);
-        if (all(equal(irradiance, vec3(0.0)))) continue;  // unlit here: no shadow lookup
-        irradiance *= strandShadowTransmittance(i, centre);
+        vec3 unshadowed = lightIrradiance(i, worldPosition, l);
+        if (all(equal(unshadowed, vec3(0.0)))) continue;  // unlit here: no shadow lookup
+        float shadow = strandShadowTransmittance(i, centre);
+        vec3 irradiance = unshadowed * shadow;
+#if HDHAIR_FEATURE_DUAL_SCATTERING
+        if (dual)
+            radiance += unshadowed * dualScattering(t, l, e, dualFibre, shading.fibre.alpha, shading.fibre.beta, shadow,
+                                                    shading.dualDensities, 0.0);
+#endif
 #if HDHAIR_FEATURE_MARSCHNER_TABLED || HDHAIR_FEATURE_MARSCHNER_ANALYTIC
 #if HDHAIR_FEATURE_KAJIYA_KAY
         if (shading.model == 2) {
