@@ -51,10 +51,13 @@ CameraView camera() { return orthographicView(2.4, 64); }
 // A distant light shining from `towardsLight`.
 LightPrim distantFrom(glm::dvec3 towardsLight) { return distantLightFrom(towardsLight); }
 
+// Single scattering: what the CPU models here compute (multiple scattering
+// has its own tests, testMultipleScattering).
 RenderSettings withModel(const std::string& model, const std::string& azimuthal = "auto") {
     RenderSettings settings;
     settings.set("shadingModel", model);
     settings.set("marschner:azimuthal", azimuthal);
+    settings.set("multipleScattering", "off");
     return settings;
 }
 

@@ -133,8 +133,11 @@ glm::vec3 expectedKajiyaKay(const std::vector<Srbf>& srbfs, const SrbfConvolutio
 }
 
 // The frame of `scene` without shadows (T̃ = 1: the tables alone), with no warning.
+// Single scattering, unshadowed: what the SRBF tables hold (multiple
+// scattering under a dome: testMultipleScattering).
 RenderResult renderUnshadowed(const Scene& scene, RenderSettings settings, const CameraView& camera) {
     settings.set("shadowMode", "off");
+    settings.set("multipleScattering", "off");
     Renderer renderer(gl::GlBackend::Egl);
     Diagnostics diagnostics;
     RenderResult result = renderer.render(scene, camera, settings, diagnostics);
