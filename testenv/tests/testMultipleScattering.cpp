@@ -17,6 +17,7 @@
 #include "hdHair/render/CameraView.h"
 #include "hdHair/render/HairMaterial.h"
 #include "hdHair/scene/Scene.h"
+#include "hdHair/scene/tests/AuthoredPrimvar.h"
 #include "hdHair/shading/DualScattering.h"
 #include "hdHair/shading/Marschner.h"
 #include "hdHair/shading/MarschnerTables.h"
@@ -27,11 +28,8 @@ using namespace hdhair::testenv;
 namespace {
 
 Primvar constant(const std::string& name, std::vector<float> values) {
-    Primvar primvar;
-    primvar.name = name;
-    primvar.tupleSize = int(values.size());
-    primvar.values = std::move(values);
-    return primvar;
+    const int tupleSize = int(values.size());
+    return test::authoredPrimvar(name, Interpolation::Constant, tupleSize, std::move(values));
 }
 
 // A Marschner strand along +X at height y and depth z, `width` wide.

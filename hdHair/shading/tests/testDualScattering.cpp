@@ -15,6 +15,7 @@
 
 #include "hdHair/shading/DualScattering.h"
 #include "hdHair/shading/Marschner.h"
+#include "hdHair/shading/tests/FibreDirections.h"
 
 using namespace hdhair;
 
@@ -22,16 +23,8 @@ namespace {
 
 constexpr float kPi = 3.14159265358979323846f;
 
-glm::vec3 direction(float theta, float phi) {
-    // t = +x; θ from the normal plane, φ in the yz plane.
-    return glm::vec3(std::sin(theta), std::cos(theta) * std::cos(phi), std::cos(theta) * std::sin(phi));
-}
-
-bool finiteNonNegative(const glm::vec3& v) {
-    for (int i = 0; i < 3; ++i)
-        if (!std::isfinite(v[i]) || v[i] < 0.0f) return false;
-    return true;
-}
+glm::vec3 direction(float theta, float phi) { return test::fibreDirection(theta, phi); }
+using test::finiteNonNegative;
 
 MarschnerParameters withMelanin(float melanin) {
     MarschnerParameters parameters;

@@ -12,6 +12,7 @@
 #include <gtest/gtest.h>
 
 #include "hdHair/shading/Marschner.h"
+#include "hdHair/shading/tests/FibreDirections.h"
 #include "hdHair/shading/MarschnerTables.h"
 
 using namespace hdhair;
@@ -31,16 +32,8 @@ constexpr double kFurnaceAbove = 0.01;
 constexpr float kTableMaxAbsolute = 0.022f;
 constexpr float kTableRms = 4.5e-4f;
 
-glm::vec3 direction(float theta, float phi) {
-    // t = +x; θ from the normal plane, φ in the yz plane.
-    return glm::vec3(std::sin(theta), std::cos(theta) * std::cos(phi), std::cos(theta) * std::sin(phi));
-}
-
-bool finiteNonNegative(const glm::vec3& v) {
-    for (int i = 0; i < 3; ++i)
-        if (!std::isfinite(v[i]) || v[i] < 0.0f) return false;
-    return true;
-}
+glm::vec3 direction(float theta, float phi) { return test::fibreDirection(theta, phi); }
+using test::finiteNonNegative;
 
 // f's bound: M_p <= 1/v_p (d'Eon's normalisation), N_p <= A/(2 · min dφ/dγ)
 // plus the glint's k_G Δh_M g(w_c; 0) · 2.
