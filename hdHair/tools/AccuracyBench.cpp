@@ -262,7 +262,13 @@ nlohmann::json runAccuracyBench(Renderer& renderer, std::vector<AccuracyStage>& 
     DisplayTransformOptions view;
     view.mode = ColorCorrectionMode::OpenColorIO;  // the shipped config's default display and view
     const DisplayTransform display = DisplayTransform::create(view);
-    const std::vector<Approximation> matrix = accuracyMatrix(run.quick);
+    auto chosen = [&](const std::string& name) {
+        return run.approximations.empty() ||
+               std::find(run.approximations.begin(), run.approximations.end(), name) != run.approximations.end();
+    };
+    std::vector<Approximation> matrix;
+    for (Approximation& approximation : accuracyMatrix(run.quick))
+        if (chosen(approximation.name)) matrix.push_back(std::move(approximation));
     nlohmann::json report;
     report["command"] = run.command;
     report["quick"] = run.quick;
@@ -303,7 +309,7 @@ nlohmann::json runAccuracyBench(Renderer& renderer, std::vector<AccuracyStage>& 
                              cyclesSummary(row).c_str());
                 report["rows"].push_back(row);
             }
-        for (const Step& step : presetSteps()) {
+        for (const Step& step : chosen("preset") ? presetSteps() : std::vector<Step>()) {
             nlohmann::json row = bench.measure({}, step, false);
             row["approximation"] = "preset";
             std::fprintf(stderr, "hdhair-bench: %s, %s: %.1f ms, RMSE %.5f%s\n", stage.name.c_str(), step.label.c_str(),

@@ -62,6 +62,9 @@ struct AccuracyRun {
     int repetitions = 3;   // timed frames per configuration, after one untimed frame
     std::string command;   // as run, for the report
     std::optional<CyclesComparison> cycles;
+    // Only these approximations (by name; "preset" for the presets); all
+    // when empty.
+    std::vector<std::string> approximations;
 };
 
 // Throws std::runtime_error when a reference cannot be rendered (exact
