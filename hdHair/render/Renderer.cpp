@@ -318,17 +318,18 @@ void Renderer::decideShadowMaps(RenderPlan& plan, const StrandSummary& summary, 
 
 namespace {
 
-// The first layer of `texels` (`layers` layers) in the upload's stack,
-// added at its end unless already there.
-int tableLayer(MaterialUpload& upload, const std::vector<uint16_t>& texels, int layers) {
+// The first layer of `texels` (`layers` layers of width × height) in the
+// upload's stack, added at its end unless already there. Every table has
+// the Marschner tables' layer size.
+int tableLayer(MaterialUpload& upload, const std::vector<uint16_t>& texels, int width, int height, int layers) {
     int first = 0;
     for (const gl::MaterialTableLayers& table : upload.tables) {
         if (table.halfTexels == &texels) return first;
         first += table.layers;
     }
     upload.tables.push_back({&texels, layers});
-    upload.tableWidth = kMarschnerTableWidth;
-    upload.tableHeight = kMarschnerTableHeight;
+    upload.tableWidth = width;
+    upload.tableHeight = height;
     return first;
 }
 
@@ -371,7 +372,7 @@ std::optional<MaterialUpload> Renderer::materialUpload(const std::vector<HairMat
                 marschnerTables_.push_back({material, built.halfTexels(), built.width, built.height});
                 cached = std::prev(marschnerTables_.end());
             }
-            entry.modelAndLayer.y = tableLayer(upload, cached->halfTexels, 2);
+            entry.modelAndLayer.y = tableLayer(upload, cached->halfTexels, cached->width, cached->height, 2);
         }
         if (material.dualScattering) {
             // The fibre's layer: the same cache, keyed by what the layer depends on.
@@ -385,7 +386,7 @@ std::optional<MaterialUpload> Renderer::materialUpload(const std::vector<HairMat
                                                  kMarschnerTableWidth, kMarschnerTableHeight});
                 cached = std::prev(dualScatteringTables_.end());
             }
-            entry.segments.w = tableLayer(upload, cached->halfTexels, 1);
+            entry.segments.w = tableLayer(upload, cached->halfTexels, cached->width, cached->height, 1);
             entry.modelAndLayer.z |= gl::kHairMaterialDualScattering;
             entry.caustic.z = material.densities.forward;
             entry.caustic.w = material.densities.backward;
