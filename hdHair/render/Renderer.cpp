@@ -499,13 +499,16 @@ void Renderer::gatherDrawnCurves(const Scene& scene, const CameraView& camera, c
         frame.curves += cached.prepared->curveCount;
         stats.authoredPoints += entry.prim->points.size();
     }
-    // Each material's multiple scattering, with the prims that use it.
+    // Each material's multiple scattering, with the prims that use it (one
+    // pass over the prims: a stage may have a material per prim).
+    std::vector<size_t> primsOf(frame.materials.size(), 0);
+    std::vector<const std::string*> firstOf(frame.materials.size(), nullptr);
+    for (const DrawnPrim& drawn : frame.inputs.drawn)
+        if (primsOf[size_t(drawn.material)]++ == 0) firstOf[size_t(drawn.material)] = &drawn.path;
     for (size_t m = 0; m < frame.materials.size(); ++m) {
         const HairMaterial& material = frame.materials[m];
-        size_t prims = 0;
-        std::string first;
-        for (const DrawnPrim& drawn : frame.inputs.drawn)
-            if (size_t(drawn.material) == m && prims++ == 0) first = drawn.path;
+        const size_t prims = primsOf[m];
+        const std::string first = firstOf[m] ? *firstOf[m] : std::string();
         stats.multipleScattering.push_back({{"material", m},
                                             {"prims", prims},
                                             {"prim", first},
