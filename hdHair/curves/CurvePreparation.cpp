@@ -35,6 +35,7 @@ enum class CurveStatus : uint8_t {
     TooFewVertices,   // no span to draw
     MissingVertices,  // counts run past the end of points
     NonFinitePoint,
+    HugePoint,  // finite, but past kLargestCoordinate
     Invisible,  // hidden through CurvesPrim::invisibleCurves: not drawn, not a defect
 };
 
@@ -58,6 +59,11 @@ CurveCheck checkCurve(const CurvesPrim& prim, const CurveTopology& topology, siz
             const glm::vec3& point = prim.points[p];
             if (!std::isfinite(point.x) || !std::isfinite(point.y) || !std::isfinite(point.z)) {
                 check.status = CurveStatus::NonFinitePoint;
+                check.badPoint = p - begin;
+                return check;
+            }
+            if (std::max({std::abs(point.x), std::abs(point.y), std::abs(point.z)}) > kLargestCoordinate) {
+                check.status = CurveStatus::HugePoint;
                 check.badPoint = p - begin;
                 return check;
             }
@@ -112,6 +118,14 @@ void reportCurveChecks(const CurvesPrim& prim, const CurveTopology& topology, co
                  [&](size_t i, const CurveCheck& check) {
                      return fmt::format("curve {} has a non-finite point (points[{}]); dropping the curve", i,
                                         topology.vertexOffsets[i] + check.badPoint);
+                 });
+    reportCurves(diagnostics, prim.path + ".points", checks, CurveStatus::HugePoint,
+                 [&](size_t i, const CurveCheck& check) {
+                     const size_t point = topology.vertexOffsets[i] + check.badPoint;
+                     const glm::vec3& p = prim.points[point];
+                     return fmt::format("curve {} has a point past {:g} (points[{}] = ({:g}, {:g}, {:g})), where "
+                                        "lengths overflow float; dropping the curve",
+                                        i, kLargestCoordinate, point, p.x, p.y, p.z);
                  });
 }
 

@@ -102,6 +102,11 @@ struct PreparedCurves {
 // stage authors only primvars:opacity (as some hair exporters do), that one.
 std::string opacityPrimvarName(const CurvesPrim& prim);
 
+// The largest point coordinate a curve may have: past it (1e38, say) the
+// squared lengths tessellation and framing take overflow float (past about
+// 1.8e19), so such a curve is dropped with a warning, as one with a NaN point.
+constexpr float kLargestCoordinate = 1e18f;
+
 // Validates, resolves every primvar (hdHair/curves/PrimvarResolution.h),
 // changes basis to Catmull-Rom and transforms to world space, carrying the
 // `shadingPrimvars` the prim authors. Colours and opacities come from

@@ -100,7 +100,11 @@ ResolvedPrimvar resolveConstantPrimvar(FlattenedPrimvar flattened, Interpolation
                                             flattened.count));
     }
     flattened.elements.resize(fallback.size());
-    return ResolvedPrimvar{Interpolation::Constant, static_cast<int>(fallback.size()), std::move(flattened.elements)};
+    ResolvedPrimvar resolved{Interpolation::Constant, static_cast<int>(fallback.size()), std::move(flattened.elements)};
+    // A constant NaN colour or infinite width would blank or discolour the
+    // whole prim: the same repair, and word, as any other element's.
+    replaceNonFiniteElements(resolved, fallback, where, diagnostics);
+    return resolved;
 }
 
 void replaceNonFiniteElements(ResolvedPrimvar& resolved, const std::vector<float>& fallback, const std::string& where,

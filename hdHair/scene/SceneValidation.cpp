@@ -159,6 +159,15 @@ CameraPrim checkedCamera(const CameraPrim& camera, const std::string& where, Dia
         throw InputError(where + ": " + camera.path +
                          ": the world transform is not finite (a NaN or infinite xformOp value, or a singular matrix "
                          "under \"!invert!\"); the camera cannot be used");
+    // Valid, yet a frame no one means: at 960 pixels wide a 1:10000 aperture
+    // is one row tall, and 10000:1 is past any image size. Said, with the
+    // shape it implies, so that a near-empty frame is not a mystery.
+    const double aspect = double(camera.horizontalAperture) / double(camera.verticalAperture);
+    if (aspect > kMostApertureRatio || aspect < 1.0 / kMostApertureRatio)
+        diagnostics.warn(where, fmt::format("{}.horizontalAperture, {}.verticalAperture: ({:.6g}, {:.6g}) make an image {:.4g} "
+                                            "times as wide as it is tall; check the apertures",
+                                            camera.path, camera.path, camera.horizontalAperture,
+                                            camera.verticalAperture, aspect));
     CameraPrim checked = camera;
     const glm::vec2 range = camera.clippingRange;
     if (!std::isfinite(range.x) || !std::isfinite(range.y) || range.x <= 0.0f || range.y <= range.x) {

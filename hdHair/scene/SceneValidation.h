@@ -26,7 +26,8 @@
 // cannot be repaired (there is no right guess for a lens): InputError
 // "<file or path>: <path>.<attribute>: ...". A clipping range that is not
 // finite, with near <= 0 or far <= near, is replaced by USD's fallback
-// [1, 1000000] with a warning.
+// [1, 1000000] with a warning. Apertures whose ratio is beyond
+// kMostApertureRatio either way are used, with a warning giving the shape.
 
 #include <string>
 
@@ -51,6 +52,10 @@ std::string transformProblem(const std::string& primPath, const glm::dmat4& worl
 // "file:line:column" or the prim path). Returns false when the light must be
 // skipped (its warning already given).
 bool repairLight(LightPrim& light, const std::string& where, Diagnostics& diagnostics);
+
+// The widest (and, inverted, the tallest) image shape a camera's apertures
+// make without a warning: 100:1, far past any film or sensor format.
+constexpr double kMostApertureRatio = 100.0;
 
 // `camera` with its clipping range repaired (warning at `where`); throws
 // InputError starting with `where` for what cannot be repaired.

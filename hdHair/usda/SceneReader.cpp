@@ -10,6 +10,7 @@
 
 #include <fmt/format.h>
 
+#include "hdHair/scene/AuthoredValueRepairs.h"
 #include "hdHair/scene/SceneValidation.h"
 #include "hdHair/usda/MaterialBinding.h"
 #include "hdHair/usda/XformOps.h"
@@ -307,18 +308,16 @@ std::optional<Primvar> Reader::readPrimvar(const Prim& prim, const std::string& 
         if (parseInterpolation(token, &primvar.interpolation)) {
             primvar.interpolationAuthored = true;
         } else {
-            warn(prim, attributeName,
-                 "unknown interpolation '" + token + "'; using " +
-                     toString(defaultInterpolation));
+            warn(prim, attributeName, unknownTokenRepair("interpolation", token, toString(defaultInterpolation)));
         }
     }
     auto elementSize = attribute.metadata.find("elementSize");
     if (elementSize != attribute.metadata.end()) {
         double size = elementSize->second.numberOr(1.0);
-        if (size >= 1.0 && size == std::floor(size) && size < 1e6) {
+        if (isValidElementSize(size)) {
             primvar.elementSize = static_cast<int>(size);
         } else {
-            warn(prim, attributeName, "elementSize must be a positive integer; using 1");
+            warn(prim, attributeName, kElementSizeRepair);
         }
     }
     // Only primvars can be indexed; `widths` and `normals` as plain
@@ -374,15 +373,15 @@ void Reader::readCurves(const Prim& prim, const Inherited& state) {
     // nonperiodic), as UsdImaging's basisCurvesAdapter does.
     if (auto token = readToken(prim, "type")) {
         if (!parseCurveType(*token, &curves.type))
-            warn(prim, "type", "unknown curve type '" + *token + "'; using cubic");
+            warn(prim, "type", unknownTokenRepair("curve type", *token, "cubic"));
     }
     if (auto token = readToken(prim, "basis")) {
         if (!parseCurveBasis(*token, &curves.basis))
-            warn(prim, "basis", "unknown curve basis '" + *token + "'; using bezier");
+            warn(prim, "basis", unknownTokenRepair("curve basis", *token, "bezier"));
     }
     if (auto token = readToken(prim, "wrap")) {
         if (!parseCurveWrap(*token, &curves.wrap))
-            warn(prim, "wrap", "unknown curve wrap '" + *token + "'; using nonperiodic");
+            warn(prim, "wrap", unknownTokenRepair("curve wrap", *token, "nonperiodic"));
     }
     curves.curveVertexCounts = readIntArray(prim, "curveVertexCounts");
     curves.points = readVec3Array(prim, "points");
