@@ -19,6 +19,7 @@
 #include "hdHair/gl/GlRenderThread.h"
 #include "hdHair/gl/GpuMemory.h"
 #include "hdHair/render/BinSort.h"
+#include "hdHair/render/FrameMemory.h"
 #include "hdHair/render/FrameResources.h"
 #include "hdHair/render/FrameScheduler.h"
 #include "hdHair/render/InteractivePreview.h"
@@ -630,6 +631,8 @@ RenderResult Renderer::renderSamples(const Scene& scene, const CameraView& camer
     if (!isFiniteTransform(camera.view) || !isFiniteTransform(camera.projection))
         throw std::invalid_argument("the camera's view or projection is not finite (a NaN or infinite transform, "
                                     "lens or clipping range)");
+    checkFrameFitsMemory(camera.imageWidth, camera.imageHeight, settings, outputs.ids, outputs.depth, 0,
+                         availableMemory());
     if (control.preview && settings.values().shadowMode != "off")
         throw std::invalid_argument("a preview frame must not cast shadows (shadowMode=off): it keeps the full "
                                     "frames' shadow maps as they are");

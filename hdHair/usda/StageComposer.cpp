@@ -4,8 +4,12 @@
 #include <deque>
 #include <filesystem>
 #include <functional>
+#include <map>
+#include <set>
 #include <unordered_set>
 
+#include "hdHair/base/ComposedPrimBound.h"
+#include "hdHair/base/CompositionLimits.h"
 #include "hdHair/base/InputError.h"
 #include "hdHair/base/RegularFile.h"
 #include "hdHair/usda/LayerParser.h"
@@ -24,11 +28,10 @@ using detail::RelationshipSpec;
 
 constexpr int kMaxNamespaceDepth = 1000;
 // Caps that keep hostile stages from exhausting memory or the stack, each
-// far beyond what real stages use (README, "The embedded .usda reader").
+// far beyond what real stages use (README, "The embedded .usda reader"); the
+// layer and prim caps are shared with the OpenUSD path (CompositionLimits.h).
 constexpr size_t kMaxIndexNodes = 100000;     // layer sites in one prim's index
 constexpr size_t kMaxArcDepth = 1000;         // arcs nested in one prim's index (recursion depth)
-constexpr size_t kMaxLayers = 10000;          // layers one stage loads
-constexpr size_t kMaxComposedPrims = 5000000; // prims one stage composes
 
 // ---------------------------------------------------------------- files
 
@@ -245,7 +248,62 @@ public:
 
     const CompositionWork& work() const { return work_; }
 
+    // Refuses, before composing, a stage past kMaxComposedPrims by the
+    // bound its layers set (ComposedPrimBound.h): a doubling reference chain
+    // is refused in milliseconds rather than composed for minutes.
+    void checkComposedPrims(const Layer& rootLayer, const std::string& stagePath) {
+        ComposedPrimBound(stagePath, [&](const ComposedPrimBound::Site& site) { return describe(site); })
+            .check(siteStackKey(rootLayer));
+    }
+
 private:
+    // Sites name their layer stack by its root layer's address.
+    std::string siteStackKey(const Layer& root) {
+        const std::string key = std::to_string(reinterpret_cast<uintptr_t>(&root));
+        siteStacks_[key] = &root;
+        return key;
+    }
+
+    ComposedPrimBound::Specs describe(const ComposedPrimBound::Site& site) {
+        const Layer& root = *siteStacks_.at(site.stack);
+        ComposedPrimBound::Specs specs;
+        std::set<std::string> children;
+        const std::vector<Step> steps = stepsOf(site.path);
+        for (const Layer* layer : stackFor(root).layers) {
+            const PrimSpec* spec = &layer->pseudoRoot;
+            for (const Step& step : steps) {
+                spec = spec->child(step.first);
+                if (!spec) break;
+            }
+            if (!spec) continue;
+            std::vector<const PrimSpec*> withVariants{spec};
+            for (const detail::VariantSetSpec& set : spec->variantSets)
+                for (const auto& variant : set.variants) withVariants.push_back(variant.second.get());
+            for (const PrimSpec* each : withVariants) {
+                for (const auto& child : each->children) children.insert(child->name);
+                for (const ListOp<Reference>* arcs : {&each->references, &each->payloads}) {
+                    const char* what = arcs == &each->payloads ? "payload layer" : "referenced layer";
+                    for (const std::vector<Reference>* items :
+                         {&arcs->explicitItems, &arcs->prepended, &arcs->appended, &arcs->added})
+                        for (const Reference& reference : *items) {
+                            const Layer* target = &root;
+                            if (!reference.assetPath.empty())
+                                target = &loadLayer(resolveAssetPath(reference.assetPath, reference.baseDirectory),
+                                                    reference.location, what);
+                            std::string path = reference.primPath;
+                            // No defaultPrim: composing says so, as an error.
+                            if (path.empty() && !target->info.defaultPrim.empty())
+                                path = target->info.defaultPrim[0] == '/' ? target->info.defaultPrim
+                                                                          : "/" + target->info.defaultPrim;
+                            if (!path.empty()) specs.arcs.push_back({siteStackKey(*target), path});
+                        }
+                }
+            }
+        }
+        specs.children.assign(children.begin(), children.end());
+        return specs;
+    }
+
     void collectSubLayers(const Layer& layer, std::vector<const Layer*>& out, std::vector<const Layer*>& chain) {
         if (std::find(out.begin(), out.end(), &layer) != out.end()) return;  // already in the stack
         out.push_back(&layer);
@@ -590,6 +648,7 @@ private:
     std::map<const Layer*, std::unique_ptr<LayerStack>> stacks_;
     size_t nodeCount_ = 0;
     size_t composedPrims_ = 0;
+    std::map<std::string, const Layer*> siteStacks_;  // ComposedPrimBound's sites
     CompositionWork work_;
 };
 
@@ -603,6 +662,7 @@ std::unique_ptr<Stage> StageComposer::openFile(const std::string& path) {
     Composer composer;
     const Layer& root = composer.addRootLayer(
         absolute, detail::parseLayer(contents, path, fs::path(absolute).parent_path().string()));
+    composer.checkComposedPrims(root, path);
     auto stage = std::make_unique<Stage>();
     stage->pseudoRoot_ = composer.composeStage(root);
     stage->info_ = root.info;
@@ -617,6 +677,7 @@ std::unique_ptr<Stage> StageComposer::openText(const std::string& text, const st
     const Layer& root = composer.addRootLayer(
         std::string("\x01memory:") + identifier,
         detail::parseLayer(text, identifier, absoluteNormal(baseDirectory.empty() ? "." : baseDirectory)));
+    composer.checkComposedPrims(root, identifier);
     auto stage = std::make_unique<Stage>();
     stage->pseudoRoot_ = composer.composeStage(root);
     stage->info_ = root.info;
