@@ -143,6 +143,7 @@ VtDictionary HdHairRenderDelegate::GetRenderStats() const {
     // were finished and cancelled, and the last preview's pixels and curves.
     HdHairRenderParam::Progress const progress = _renderParam->GetProgress();
     stats["hdHairShownFrame"] = VtValue(progress.shown);
+    stats["hdHairFrameError"] = VtValue(progress.error);
     stats["hdHairRendering"] = VtValue(progress.rendering);
     stats["hdHairPreviews"] = VtValue(int(progress.previews));
     stats["hdHairFullFrames"] = VtValue(int(progress.finals));

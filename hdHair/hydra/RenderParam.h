@@ -71,6 +71,9 @@ public:
     // Updated whenever the pass executes.
     struct Progress {
         std::string shown = "none";
+        // Why, when `shown` is "failed": the one-line reason the host was
+        // also given as a TF_RUNTIME_ERROR (a camera that cannot be used, no GL).
+        std::string error;
         bool rendering = false;
         uint64_t previews = 0, finals = 0, cancelled = 0;
         // How far the last preview shown was cut down (InteractivePreview.h).

@@ -1,12 +1,17 @@
 #include "hdHair/hydra/RenderPass.h"
 
+#include <cstring>
 #include <exception>
 #include <optional>
 
+#include "pxr/base/gf/camera.h"
+#include "pxr/base/gf/frustum.h"
 #include "pxr/base/gf/vec4f.h"
 #include "pxr/base/tf/diagnostic.h"
 #include "pxr/base/tf/stringUtils.h"
+#include "pxr/imaging/cameraUtil/conformWindow.h"
 #include "pxr/imaging/cameraUtil/framing.h"
+#include "pxr/imaging/hd/camera.h"
 #include "pxr/imaging/hd/renderPassState.h"
 #include "pxr/imaging/hd/tokens.h"
 
@@ -17,6 +22,7 @@
 #include "hdHair/hydra/RenderBuffer.h"
 #include "hdHair/hydra/RenderDelegate.h"
 #include "hdHair/hydra/RenderParam.h"
+#include "hdHair/scene/SceneValidation.h"
 
 PXR_NAMESPACE_OPEN_SCOPE
 
@@ -41,6 +47,54 @@ void setConverged(HdRenderPassAovBindingVector const& bindings, bool converged) 
         if (binding.renderBuffer) static_cast<HdHairRenderBuffer*>(binding.renderBuffer)->SetConverged(converged);
 }
 
+// The host's camera prim as the engine's CameraPrim, in USD's authored
+// units: UsdImaging hands focal length and apertures over in scene units
+// (GfCamera's tenths), and the checks name the values the artist wrote.
+hdhair::CameraPrim cameraPrimOf(HdCamera const& camera) {
+    hdhair::CameraPrim prim;
+    prim.path = camera.GetId().GetString();
+    prim.projection = camera.GetProjection() == HdCamera::Orthographic ? hdhair::Projection::Orthographic
+                                                                        : hdhair::Projection::Perspective;
+    const float focalUnit = float(GfCamera::FOCAL_LENGTH_UNIT), apertureUnit = float(GfCamera::APERTURE_UNIT);
+    prim.focalLength = camera.GetFocalLength() / focalUnit;
+    prim.horizontalAperture = camera.GetHorizontalAperture() / apertureUnit;
+    prim.verticalAperture = camera.GetVerticalAperture() / apertureUnit;
+    prim.horizontalApertureOffset = camera.GetHorizontalApertureOffset() / apertureUnit;
+    prim.verticalApertureOffset = camera.GetVerticalApertureOffset() / apertureUnit;
+    prim.clippingRange = {camera.GetClippingRange().GetMin(), camera.GetClippingRange().GetMax()};
+    prim.worldTransform = hdhair::hydra::matrixFromGf(camera.GetTransform().data());
+    return prim;
+}
+
+// The projection the host would have made had the camera carried `lens`'s
+// (repaired) clipping range: HdCamera::ComputeProjectionMatrix's frustum,
+// then HdRenderPassState::GetProjectionMatrix's framing or conformed window.
+// The host's own matrix cannot be patched: with near equal to far its depth
+// terms are infinite, and the framing's product has spread NaN from them.
+GfMatrix4d projectionFor(hdhair::CameraPrim const& lens, HdRenderPassState const& state) {
+    GfCamera camera;
+    camera.SetProjection(lens.projection == hdhair::Projection::Orthographic ? GfCamera::Orthographic
+                                                                              : GfCamera::Perspective);
+    camera.SetFocalLength(lens.focalLength);
+    camera.SetHorizontalAperture(lens.horizontalAperture);
+    camera.SetVerticalAperture(lens.verticalAperture);
+    camera.SetHorizontalApertureOffset(lens.horizontalApertureOffset);
+    camera.SetVerticalApertureOffset(lens.verticalApertureOffset);
+    camera.SetClippingRange(GfRange1f(lens.clippingRange[0], lens.clippingRange[1]));
+    const GfMatrix4d projection = camera.GetFrustum().ComputeProjectionMatrix();
+    if (state.GetFraming().IsValid()) return state.GetFraming().ApplyToProjectionMatrix(projection, state.GetWindowPolicy());
+    GfVec4f const& viewport = state.GetViewport();
+    return CameraUtilConformedWindow(projection, state.GetWindowPolicy(),
+                                     viewport[3] != 0.0f ? double(viewport[2]) / double(viewport[3]) : 1.0);
+}
+
+// Matrices compared bit for bit: a host's NaN matrix (a camera with near
+// equal to far) is the same view from one execute to the next, not a new
+// one each time, which would render and warn again without end.
+bool sameBits(GfMatrix4d const& a, GfMatrix4d const& b) {
+    return std::memcmp(a.data(), b.data(), sizeof(double) * 16) == 0;
+}
+
 }  // namespace
 
 bool HdHairRenderPass::Layout::operator==(Layout const& other) const {
@@ -48,8 +102,9 @@ bool HdHairRenderPass::Layout::operator==(Layout const& other) const {
 }
 
 bool HdHairRenderPass::FrameKey::operator==(FrameKey const& other) const {
-    return sceneVersion == other.sceneVersion && settingsVersion == other.settingsVersion && view == other.view &&
-           projection == other.projection && layout == other.layout && renderTags == other.renderTags;
+    return sceneVersion == other.sceneVersion && settingsVersion == other.settingsVersion &&
+           sameBits(view, other.view) && sameBits(projection, other.projection) && layout == other.layout &&
+           renderTags == other.renderTags;
 }
 
 HdHairRenderPass::HdHairRenderPass(HdRenderIndex* index, HdRprimCollection const& collection,
@@ -85,6 +140,7 @@ void HdHairRenderPass::_Execute(HdRenderPassStateSharedPtr const& renderPassStat
     frame.settingsVersion = _delegate->GetRenderSettingsVersion();
     frame.view = renderPassState->GetWorldToViewMatrix();
     frame.projection = renderPassState->GetProjectionMatrix();
+    HdCamera const& camera = *renderPassState->GetCamera();
     frame.layout.dataWindow = dataWindow;
     for (HdRenderPassAovBinding const& binding : bindings) {
         frame.layout.buffers.emplace_back(binding.renderBufferId, binding.renderBuffer);
@@ -109,7 +165,16 @@ void HdHairRenderPass::_Execute(HdRenderPassStateSharedPtr const& renderPassStat
             request.scene = _renderParam->Snapshot(renderTags, &refineLevel);
             request.settings = _delegate->GetEngineSettings();
             request.settings.setComplexity(hdhair::hydra::complexityFromRefineLevel(refineLevel));
-            request.camera = hdhair::hydra::cameraViewFromHydra(frame.view.data(), frame.projection.data(),
+            // The camera prim's lens and transform, checked as the embedded
+            // reader checks them: a lens that cannot be used is an error
+            // naming the prim and attribute, a bad clipping range takes
+            // USD's fallback with a warning.
+            const hdhair::CameraPrim prim = cameraPrimOf(camera);
+            const hdhair::CameraPrim checked = hdhair::checkedCamera(prim, "the host's camera", _renderParam->GetDiagnostics());
+            const GfMatrix4d projection = checked.clippingRange == prim.clippingRange
+                                              ? frame.projection
+                                              : projectionFor(checked, *renderPassState);
+            request.camera = hdhair::hydra::cameraViewFromHydra(frame.view.data(), projection.data(),
                                                                 dataWindow.GetWidth(), dataWindow.GetHeight());
             Requested requested{frame.layout, std::nullopt};
             request.ids = wantsIds(bindings) && _idsRead;
@@ -119,12 +184,10 @@ void HdHairRenderPass::_Execute(HdRenderPassStateSharedPtr const& renderPassStat
         } catch (std::exception const& error) {
             // No GL, say: reported once per change and the buffers left
             // cleared; hosts must not hang waiting for a frame that cannot come.
-            TF_RUNTIME_ERROR("hdHair: the frame could not be rendered: %s", error.what());
+            _Fail(error.what(), bindings);
             _newestRequest = 0;
             _requests.clear();
-            _Write(nullptr, bindings);
-            _shown = "failed";
-            _renderParam->SetProgress({_shown, false, 0, 0, 0, 0, 0});
+            _renderParam->SetProgress({_shown, _error, false, 0, 0, 0, 0, 0});
             _Settle(bindings);
             return;
         }
@@ -133,7 +196,7 @@ void HdHairRenderPass::_Execute(HdRenderPassStateSharedPtr const& renderPassStat
     _TakeFinished(frame.layout, bindings);
     if (_renderer) {
         hdhair::ProgressiveRenderer::Counts const counts = _renderer->counts();
-        _renderParam->SetProgress({_shown, _renderer->rendering() != 0, counts.previews, counts.finals,
+        _renderParam->SetProgress({_shown, _error, _renderer->rendering() != 0, counts.previews, counts.finals,
                                    counts.cancelled, _shownPreview.first, _shownPreview.second});
     }
 }
@@ -155,10 +218,9 @@ void HdHairRenderPass::_TakeFinished(Layout const& current, HdRenderPassAovBindi
     if (!fits) return;
     const bool final = finished->quality == hdhair::FrameQuality::Final;
     if (!finished->error.empty()) {
-        TF_RUNTIME_ERROR("hdHair: the frame could not be rendered: %s", finished->error.c_str());
-        _Write(nullptr, bindings);
-        _shown = "failed";
+        _Fail(finished->error, bindings);
     } else {
+        _error.clear();
         hdhair::RenderResult& result = finished->result;
         // testUsdview reads the full frame's line: keep its form.
         std::string const what =
@@ -181,6 +243,17 @@ void HdHairRenderPass::_TakeFinished(Layout const& current, HdRenderPassAovBindi
         if (!final) _shownPreview = {finished->previewDivisor, finished->previewCurveStride};
     }
     if (final && finished->request == _newestRequest) _Settle(bindings);
+}
+
+void HdHairRenderPass::_Fail(std::string const& why, HdRenderPassAovBindingVector const& bindings) {
+    // The error reaches the host through Tf and the render stats
+    // (hdHairShownFrame "failed", hdHairFrameError): hosts such as usdrecord
+    // render until the pass reports converged, so a failed frame converges
+    // too (with cleared buffers) rather than keep them waiting forever.
+    TF_RUNTIME_ERROR("hdHair: the frame could not be rendered: %s", why.c_str());
+    _Write(nullptr, bindings);
+    _shown = "failed";
+    _error = why;
 }
 
 void HdHairRenderPass::_Settle(HdRenderPassAovBindingVector const& bindings) {

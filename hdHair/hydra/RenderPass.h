@@ -75,6 +75,9 @@ private:
                 std::shared_ptr<DeferredIds> const& deferredIds = nullptr);
     // The pass and its buffers report converged: the newest view is in.
     void _Settle(HdRenderPassAovBindingVector const& bindings);
+    // Reports a frame that cannot be rendered (TF_RUNTIME_ERROR, the render
+    // stats) and clears the buffers; the caller settles.
+    void _Fail(std::string const& why, HdRenderPassAovBindingVector const& bindings);
 
     HdHairRenderDelegate* _delegate;
     HdHairRenderParam* _renderParam;
@@ -97,6 +100,7 @@ private:
     std::shared_ptr<DeferredIds> _deferredIds;  // the newest frame's, if deferred
     bool _converged = false;
     std::string _shown = "none";  // what the buffers hold (RenderParam's Progress)
+    std::string _error;           // why, when _shown is "failed"
     std::pair<int, int> _shownPreview{0, 0};  // the last preview shown: pixel divisor, curve stride
 };
 

@@ -21,7 +21,13 @@
 #include "pxr/usd/usdGeom/tokens.h"
 #include "pxr/usdImaging/usdImagingGL/engine.h"
 
+#include "hdHair/base/Diagnostics.h"
+#include "hdHair/base/InputError.h"
+#include "hdHair/hydra/TfDiagnosticCapture.h"
+#include "hdHair/hydra/UsdStageChecks.h"
 #include "hdHair/render/CameraView.h"
+#include "hdHair/render/FrameMemory.h"
+#include "hdHair/scene/SceneValidation.h"
 
 PXR_NAMESPACE_USING_DIRECTIVE
 
@@ -82,9 +88,27 @@ Image readColor(HdRenderBuffer* buffer) {
 }  // namespace
 
 UsdImagingRecordResult recordWithUsdImaging(const UsdImagingRecordRequest& request) {
+    // Declared first, so that it outlives the engine: the plugin's render
+    // thread warns until the engine is gone.
+    TfDiagnosticCapture capture([&](const std::string& warning) {
+        if (request.warn) request.warn(warning);
+    });
     if (!request.pluginPath.empty()) PlugRegistry::GetInstance().RegisterPlugins(request.pluginPath);
-    UsdStageRefPtr stage = UsdStage::Open(request.stagePath);
-    if (!stage) throw std::runtime_error("OpenUSD cannot open '" + request.stagePath + "'");
+    // Every layer opened, checked and bounded before OpenUSD composes the
+    // stage; held open so that UsdStage::Open reads none of them again.
+    const std::vector<SdfLayerRefPtr> layers =
+        openStageLayers(request.stagePath, [&] { return capture.takeErrors(); });
+    UsdStageRefPtr stage = UsdStage::Open(layers.front());
+    if (!stage) throw InputError(layerOpenFailure(request.stagePath, capture.takeErrors()));
+    // Composition errors are errors, as in the embedded reader: a frame
+    // with a reference or sublayer silently missing is a wrong picture.
+    if (std::string problem = compositionProblem(stage); !problem.empty())
+        throw InputError(request.stagePath + ": " + problem);
+    capture.takeErrors();  // said as the composition error above, or nothing
+    capture.release();
+    warnAboutCurveTokens(stage, request.stagePath, [&](const std::string& where, const std::string& message) {
+        if (request.warn) request.warn(where + ": " + message);
+    });
     UsdTimeCode time = timeCodeOf(request.time);
 
     UsdImagingGLEngine::Parameters parameters;
@@ -113,9 +137,13 @@ UsdImagingRecordResult recordWithUsdImaging(const UsdImagingRecordRequest& reque
     int width = request.imageWidth, height = 0;
     if (!request.camera.empty()) {
         UsdGeomCamera camera(stage->GetPrimAtPath(SdfPath(request.camera)));
-        if (!camera) throw std::runtime_error(request.stagePath + ": no camera at '" + request.camera + "'");
-        GfCamera gfCamera = camera.GetCamera(time);
-        height = imageHeightFor(width, gfCamera.GetHorizontalAperture(), gfCamera.GetVerticalAperture());
+        if (!camera) throw InputError(request.stagePath + ": no camera at '" + request.camera + "'");
+        // The embedded reader's checks, worded the same: a lens that cannot
+        // be used is an error naming the prim and attribute. Its warnings
+        // (a clipping range replaced) are the plugin's to give, once.
+        Diagnostics saidByThePlugin;
+        const CameraPrim lens = checkedCamera(cameraPrimAt(camera, time), request.stagePath, saidByThePlugin);
+        height = imageHeightFor(width, lens.horizontalAperture, lens.verticalAperture);
         engine.SetCameraPath(SdfPath(request.camera));
         result.camera = request.camera;
     } else {
@@ -139,6 +167,12 @@ UsdImagingRecordResult recordWithUsdImaging(const UsdImagingRecordRequest& reque
         engine.SetCameraState(toGf(view.view), toGf(view.projection));
         result.camera = "framing camera (" + request.framing + ")";
     }
+    // Before the engine allocates its render buffers: colour (RGBA, 16
+    // bytes a pixel at most) and depth (4), and the copy read back here (16).
+    {
+        RenderSettings frameSettings = RenderSettings::fromAssignments(request.complexity, request.settings);
+        checkFrameFitsMemory(width, height, frameSettings, false, false, 36, availableMemory());
+    }
     engine.SetRenderBufferSize(GfVec2i(width, height));
     engine.SetFraming(CameraUtilFraming(GfRect2i(GfVec2i(0, 0), width, height)));
 
@@ -161,13 +195,19 @@ UsdImagingRecordResult recordWithUsdImaging(const UsdImagingRecordRequest& reque
         std::this_thread::sleep_for(pause);
         pause = std::min(pause + std::chrono::milliseconds(5), std::chrono::milliseconds(100));
     }
-    result.color = readColor(engine.GetAovRenderBuffer(HdAovTokens->color));
     VtDictionary stats = engine.GetRenderStats();
     auto text = [&](char const* key) {
         auto found = stats.find(key);
         return found != stats.end() && found->second.IsHolding<std::string>() ? found->second.UncheckedGet<std::string>()
                                                                                 : std::string();
     };
+    // A frame the plugin could not render converges with cleared buffers
+    // (RenderPass.cpp): an error here, never an empty image.
+    if (std::string error = text("hdHairFrameError"); !error.empty() || text("hdHairShownFrame") == "failed")
+        throw std::runtime_error(error.empty() ? "the HdHair plugin could not render the frame" : error);
+    for (const std::string& error : capture.takeErrors())
+        if (request.warn) request.warn("OpenUSD: " + error);
+    result.color = readColor(engine.GetAovRenderBuffer(HdAovTokens->color));
     result.frameStatsJson = text("hdHairFrameStats");
     result.plan = text("hdHairPlan");
     return result;

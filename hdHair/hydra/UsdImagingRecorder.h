@@ -5,6 +5,7 @@
 // hdhair-record builds the same with or without OpenUSD; the implementation
 // exists only when the plugin is built (HDHAIR_WITH_USD).
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -23,6 +24,10 @@ struct UsdImagingRecordRequest {
     bool renderPurpose = false, proxyPurpose = true, guidePurpose = false;
     std::string framing = "fitAll";
     std::string pluginPath;      // folder holding the plugin's plugInfo.json
+    // Each warning, one line ("<where>: <what>"), as it comes: the stage
+    // checks', OpenUSD's and the plugin's, none held back past the stage's
+    // checks (a refused stage gives its one error line alone).
+    std::function<void(const std::string& warning)> warn;
 };
 
 struct UsdImagingRecordResult {
@@ -34,7 +39,9 @@ struct UsdImagingRecordResult {
     std::string plan;
 };
 
-// Throws std::runtime_error with a one-line reason.
+// Throws InputError for a stage that cannot be used (the same verdicts as
+// the embedded reader: docs/hard-cases.md), std::runtime_error for a frame
+// that could not be rendered; each with a one-line reason.
 UsdImagingRecordResult recordWithUsdImaging(const UsdImagingRecordRequest& request);
 
 }  // namespace hdhair::hydra

@@ -15,6 +15,7 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <new>
 #include <optional>
 #include <string>
 #include <vector>
@@ -26,6 +27,7 @@
 #include "hdHair/base/AtomicFile.h"
 #include "hdHair/base/Diagnostics.h"
 #include "hdHair/base/InputError.h"
+#include "hdHair/base/PrintableText.h"
 #include "hdHair/gl/GlContext.h"
 #include "hdHair/image/DisplayTransform.h"
 #include "hdHair/image/ImageWriter.h"
@@ -73,7 +75,21 @@ struct Options {
     CyclesRenderOptions cycles;
     std::string blender = "blender";
     bool readerGiven = false;  // --reader on the command line
+    bool framesGiven = false;  // --frames on the command line, even as ""
 };
+
+// The files this run wrote: a run that fails removes them, so that a failed
+// frame range or an unwritable --stats leaves nothing behind (a batch job's
+// outputs are all there, or its exit status says why none are).
+std::vector<std::string> filesWritten;
+
+void removeFilesWritten() {
+    for (const std::string& path : filesWritten) {
+        std::error_code ignored;
+        std::filesystem::remove(path, ignored);
+    }
+    filesWritten.clear();
+}
 
 
 #if HDHAIR_WITH_USD
@@ -152,6 +168,7 @@ void writeFrameImage(Image linear, const Image* gpuDisplayed, const DisplayTrans
     // is checked for its size, so the display image stands in for it.
     const ImageWriteReport report =
         writeImage(color.displayed ? *color.displayed : linear, outputPath, color, metadata);
+    filesWritten.push_back(outputPath);
     passes.push_back({"writeImage", millisecondsSince(writeStart)});
     if (report.pixelsClampedToHalf > 0)
         diagnostics.warn(outputPath, fmt::format("{} pixels exceed half float's largest value (65504) and were clamped "
@@ -178,7 +195,7 @@ void checkOutputTargets(const Options& options) {
 // time code (NaN) with --defaultTime; else UsdTimeCode::EarliestTime()
 // (-infinity), at which every attribute takes its first time sample.
 std::vector<double> timesToRender(const Options& options) {
-    if (!options.frames.empty()) return parseFrameSpec(options.frames);
+    if (options.framesGiven) return parseFrameSpec(options.frames);
     if (options.defaultTime) return {std::numeric_limits<double>::quiet_NaN()};
     return {-std::numeric_limits<double>::infinity()};
 }
@@ -263,8 +280,13 @@ int runThroughUsdImaging(const Options& options, const usda::SceneReadOptions& p
     Complexity complexity = Complexity::Low;
     parseComplexity(options.complexity, &complexity);
     nlohmann::json allStats = nlohmann::json::array();
+    size_t printed = 0;
     for (double time : timesToRender(options)) {
         hydra::UsdImagingRecordRequest request;
+        request.warn = [&printed](const std::string& warning) {
+            if (printed++ < kWarningsPrinted)
+                std::fprintf(stderr, "hdhair-record: warning: %s\n", printableText(warning).c_str());
+        };
         request.stagePath = options.usdFile;
         request.camera = options.camera;
         request.imageWidth = options.imageWidth;
@@ -328,6 +350,7 @@ int runThroughUsdImaging(const Options& options, const usda::SceneReadOptions& p
         stats["stage"] = options.usdFile;
         stats["frames"] = allStats;
         writeTextFileAtomically(options.statsFile, stats.dump(2) + "\n");
+        filesWritten.push_back(options.statsFile);
     }
     return 0;
 #else
@@ -355,6 +378,7 @@ void finishRun(const Options& options, const nlohmann::json& allStats, const Dia
     for (const Diagnostic& warning : diagnostics.warnings())
         stats["warnings"].push_back({{"where", warning.where}, {"message", warning.message}});
     writeTextFileAtomically(options.statsFile, stats.dump(2) + "\n");
+    filesWritten.push_back(options.statsFile);
 }
 
 // Set by SIGINT and SIGTERM while a reference renders: Blender is stopped
@@ -707,9 +731,16 @@ int main(int argc, char** argv) {
         return 2;
     }
     options.readerGiven = app.count("--reader") > 0;
+    options.framesGiven = app.count("--frames") > 0;
     try {
         return run(options);
+    } catch (const std::bad_alloc&) {
+        removeFilesWritten();
+        std::fprintf(stderr, "hdhair-record: error: out of memory (std::bad_alloc); lower --imageWidth, supersampling "
+                             "or exactMemoryMB, or render on a machine with more memory\n");
+        return 1;
     } catch (const std::exception& error) {
+        removeFilesWritten();
         std::fprintf(stderr, "hdhair-record: error: %s\n", error.what());
         return 1;
     }
