@@ -532,9 +532,15 @@ TEST_P(OpenUsdCurveStages, WarnsAsExpectedAndCoversWhatStormCovers) {
     const CurveStageCase& c = GetParam();
     const fs::path folder = fs::path(HDHAIR_OPENUSD_TESTENV) / c.folder;
     const std::string baselinePath = (folder / "baseline" / (std::string(c.baseline) + ".png")).string();
-    if (!fs::exists(baselinePath)) GTEST_SKIP() << "no OpenUSD test stages at " << HDHAIR_OPENUSD_TESTENV;
+    ASSERT_TRUE(fs::exists(baselinePath)) << "no baseline " << baselinePath << " in OpenUSD's test stages";
     const std::string stagePath = (folder / c.stage).string();
-    if (!fs::exists(stagePath)) GTEST_SKIP() << "no stage " << stagePath << ": " << c.why;
+    if (!fs::exists(stagePath)) {
+        // Only a case declared not compared may lack its stage, and it says
+        // why; once the stage is there, the case must be given a comparison.
+        ASSERT_EQ(c.agreement, Agreement::NotCompared) << "no stage " << stagePath;
+        std::printf("not compared: %s\n", c.why);
+        return;
+    }
 
     UsdStageRefPtr stage = UsdStage::Open(stagePath);
     ASSERT_TRUE(stage) << stagePath;

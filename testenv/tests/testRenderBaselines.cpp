@@ -15,7 +15,7 @@
 //   a light removed; so the tolerance is tight enough to catch a changed shade.
 //
 // To accept new pictures after an intended change:
-//   HDHAIR_UPDATE_BASELINES=1 ctest -R Baseline     (then review the PNGs in git)
+//   HDHAIR_UPDATE_BASELINES=1 ctest -R Baseline     (fails, having rewritten them: review the PNGs in git)
 // Failing renders are left in build/testenv-output/ for inspection.
 
 #include <cstdio>
@@ -36,6 +36,7 @@
 #include "hdHair/render/CameraView.h"
 #include "hdHair/scene/Scene.h"
 #include "hdHair/usda/SceneReader.h"
+#include "testenv/tests/BaselineUpdates.h"
 
 using namespace hdhair;
 using namespace hdhair::testenv;
@@ -170,11 +171,6 @@ BaselineVerdict compareWithBaseline(const WrittenRender& render, const BaselineC
             compareImages(render.linear, readImage(baselinePath(c.name + ".exr").string()), tolerance.linear)};
 }
 
-bool updatingBaselines() {
-    const char* update = std::getenv("HDHAIR_UPDATE_BASELINES");
-    return update && std::string(update) == "1";
-}
-
 class Baseline : public ::testing::TestWithParam<BaselineCase> {};
 
 // Names the case in gtest's messages (instead of its bytes).
@@ -191,7 +187,7 @@ TEST_P(Baseline, MatchesCheckedInImages) {
         fs::copy_file(written.displayPath, baselinePath(c.name + ".png"), fs::copy_options::overwrite_existing);
         fs::copy_file(written.linearPath, baselinePath(c.name + ".exr"), fs::copy_options::overwrite_existing);
         written.remove();
-        GTEST_SKIP() << "baselines updated: " << baselinePath(c.name + ".{png,exr}");
+        HDHAIR_BASELINES_REWRITTEN(baselinePath(c.name + ".{png,exr}").string());
     }
     for (const char* extension : {".png", ".exr"})
         ASSERT_TRUE(fs::exists(baselinePath(c.name + extension)))
@@ -204,7 +200,7 @@ TEST_P(Baseline, MatchesCheckedInImages) {
 
 TEST_P(Baseline, MatchesWithTheCameraOneSubPixelStepAway) {
     const BaselineCase& c = GetParam();
-    if (updatingBaselines()) GTEST_SKIP() << "baselines are being updated";
+    if (updatingBaselines()) FAIL() << "baselines are being rewritten: this run checks nothing";
     StageRenderRequest shifted = c.request;
     shifted.pixelShift = 1.0 / 256.0;
     WrittenRender written = writeRender(renderStage(shifted).result.color, c.name + ".shifted");
@@ -216,7 +212,7 @@ TEST_P(Baseline, MatchesWithTheCameraOneSubPixelStepAway) {
 
 TEST_P(Baseline, FailsForEveryDefectThatApplies) {
     const BaselineCase& c = GetParam();
-    if (updatingBaselines()) GTEST_SKIP() << "baselines are being updated";
+    if (updatingBaselines()) FAIL() << "baselines are being rewritten: this run checks nothing";
     Diagnostics diagnostics;
     Scene scene = readStage(c.request, diagnostics);
     RenderResult baseline = renderScene(scene, c.request).result;
