@@ -4,6 +4,7 @@
 #include <cctype>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <stdexcept>
 
 #include <OpenImageIO/imageio.h>
@@ -67,6 +68,25 @@ bool TestCase::usdrecordCompatible() const {
     return std::find(arguments.begin(), arguments.end(), "--camera") != arguments.end();
 }
 
+CaseMutation caseMutation(const std::string& name) {
+    static const std::map<std::string, CaseMutation> mutations = {
+        {"unsorted", {{"-s", "transparency=unsorted"}, ""}},
+        {"binSorted", {{"-s", "transparency=binSorted"}, ""}},
+        {"shadowsOff", {{"-s", "shadowMode=off"}, ""}},
+        {"shadowsOn", {{"-s", "shadowMode=deepOpacity"}, ""}},
+        {"kajiyaKay", {{"-s", "shadingModel=kajiyaKay"}, ""}},
+        {"marschner", {{"-s", "shadingModel=marschner"}, ""}},
+        {"rawDisplay", {{}, "Raw"}},
+        {"srgbDisplay", {{}, "sRGB"}},
+    };
+    auto found = mutations.find(name);
+    if (found == mutations.end())
+        throw std::runtime_error("unknown case mutation '" + name +
+                                 "' (unsorted, binSorted, shadowsOff, shadowsOn, kajiyaKay, marschner, rawDisplay, "
+                                 "srgbDisplay)");
+    return found->second;
+}
+
 std::vector<std::string> testCaseFolders() {
     std::vector<std::string> folders;
     for (const fs::directory_entry& entry : fs::directory_iterator(sourcePath("testenv/cases")))
@@ -118,6 +138,15 @@ TestCase loadTestCase(const std::string& folder) {
         thresholds.contains("hardfailAllowed") ? size_t(numberAt(thresholds, "hardfailAllowed", file)) : 0;
     if (testCase.tolerance.outlierLimit < testCase.tolerance.threshold)
         throw std::runtime_error(file + ": \"hardfail\" must not be below \"fail\"");
+    if (json.contains("mutations")) {
+        const nlohmann::json& mutations = json.at("mutations");
+        if (!mutations.is_array()) throw std::runtime_error(file + ": \"mutations\" must be an array of names");
+        for (const nlohmann::json& mutation : mutations) {
+            if (!mutation.is_string()) throw std::runtime_error(file + ": \"mutations\" must be an array of names");
+            caseMutation(mutation.get<std::string>());  // an unknown name is an error here
+            testCase.mutations.push_back(mutation.get<std::string>());
+        }
+    }
     return testCase;
 }
 

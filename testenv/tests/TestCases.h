@@ -11,7 +11,9 @@
 //                  "display": {"view": "sRGB", "look": "", "display": ""}
 //                              (an OCIO display of the shipped config),
 //                  "thresholds": {"fail": 0.008, "failpercent": 0.25,
-//                                 "hardfail": 0.25, "hardfailAllowed": 0}}
+//                                 "hardfail": 0.25, "hardfailAllowed": 0},
+//                  "mutations": ["unsorted", "shadowsOff", ...]}
+//                              (each must make the case fail: caseMutation)
 //   baseline.exr  the linear render (its colour space in its metadata)
 //   baseline.png  its display image, for people to look at and review.
 // A case renders with hdhair-record to EXR; the actual and the baseline EXR
@@ -40,10 +42,25 @@ struct TestCase {
     std::string frames;  // "" : one frame
     DisplayTransformOptions display;  // openColorIO; its colour space comes from each EXR
     CoveredPixelTolerance tolerance;
+    std::vector<std::string> mutations;  // caseMutation's names
     // True when every argument is one usdrecord also takes (so the case may
     // run through usdrecord --renderer HdHair too).
     bool usdrecordCompatible() const;
 };
+
+// A change to a case that must make it fail against its baseline: a test
+// that passes with sorting off, the shadows swapped, the other shading
+// model or another display view would not catch that defect. Settings go
+// after the case's own arguments (the last one wins); a view replaces the
+// case's display view.
+struct CaseMutation {
+    std::vector<std::string> arguments;
+    std::string view;
+};
+// "unsorted", "binSorted" (transparency), "shadowsOff", "shadowsOn"
+// (deepOpacity), "kajiyaKay", "marschner" (shadingModel), "rawDisplay",
+// "srgbDisplay" (the view). Throws std::runtime_error for another name.
+CaseMutation caseMutation(const std::string& name);
 
 // The case folders under testenv/cases, sorted by name.
 std::vector<std::string> testCaseFolders();

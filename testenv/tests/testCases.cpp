@@ -1,6 +1,6 @@
 // Every case folder under testenv/cases rendered with hdhair-record and
 // compared with its baseline through the case's OCIO display transform
-// (TestCases.h). HDHAIR_UPDATE_BASELINES=1 rewrites the baselines instead.
+// (TestCases.h). HDHAIR_UPDATE_BASELINES=1 rewrites the baselines instead, and fails (BaselineUpdates.h).
 
 #include <algorithm>
 #include <cstdlib>
@@ -13,17 +13,13 @@
 #include "StageRendering.h"
 #include "TestCases.h"
 #include "hdHair/image/ImageWriter.h"
+#include "testenv/tests/BaselineUpdates.h"
 
 using namespace hdhair;
 using namespace hdhair::testenv;
 namespace fs = std::filesystem;
 
 namespace {
-
-bool updatingBaselines() {
-    const char* update = std::getenv("HDHAIR_UPDATE_BASELINES");
-    return update && *update && std::string(update) != "0";
-}
 
 // A fresh folder for one case's outputs in the build tree.
 std::string outputFolderFor(const std::string& name) {
@@ -48,6 +44,7 @@ TEST_P(Cases, MatchItsBaselineThroughItsDisplayTransform) {
         if (updatingBaselines()) {
             updateBaseline(testCase, actual[frame], baselines[frame]);
             std::cout << "updated " << baselines[frame] << " and its .png\n";
+            if (frame + 1 == actual.size()) HDHAIR_BASELINES_REWRITTEN(testCase.name);
             continue;
         }
         const CaseVerdict verdict = compareWithBaseline(testCase, actual[frame], baselines[frame], output);
@@ -68,6 +65,46 @@ TEST_P(Cases, MatchItsBaselineThroughItsDisplayTransform) {
 std::string caseName(const ::testing::TestParamInfo<std::string>& info) { return caseTestName(info.param); }
 
 INSTANTIATE_TEST_SUITE_P(Testenv, Cases, ::testing::ValuesIn(testCaseFolders()), caseName);
+
+class CaseMutations : public ::testing::TestWithParam<std::string> {};
+
+// A case is only as good as the defects it catches: each declares, in its
+// case.json, the relevant settings and views (TestCases.h, caseMutation)
+// whose change must make it fail against its baseline: sorting on blended
+// hair, shadows where lit, the other shading model, another display view.
+// A mutation that passes is a defect the case would not see.
+TEST_P(CaseMutations, EachDeclaredMutationFailsAgainstTheBaseline) {
+    const TestCase testCase = loadTestCase(GetParam());
+    ASSERT_FALSE(testCase.mutations.empty()) << testCase.folder << "/case.json declares no \"mutations\"";
+    const std::string baseline = frameFiles(testCase, testCase.folder, "baseline").front();
+    for (const std::string& name : testCase.mutations) {
+        SCOPED_TRACE(name);
+        const CaseMutation mutation = caseMutation(name);
+        TestCase mutated = testCase;
+        if (!mutation.view.empty()) {
+            // The reviewed PNG is the baseline through the case's view; another
+            // view must not reproduce it.
+            mutated.display.view = mutation.view;
+            Image shown = caseDisplayImage(mutated, baseline);
+            for (float& value : shown.pixels) value = std::clamp(value, 0.0f, 1.0f);
+            const std::string png = fs::path(baseline).replace_extension(".png").string();
+            const ImageComparison same = compareImages(readImage(png), shown, exactWithin(1.0 / 255.0));
+            EXPECT_FALSE(same.passed) << testCase.name << " shows the same through the " << mutation.view << " view";
+            continue;
+        }
+        mutated.arguments.insert(mutated.arguments.end(), mutation.arguments.begin(), mutation.arguments.end());
+        const std::string output = outputFolderFor(testCase.name + ".mutated-" + name);
+        std::string log;
+        ASSERT_EQ(renderCase(mutated, output, &log), 0) << log;
+        const CaseVerdict verdict =
+            compareWithBaseline(testCase, frameFiles(mutated, output, "actual").front(), baseline, output);
+        EXPECT_FALSE(verdict.passed) << testCase.name << " still matches its baseline with " << name
+                                     << ": it would not catch that defect\n"
+                                     << verdict.report;
+    }
+}
+
+INSTANTIATE_TEST_SUITE_P(Testenv, CaseMutations, ::testing::ValuesIn(testCaseFolders()), caseName);
 
 // A render that no longer matches must fail with a report a person can act
 // on: the statistics, and the actual and difference images written.
