@@ -105,6 +105,14 @@ enum class Agreement {
 // change inside the allowances.
 constexpr double kSameShare = 0.95;
 constexpr int kSameBoundsPixels = 2;
+// The colour check (compareColorRegions): at least this many 16-pixel cells
+// compared, each within this chromaticity difference. Measured on the
+// WithColor stages at 1.1 to 1.3: 82 cells at 1.1 and 1.2, the largest 0.052
+// where the two last segments overlap at the red corner (Storm draws one
+// over the other, hdHair blends their edges); with the colour channels
+// rotated, the difference is several times that.
+constexpr int kColorCells = 10;
+constexpr double kSameChromaticity = 0.07;
 
 struct ExpectedWarning {
     std::string where;    // prim path, with ".attribute" when it is about one
@@ -459,6 +467,88 @@ std::string describe(const Box& box) {
     return out.str();
 }
 
+// The first row (or column, with `columns`) hdHair covers where Storm's
+// cage covers nothing within `margin` rows (columns), or -1. A cubic span
+// lies in its cage's convex hull, so every row and column of the curve has
+// cage pixels within the margin; a gap between two curves' cages stays a
+// gap. Finer than the bounding boxes, which one stray strand inside them
+// would pass.
+int firstLineOutsideTheCage(const Mask& hdHair, const Mask& storm, int margin, bool columns) {
+    const int lines = columns ? hdHair.width : hdHair.height, along = columns ? hdHair.height : hdHair.width;
+    auto covers = [&](const Mask& mask, int line) {
+        for (int i = 0; i < along; ++i)
+            if (columns ? mask.at(line, i) : mask.at(i, line)) return true;
+        return false;
+    };
+    std::vector<char> cage(size_t(lines), 0);
+    for (int line = 0; line < lines; ++line) cage[size_t(line)] = covers(storm, line) ? 1 : 0;
+    for (int line = 0; line < lines; ++line) {
+        if (!covers(hdHair, line)) continue;
+        bool near = false;
+        for (int other = std::max(0, line - margin); other <= std::min(lines - 1, line + margin) && !near; ++other)
+            near = cage[size_t(other)] != 0;
+        if (!near) return line;
+    }
+    return -1;
+}
+
+// Where both draw a curve's displayColor unlit by anything coloured (Storm
+// unlit, hdHair lit by its white camera light), the colour's chromaticity,
+// r / (r + g + b) and g / (r + g + b), is the same in both; only the
+// brightness differs. Compared per 16-pixel cell, over pixels both cover
+// fully (two pixels in from either's edge, where the background blends in).
+struct ColorRegions {
+    int compared = 0;      // cells with at least kMinPixels such pixels
+    double largest = 0.0;  // the largest chromaticity difference of a cell
+    std::string worst;
+};
+
+ColorRegions compareColorRegions(const Image& storm, const Image& render, const Mask& stormMask,
+                                 const Mask& hdHairMask, int channelShift) {
+    constexpr int kCell = 16;
+    constexpr int kMinPixels = 8;
+    Mask inside(stormMask.width, stormMask.height);
+    // Pixels whose 5x5 neighbourhood both cover.
+    for (int y = 2; y + 2 < stormMask.height; ++y)
+        for (int x = 2; x + 2 < stormMask.width; ++x) {
+            bool all = render.at(x, y, 3) >= 1.0f;
+            for (int dy = -2; dy <= 2 && all; ++dy)
+                for (int dx = -2; dx <= 2 && all; ++dx)
+                    all = stormMask.at(x + dx, y + dy) && hdHairMask.at(x + dx, y + dy);
+            inside.at(x, y) = all ? 1 : 0;
+        }
+    ColorRegions regions;
+    for (int cy = 0; cy < inside.height; cy += kCell)
+        for (int cx = 0; cx < inside.width; cx += kCell) {
+            double sums[2][3] = {{0, 0, 0}, {0, 0, 0}};
+            int pixels = 0;
+            for (int y = cy; y < std::min(cy + kCell, inside.height); ++y)
+                for (int x = cx; x < std::min(cx + kCell, inside.width); ++x) {
+                    if (!inside.at(x, y)) continue;
+                    ++pixels;
+                    for (int c = 0; c < 3; ++c) {
+                        sums[0][c] += storm.at(x, y, c);
+                        sums[1][c] += render.at(x, y, (c + channelShift) % 3);
+                    }
+                }
+            if (pixels < kMinPixels) continue;
+            ++regions.compared;
+            const double stormTotal = sums[0][0] + sums[0][1] + sums[0][2];
+            const double hdHairTotal = sums[1][0] + sums[1][1] + sums[1][2];
+            if (stormTotal <= 0.0 || hdHairTotal <= 0.0) continue;
+            for (int c = 0; c < 2; ++c) {
+                const double difference = std::abs(sums[0][c] / stormTotal - sums[1][c] / hdHairTotal);
+                if (difference > regions.largest) {
+                    regions.largest = difference;
+                    std::ostringstream where;
+                    where << "cell at (" << cx << ", " << cy << "), " << pixels << " pixels";
+                    regions.worst = where.str();
+                }
+            }
+        }
+    return regions;
+}
+
 // The gprims UsdImaging hands a delegate as meshes, which hdHair draws.
 bool drawnAsMesh(const UsdPrim& prim) {
     return prim.IsA<UsdGeomMesh>() || prim.IsA<UsdGeomSphere>() || prim.IsA<UsdGeomCylinder>() ||
@@ -623,8 +713,24 @@ TEST_P(OpenUsdCurveStages, WarnsAsExpectedAndCoversWhatStormCovers) {
     case Agreement::HdHairInsideStormsCage:
         ASSERT_EQ(stormBox.empty(), hdHairBox.empty()) << context;
         if (!stormBox.empty()) expectInside(hdHairBox, stormBox, c.cageMarginPixels);
+        EXPECT_EQ(firstLineOutsideTheCage(hdHair, storm, c.cageMarginPixels, false), -1)
+            << "hdHair covers a row where Storm's cage has none; " << context;
+        EXPECT_EQ(firstLineOutsideTheCage(hdHair, storm, c.cageMarginPixels, true), -1)
+            << "hdHair covers a column where Storm's cage has none; " << context;
         break;
     case Agreement::NotCompared: break;
+    }
+
+    // 3. Colour, where both draw the authored displayColor over ribbons or
+    // tubes of the same pixels (the WithColor stages at 1.1 to 1.3).
+    if (std::string(c.folder) == kColor && c.agreement == Agreement::SamePixels) {
+        const ColorRegions regions = compareColorRegions(baseline, render, storm, hdHair, 0);
+        std::cout << c.baseline << ": colour compared in " << regions.compared
+                  << " cells, largest chromaticity difference " << regions.largest << " (" << regions.worst << ")\n";
+        EXPECT_GE(regions.compared, kColorCells) << context;
+        EXPECT_LE(regions.largest, kSameChromaticity) << regions.worst << "; " << context;
+        // The check catches colours in the wrong channels.
+        EXPECT_GT(compareColorRegions(baseline, render, storm, hdHair, 1).largest, kSameChromaticity) << context;
     }
 }
 
