@@ -78,12 +78,14 @@ CaseMutation caseMutation(const std::string& name) {
         {"marschner", {{"-s", "shadingModel=marschner"}, ""}},
         {"rawDisplay", {{}, "Raw"}},
         {"srgbDisplay", {{}, "sRGB"}},
+        {"dropStrand", {{}, "", StageEdit::DropStrand}},
+        {"widths1.5", {{}, "", StageEdit::WidenStrands}},
     };
     auto found = mutations.find(name);
     if (found == mutations.end())
         throw std::runtime_error("unknown case mutation '" + name +
                                  "' (unsorted, binSorted, shadowsOff, shadowsOn, kajiyaKay, marschner, rawDisplay, "
-                                 "srgbDisplay)");
+                                 "srgbDisplay, dropStrand, widths1.5)");
     return found->second;
 }
 

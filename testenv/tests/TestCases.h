@@ -53,13 +53,19 @@ struct TestCase {
 // model or another display view would not catch that defect. Settings go
 // after the case's own arguments (the last one wins); a view replaces the
 // case's display view.
+// Stage edits are made to the scene the embedded reader reads, rendered in
+// the test's process with the case's arguments.
+enum class StageEdit { None, DropStrand, WidenStrands };
 struct CaseMutation {
     std::vector<std::string> arguments;
     std::string view;
+    StageEdit edit = StageEdit::None;
 };
 // "unsorted", "binSorted" (transparency), "shadowsOff", "shadowsOn"
 // (deepOpacity), "kajiyaKay", "marschner" (shadingModel), "rawDisplay",
-// "srgbDisplay" (the view). Throws std::runtime_error for another name.
+// "srgbDisplay" (the view), "dropStrand" (the middle curve of the prim with
+// the most curves left undrawn), "widths1.5" (every authored width 1.5 times
+// as wide). Throws std::runtime_error for another name.
 CaseMutation caseMutation(const std::string& name);
 
 // The case folders under testenv/cases, sorted by name.

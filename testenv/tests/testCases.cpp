@@ -7,12 +7,14 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <limits>
 
 #include <gtest/gtest.h>
 
 #include "StageRendering.h"
 #include "TestCases.h"
 #include "hdHair/image/ImageWriter.h"
+#include "hdHair/tools/FrameSpec.h"
 #include "testenv/tests/BaselineUpdates.h"
 
 using namespace hdhair;
@@ -68,6 +70,66 @@ INSTANTIATE_TEST_SUITE_P(Testenv, Cases, ::testing::ValuesIn(testCaseFolders()),
 
 class CaseMutations : public ::testing::TestWithParam<std::string> {};
 
+// The case's hdhair-record arguments (the ones cases use: --camera, -w,
+// --complexity, -s) as an in-process request, at its first frame.
+StageRenderRequest inProcessRequest(const TestCase& testCase) {
+    StageRenderRequest request;
+    request.stagePath = testCase.stage;
+    request.time = testCase.frames.empty() ? -std::numeric_limits<double>::infinity()
+                                           : parseFrameSpec(testCase.frames).front();
+    for (size_t i = 0; i + 1 < testCase.arguments.size(); i += 2) {
+        const std::string& option = testCase.arguments[i];
+        const std::string& value = testCase.arguments[i + 1];
+        if (option == "--camera") request.camera = value;
+        else if (option == "-w") request.imageWidth = std::stoi(value);
+        else if (option == "-s") request.settings.push_back(value);
+        else if (option == "--complexity") {
+            EXPECT_TRUE(parseComplexity(value, &request.complexity)) << value;
+        } else {
+            ADD_FAILURE() << testCase.name << ": no in-process form of " << option;
+        }
+    }
+    return request;
+}
+
+// The scene with `edit` made (StageEdit); false when nothing in it applies.
+bool editScene(Scene& scene, StageEdit edit) {
+    std::vector<CurvesPrim> edited;
+    if (edit == StageEdit::DropStrand) {
+        const CurvesPrim* most = nullptr;
+        for (const auto& [path, entry] : scene.curves())
+            if (!most || entry.prim->curveVertexCounts.size() > most->curveVertexCounts.size()) most = entry.prim.get();
+        if (!most || most->curveVertexCounts.size() < 2) return false;
+        CurvesPrim prim = *most;
+        prim.invisibleCurves.push_back(int(prim.curveVertexCounts.size() / 2));
+        edited.push_back(std::move(prim));
+    } else {
+        for (const auto& [path, entry] : scene.curves()) {
+            if (!entry.prim->findPrimvar("widths")) continue;
+            CurvesPrim prim = *entry.prim;
+            for (float& width : prim.primvars.at("widths").values) width *= 1.5f;
+            edited.push_back(std::move(prim));
+        }
+    }
+    for (CurvesPrim& prim : edited) scene.setCurves(std::move(prim));
+    return !edited.empty();
+}
+
+// Renders the case in this process, its stage edited, to `exrPath` as
+// hdhair-record writes it (linear, its rendering space in the metadata).
+void renderEdited(const TestCase& testCase, StageEdit edit, const std::string& exrPath) {
+    const StageRenderRequest request = inProcessRequest(testCase);
+    Diagnostics diagnostics;
+    Scene scene = readStage(request, diagnostics);
+    if (edit != StageEdit::None) {
+        ASSERT_TRUE(editScene(scene, edit)) << testCase.name << ": nothing to edit";
+    }
+    const StageRender render = renderScene(scene, request);
+    ImageColor color;
+    color.space = stageSettings(request).renderingSpace();
+    writeImage(render.result.color, exrPath, color);
+}
+
 // A case is only as good as the defects it catches: each declares, in its
 // case.json, the relevant settings and views (TestCases.h, caseMutation)
 // whose change must make it fail against its baseline: sorting on blended
@@ -77,10 +139,31 @@ TEST_P(CaseMutations, EachDeclaredMutationFailsAgainstTheBaseline) {
     const TestCase testCase = loadTestCase(GetParam());
     ASSERT_FALSE(testCase.mutations.empty()) << testCase.folder << "/case.json declares no \"mutations\"";
     const std::string baseline = frameFiles(testCase, testCase.folder, "baseline").front();
+    bool renderedInProcess = false;
     for (const std::string& name : testCase.mutations) {
         SCOPED_TRACE(name);
         const CaseMutation mutation = caseMutation(name);
         TestCase mutated = testCase;
+        if (mutation.edit != StageEdit::None) {
+            const std::string output = outputFolderFor(testCase.name + ".mutated-" + name);
+            // The in-process render, unedited, must match: else an edit
+            // that fails would prove nothing.
+            if (!renderedInProcess) {
+                renderedInProcess = true;
+                const std::string plain = output + "/unedited.exr";
+                renderEdited(testCase, StageEdit::None, plain);
+                const CaseVerdict verdict = compareWithBaseline(testCase, plain, baseline, output);
+                ASSERT_TRUE(verdict.passed) << "rendered in process, " << testCase.name
+                                            << " does not match its baseline:\n" << verdict.report;
+            }
+            const std::string actual = output + "/actual.exr";
+            renderEdited(testCase, mutation.edit, actual);
+            const CaseVerdict verdict = compareWithBaseline(testCase, actual, baseline, output);
+            EXPECT_FALSE(verdict.passed) << testCase.name << " still matches its baseline with " << name
+                                         << ": it would not catch that defect\n"
+                                         << verdict.report;
+            continue;
+        }
         if (!mutation.view.empty()) {
             // The reviewed PNG is the baseline through the case's view; another
             // view must not reproduce it.
