@@ -15,6 +15,7 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <mutex>
 #include <new>
 #include <optional>
 #include <string>
@@ -281,11 +282,15 @@ int runThroughUsdImaging(const Options& options, const usda::SceneReadOptions& p
     parseComplexity(options.complexity, &complexity);
     nlohmann::json allStats = nlohmann::json::array();
     size_t printed = 0;
+    nlohmann::json warnings = nlohmann::json::array();  // every one, for --stats
+    std::mutex warningsMutex;  // the plugin's render thread warns too
     for (double time : timesToRender(options)) {
         hydra::UsdImagingRecordRequest request;
-        request.warn = [&printed](const std::string& warning) {
+        request.warn = [&printed, &warnings, &warningsMutex](const std::string& warning) {
+            const std::lock_guard<std::mutex> lock(warningsMutex);
             if (printed++ < kWarningsPrinted)
                 std::fprintf(stderr, "hdhair-record: warning: %s\n", printableText(warning).c_str());
+            warnings.push_back({{"message", printableText(warning)}});
         };
         request.stagePath = options.usdFile;
         request.camera = options.camera;
@@ -345,10 +350,14 @@ int runThroughUsdImaging(const Options& options, const usda::SceneReadOptions& p
         frameStats["output"] = outputPath;
         allStats.push_back(frameStats);
     }
+    if (printed > kWarningsPrinted)
+        std::fprintf(stderr, "hdhair-record: warning: %zu more warnings not shown (see --stats)\n",
+                     printed - kWarningsPrinted);
     if (!options.statsFile.empty()) {
         nlohmann::json stats;
         stats["stage"] = options.usdFile;
         stats["frames"] = allStats;
+        stats["warnings"] = warnings;
         writeTextFileAtomically(options.statsFile, stats.dump(2) + "\n");
         filesWritten.push_back(options.statsFile);
     }
