@@ -21,6 +21,7 @@
 #include <gtest/gtest.h>
 
 #include "hdHair/image/ImageWriter.h"
+#include "testenv/tests/BadInputStages.h"
 #include "testenv/tests/Commands.h"
 
 namespace hdhair::testenv {
@@ -261,6 +262,11 @@ std::vector<VerdictCase> catalogue() {
         {"statsThatCannotBeWritten", stage(curvesStage("")), camera + "--stats /proc/hdhair-stats.json ", true,
          "/proc/hdhair-stats.json"},
     };
+    // Bad lights, transforms and materials (BadInputStages.h), which
+    // testHardCases also renders in process to check every AOV.
+    for (const InputCase& input : kBadInputs)
+        cases.push_back({std::string("badInput_") + input.name, stage(stageText(input.hair, input.extra)), camera, false,
+                         input.warning});
     return cases;
 }
 
