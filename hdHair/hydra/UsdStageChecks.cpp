@@ -144,10 +144,7 @@ private:
     SdfLayerRefPtr open(const SdfLayerHandle& from, const std::string& assetPath, const char* what) {
         const std::string identifier = SdfComputeAssetPathRelativeToLayer(from, assetPath);
         if (identifier.empty()) return nullptr;
-        if (auto known = byIdentifier_.find(identifier); known != byIdentifier_.end()) {
-            for (const SdfLayerRefPtr& layer : layers_)
-                if (layer == known->second) return layer;
-        }
+        if (auto known = byIdentifier_.find(identifier); known != byIdentifier_.end()) return known->second;
         const ArResolvedPath resolved = ArGetResolver().Resolve(identifier);
         if (resolved.empty()) return nullptr;
         if (std::string problem = regularFileProblem(resolved.GetPathString()); !problem.empty())
@@ -192,7 +189,7 @@ private:
     std::string stagePath_;
     std::function<std::vector<std::string>()> takeErrors_;
     std::vector<SdfLayerRefPtr> layers_;
-    std::map<std::string, SdfLayerHandle> byIdentifier_;
+    std::map<std::string, SdfLayerRefPtr> byIdentifier_;  // the layers above, by identifier
     std::map<std::string, std::vector<SdfLayerHandle>> stacks_;
 };
 
