@@ -51,6 +51,19 @@ std::vector<double> parseFrameSpec(const std::string& spec) {
     return frames;
 }
 
+std::string formatFrameSpec(const std::vector<double>& frames) {
+    std::string spec;
+    for (size_t i = 0; i < frames.size();) {
+        size_t end = i;
+        if (frames[i] == std::floor(frames[i]))
+            while (end + 1 < frames.size() && frames[end + 1] == frames[end] + 1.0) ++end;
+        spec += (spec.empty() ? "" : ",") + (end > i ? fmt::format("{:g}:{:g}", frames[i], frames[end])
+                                                     : fmt::format("{:g}", frames[i]));
+        i = end + 1;
+    }
+    return spec;
+}
+
 bool hasFramePlaceholder(const std::string& pattern) { return pattern.find('#') != std::string::npos; }
 
 std::string expandFramePlaceholder(const std::string& pattern, double frame) {

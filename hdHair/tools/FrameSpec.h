@@ -15,6 +15,10 @@ namespace hdhair {
 // Throws std::invalid_argument with a one-line reason.
 std::vector<double> parseFrameSpec(const std::string& spec);
 
+// The frames as a spec parseFrameSpec reads back: runs of whole frames one
+// apart as "a:b", the rest listed ("1:6,9,12.5"). For a command to resubmit.
+std::string formatFrameSpec(const std::vector<double>& frames);
+
 bool hasFramePlaceholder(const std::string& pattern);
 
 // Throws std::invalid_argument when the frame has a fraction the pattern

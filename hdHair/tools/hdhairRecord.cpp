@@ -3,8 +3,13 @@
 //
 //   hdhair-record [options] usdFile outputImagePath
 //
-// Exit status: 0 on success; non-zero with one line "hdhair-record: error: ..."
-// on failure (bad arguments, unreadable stage, no GL context, unwritable output).
+// Exit status: 0 on success; otherwise one line "hdhair-record: error: ..." and
+//   1  the input or the arguments are wrong (unreadable stage, bad camera,
+//      unwritable output): running again gives the same error;
+//   2  the command line does not parse;
+//   75 (EX_TEMPFAIL) the machine failed the frame (out of memory, no GL
+//      context): another try, or another machine, may render it.
+// hdhair-farm retries only 75 and frames killed by a signal.
 
 #include <atomic>
 #include <chrono>
@@ -52,6 +57,7 @@ using namespace hdhair;
 using Clock = std::chrono::steady_clock;
 
 constexpr size_t kWarningsPrinted = 20;
+constexpr int kMachineFailed = 75;  // EX_TEMPFAIL: see the exit statuses above
 
 #if HDHAIR_WITH_USD
 constexpr const char* kDefaultReader = "usd";
@@ -65,6 +71,7 @@ struct Options {
     std::string reader = kDefaultReader;
     int imageWidth = 960;
     bool defaultTime = false, verbose = false, explain = false;
+    bool check = false;  // --check: check the input as a render would, render nothing
     bool exrFloat32 = false;  // EXR as 32-bit floats, every value exact (else half, clamped to +-65504)
     std::vector<std::string> settings;
     // Colour management, as usdrecord's --colorCorrectionMode, with OCIO's choices.
@@ -490,6 +497,37 @@ int runCyclesReference(const Options& options, const usda::SceneReadOptions& rea
     return 0;
 }
 
+// --check: what every frame's render would refuse, found without rendering:
+// the arguments, the output targets, the stage (read by the embedded reader,
+// which needs no GL) and the camera at the first frame. Prints, as JSON, the
+// stage, the output pattern, the frames and the images' size, which
+// hdhair-farm uses to tell a complete frame from one to render again.
+// A problem at a later frame only (an animated camera that breaks at frame 7)
+// is that frame's error when it renders.
+int checkInput(const Options& options, const usda::SceneReadOptions& readOptions, const RenderSettings& settings) {
+    Diagnostics diagnostics;
+    const std::unique_ptr<usda::Stage> stage = usda::Stage::open(options.usdFile);
+    const std::vector<double> times = timesToRender(options);
+    Scene scene;
+    usda::readScene(*stage, times.front(), scene, diagnostics, readOptions);
+    std::optional<CameraView> camera = cameraPrimView(options, scene, diagnostics);
+    // The framing camera's image shape is its aperture's, whatever bounds it
+    // frames: unit bounds stand in for the scene's, which need GL to measure.
+    if (!camera) camera = framingView(options, settings, scene, SceneBounds{glm::dvec3(-1.0), glm::dvec3(1.0)});
+    nlohmann::json report;
+    report["stage"] = options.usdFile;
+    report["output"] = options.outputPath;
+    report["frames"] = nlohmann::json::array();
+    for (double time : times) report["frames"].push_back(std::isfinite(time) ? nlohmann::json(time) : nlohmann::json());
+    report["imageWidth"] = camera->imageWidth;
+    report["imageHeight"] = camera->imageHeight;
+    report["warnings"] = nlohmann::json::array();
+    for (const Diagnostic& warning : diagnostics.warnings())
+        report["warnings"].push_back(warning.where + ": " + warning.message);
+    std::printf("%s\n", report.dump().c_str());
+    return 0;
+}
+
 int run(const Options& options) {
     Complexity complexity;
     if (!parseComplexity(options.complexity, &complexity))
@@ -518,6 +556,7 @@ int run(const Options& options) {
     usda::SceneReadOptions readOptions = purposesFrom(options.purposes);
     const RenderingSpace space = settings.renderingSpace();
     const DisplayTransform display = displayTransformFor(options, space);
+    if (options.check) return checkInput(options, readOptions, settings);
     if (!options.reference.empty()) return runCyclesReference(options, readOptions, display, space, settings);
     if (options.reader == "usd") return runThroughUsdImaging(options, readOptions, display, space);
     if (options.reader != "embedded") throw std::invalid_argument("--reader must be usd or embedded");
@@ -693,6 +732,9 @@ int main(int argc, char** argv) {
                                                  "settings) to this JSON file");
     app.add_flag("--verbose,-v", options.verbose, "Print what was done and how long each pass took");
     app.add_flag("--explain", options.explain, "Print the render plan: which passes run and why");
+    app.add_flag("--check", options.check,
+                 "Check the arguments, outputs, stage and camera (at the first frame) as a render would, render "
+                 "nothing, and print the frames and image size as JSON (hdhair-farm runs it before submitting)");
     app.add_option("--reference", options.reference,
                    "Render a path-traced reference instead: cycles (Blender's Cycles, headless; the stage is read "
                    "by the embedded reader and exported as hdHair prepares it; docs/cycles-reference.md)");
@@ -747,7 +789,11 @@ int main(int argc, char** argv) {
         removeFilesWritten();
         std::fprintf(stderr, "hdhair-record: error: out of memory (std::bad_alloc); lower --imageWidth, supersampling "
                              "or exactMemoryMB, or render on a machine with more memory\n");
-        return 1;
+        return kMachineFailed;
+    } catch (const gl::GlUnavailableError& error) {
+        removeFilesWritten();
+        std::fprintf(stderr, "hdhair-record: error: %s\n", error.what());
+        return kMachineFailed;
     } catch (const std::exception& error) {
         removeFilesWritten();
         std::fprintf(stderr, "hdhair-record: error: %s\n", error.what());
