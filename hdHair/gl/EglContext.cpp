@@ -1,7 +1,10 @@
 // Headless EGL, the context made current with no surface (hdHair renders
 // into FBOs). Displays are tried in this order:
 //  1. hardware EGL devices (EGL_EXT_device_enumeration, EGL_EXT_platform_device):
-//     a GPU's own driver, NVIDIA's included, which Mesa's platforms never reach;
+//     a GPU's own driver, NVIDIA's included, which Mesa's platforms never reach.
+//     Which of them, and in what order, EglDeviceChoice.h decides: every one
+//     in enumeration order, or only the one HDHAIR_EGL_DEVICE names or the one
+//     a Slurm task was given, so that farm tasks do not all share device 0;
 //  2. Mesa's surfaceless platform: no display server and no device files
 //     needed (a Mesa GPU driver through its render node, else llvmpipe);
 //  3. Mesa's software EGL device (EGL_MESA_device_software);
@@ -10,13 +13,18 @@
 // context carries a one-line warning (SoftwareRenderer.h) that the renderer
 // reports through Diagnostics.
 
+#include <cstdlib>
 #include <filesystem>
+#include <limits>
+#include <optional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
 #include <EGL/egl.h>
 #include <EGL/eglext.h>
 
+#include "hdHair/gl/EglDeviceChoice.h"
 #include "hdHair/gl/GlContext.h"
 #include "hdHair/gl/SoftwareRenderer.h"
 
@@ -48,9 +56,9 @@ public:
         eglTerminate(display_);
     }
     GlBackend backend() const override { return GlBackend::Egl; }
-    void load(const std::string& what, const GpuEvidence& evidence) {
+    void load(const std::string& what, const std::string& origin, const GpuEvidence& evidence) {
         loadFunctions(reinterpret_cast<void* (*)(const char*)>(&eglGetProcAddress), what);
-        setOrigin(what);
+        setOrigin(origin);
         setSoftwareRendererWarning(hdhair::gl::softwareRendererWarning(description(), evidence));
     }
 
@@ -63,6 +71,9 @@ struct DisplayCandidate {
     std::string name;
     EGLDisplay display;
     bool hardware = false;  // an enumerated hardware device (its failures go into the warning)
+    // What origin() says of a context made here: the name, or for a device
+    // chosen as the task's GPU why it was (EglDeviceChoice::reason).
+    std::string origin = name;
 };
 
 // "EGL device 1 (NVIDIA H200, /dev/dri/renderD129)": the index and what the
@@ -82,6 +93,18 @@ std::string describeDevice(PFNEGLQUERYDEVICESTRINGEXTPROC queryString, EGLDevice
     return "EGL device " + std::to_string(index) + (details.empty() ? "" : " (" + details + ")");
 }
 
+// The device's CUDA ordinal (EGL_NV_device_cuda), which ties it to the GPU
+// a Slurm task was given; none where the device or the query has none.
+std::optional<int> cudaDevice(PFNEGLQUERYDEVICEATTRIBEXTPROC queryAttribute, EGLDeviceEXT device,
+                              const std::string& extensions) {
+    if (!queryAttribute || extensions.find("EGL_NV_device_cuda") == std::string::npos) return std::nullopt;
+    EGLAttrib ordinal = -1;
+    if (!queryAttribute(device, EGL_CUDA_DEVICE_NV, &ordinal) || ordinal < 0 ||
+        ordinal > std::numeric_limits<int>::max())
+        return std::nullopt;
+    return static_cast<int>(ordinal);
+}
+
 std::vector<DisplayCandidate> candidateDisplays(std::vector<std::string>& tried, GpuEvidence& evidence) {
     std::vector<DisplayCandidate> hardware, surfaceless, software;
     auto getPlatformDisplay = reinterpret_cast<PFNEGLGETPLATFORMDISPLAYEXTPROC>(
@@ -91,23 +114,55 @@ std::vector<DisplayCandidate> candidateDisplays(std::vector<std::string>& tried,
             reinterpret_cast<PFNEGLQUERYDEVICESEXTPROC>(eglGetProcAddress("eglQueryDevicesEXT"));
         auto queryString =
             reinterpret_cast<PFNEGLQUERYDEVICESTRINGEXTPROC>(eglGetProcAddress("eglQueryDeviceStringEXT"));
+        auto queryAttribute =
+            reinterpret_cast<PFNEGLQUERYDEVICEATTRIBEXTPROC>(eglGetProcAddress("eglQueryDeviceAttribEXT"));
         EGLDeviceEXT devices[16];
         EGLint deviceCount = 0;
         if (queryDevices && queryDevices(16, devices, &deviceCount)) {
+            // What each device is first, then which hardware devices to open
+            // (EglDeviceChoice.h): a GPU left out is not even opened, since
+            // it may be another task's.
+            std::vector<EglDeviceFacts> facts;
             for (EGLint i = 0; i < deviceCount; ++i) {
                 const char* extensions = queryString ? queryString(devices[i], EGL_EXTENSIONS) : nullptr;
                 const std::string deviceExtensions = extensions ? extensions : "";
                 const bool isHardware = !isSoftwareEglDevice(deviceExtensions);
-                const std::string name = describeDevice(queryString, devices[i], i, deviceExtensions);
-                if (isHardware) evidence.hardwareDevices.push_back(name);
-                EGLDisplay display = getPlatformDisplay(EGL_PLATFORM_DEVICE_EXT, devices[i], nullptr);
-                if (display == EGL_NO_DISPLAY) {
-                    tried.push_back(name + ": no display");
-                    if (isHardware) evidence.hardwareFailures.push_back(tried.back());
-                    continue;
-                }
-                (isHardware ? hardware : software).push_back({name, display, isHardware});
+                facts.push_back({i, isHardware, cudaDevice(queryAttribute, devices[i], deviceExtensions),
+                                 describeDevice(queryString, devices[i], i, deviceExtensions)});
+                if (isHardware) evidence.hardwareDevices.push_back(facts.back().name);
             }
+            EglDeviceChoice choice;
+            try {
+                choice = chooseEglDevices(facts, [](const char* name) { return std::getenv(name); });
+            } catch (const std::invalid_argument& error) {
+                throw GlUnavailableError(error.what());  // a device asked for by hand is not replaced
+            }
+            // The reason leads the list of what was tried, and explains the
+            // software warning when the task's GPU was missing or failed.
+            if (!choice.reason.empty()) {
+                tried.push_back(choice.reason);
+                if (!evidence.hardwareDevices.empty()) evidence.hardwareFailures.push_back(choice.reason);
+            }
+            auto open = [&](const EglDeviceFacts& device, std::vector<DisplayCandidate>& into) {
+                EGLDisplay display = getPlatformDisplay(EGL_PLATFORM_DEVICE_EXT, devices[device.index], nullptr);
+                if (display == EGL_NO_DISPLAY) {
+                    tried.push_back(device.name + ": no display");
+                    if (device.hardware) evidence.hardwareFailures.push_back(tried.back());
+                    return false;
+                }
+                into.push_back({device.name, display, device.hardware});
+                return true;
+            };
+            for (int index : choice.hardwareOrder) {
+                if (!open(facts[static_cast<size_t>(index)], hardware) || choice.reason.empty()) continue;
+                // A context there says why it is on that device (--verbose
+                // prints the origin); the reason begins with the device's name.
+                DisplayCandidate& chosen = hardware.back();
+                chosen.origin = choice.reason.rfind(chosen.name, 0) == 0 ? choice.reason
+                                                                         : chosen.name + "; " + choice.reason;
+            }
+            for (const EglDeviceFacts& device : facts)
+                if (!device.hardware) open(device, software);
         } else {
             tried.push_back("EGL device platform: no devices");
         }
@@ -182,7 +237,7 @@ std::unique_ptr<GlContext> createEglContext() {
         }
         auto result = std::make_unique<EglContext>(candidate.display, context);
         try {
-            result->load(candidate.name, evidence);
+            result->load(candidate.name, candidate.origin, evidence);
         } catch (const GlUnavailableError& error) {
             tried.push_back(error.what());
             if (candidate.hardware) evidence.hardwareFailures.push_back(error.what());
