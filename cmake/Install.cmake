@@ -1,6 +1,7 @@
 # What `cmake --install` deploys, in two components:
 #
-#   tools      bin/hdhair-record, bin/hdhair-convert, share/doc/hdhair/{README.md,LICENSE,docs/}
+#   tools      bin/hdhair-record, bin/hdhair-convert, bin/hdhair-farm (runs the hdhair-record
+#              beside it), share/doc/hdhair/{README.md,LICENSE,docs/}
 #              (docs/ beside README, so that its links hold),
 #              share/hdhair/ocio/config.ocio (hdhair-record's OCIO config, found beside bin/)
 #   usdPlugin  plugin/usd/plugInfo.json            (includes */resources/, as OpenUSD's own)
@@ -19,7 +20,7 @@
 # "Installing").
 include(GNUInstallDirs)
 
-install(TARGETS hdhair-record hdhair-convert RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR} COMPONENT tools)
+install(TARGETS hdhair-record hdhair-convert hdhair-farm RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR} COMPONENT tools)
 install(FILES ${PROJECT_SOURCE_DIR}/README.md ${PROJECT_SOURCE_DIR}/LICENSE
         DESTINATION ${CMAKE_INSTALL_DATAROOTDIR}/doc/hdhair COMPONENT tools)
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/docs/ DESTINATION ${CMAKE_INSTALL_DATAROOTDIR}/doc/hdhair/docs COMPONENT tools)
@@ -42,7 +43,7 @@ endif()
 set(CPACK_PACKAGE_NAME hdhair)
 set(CPACK_PACKAGE_VENDOR "hdHair")
 set(CPACK_PACKAGE_CONTACT "hdHair developers <hdhair@localhost>")
-set(CPACK_PACKAGE_DESCRIPTION_SUMMARY "hdHair's hair renderer tools: hdhair-record and hdhair-convert")
+set(CPACK_PACKAGE_DESCRIPTION_SUMMARY "hdHair's hair renderer tools: hdhair-record, hdhair-convert and hdhair-farm")
 set(CPACK_PACKAGE_VERSION ${PROJECT_VERSION})
 set(CPACK_RESOURCE_FILE_LICENSE ${PROJECT_SOURCE_DIR}/LICENSE)
 set(CPACK_PACKAGING_INSTALL_PREFIX /usr)
@@ -53,10 +54,12 @@ set(CPACK_DEBIAN_TOOLS_PACKAGE_NAME hdhair-tools)
 set(CPACK_DEBIAN_TOOLS_FILE_NAME DEB-DEFAULT)
 set(CPACK_DEBIAN_PACKAGE_SECTION graphics)
 set(CPACK_DEBIAN_PACKAGE_DESCRIPTION
-    "Renders USD hair (BasisCurves) headless through OpenGL (EGL or OSMesa): hdhair-record, a\nusdrecord-style renderer with an embedded .usda reader, and hdhair-convert for TressFX and\nCem Yuksel hair assets. The Hydra plugin is deployed separately, beside its OpenUSD.")
+    "Renders USD hair (BasisCurves) headless through OpenGL (EGL or OSMesa): hdhair-record, a\nusdrecord-style renderer with an embedded .usda reader, hdhair-convert for TressFX and\nCem Yuksel hair assets, and hdhair-farm, which renders frame ranges across a Slurm cluster. The Hydra plugin is deployed separately, beside its OpenUSD.")
 # The libraries the binaries link, as Debian packages (dpkg-shlibdeps), and
 # Mesa's drivers, which are loaded at run time and so not seen by it.
 set(CPACK_DEBIAN_PACKAGE_SHLIBDEPS ON)
 set(CPACK_DEBIAN_TOOLS_PACKAGE_DEPENDS "libegl-mesa0, libgl1-mesa-dri")
+# hdhair-farm runs Slurm's client commands (sbatch, squeue) where a farm has them.
+set(CPACK_DEBIAN_TOOLS_PACKAGE_SUGGESTS "slurm-client")
 set(CPACK_STRIP_FILES ON)
 include(CPack)

@@ -96,7 +96,7 @@ class InstallPrefix(unittest.TestCase):
 
     def test_installedToolsRenderWhatTheBuildTreeRenders(self):
         self.install("tools")
-        for name in ["bin/hdhair-record", "bin/hdhair-convert", "share/doc/hdhair/README.md",
+        for name in ["bin/hdhair-record", "bin/hdhair-convert", "bin/hdhair-farm", "share/doc/hdhair/README.md",
                      "share/doc/hdhair/LICENSE", "share/hdhair/ocio/config.ocio",
                      "share/hdhair/cycles/renderCyclesScene.py"]:
             self.assertTrue(os.path.isfile(os.path.join(self.prefix, name)), name)
@@ -115,6 +115,12 @@ class InstallPrefix(unittest.TestCase):
         same, report = idiffAgree(installed, built, 0.0)
         self.assertTrue(same, report)
         self.assertGreater(coveredPixels(installed), 100)
+        # The installed hdhair-farm checks its arguments with the hdhair-record
+        # beside it: an output without '#' is refused by that check's report.
+        farm = subprocess.run([os.path.join(self.prefix, "bin", "hdhair-farm"), "submit", "--frames", "1", "--"] +
+                              arguments[:-1] + [os.path.join(self.work, "farm.exr")], capture_output=True, text=True)
+        self.assertEqual(farm.returncode, 1, farm.stderr)
+        self.assertIn("has no '#' for the frame number", farm.stderr)
 
     def test_installedConverterFeedsTheInstalledRenderer(self):
         self.install("tools")
@@ -186,7 +192,7 @@ class DebianPackage(unittest.TestCase):
         for link in readmeDocLinks(os.path.join(SOURCE, "README.md")):
             self.assertIn("./usr/share/doc/hdhair/" + link, docs)
         files = [name for name in files if name not in docs]
-        self.assertEqual(files, ["./usr/bin/hdhair-convert", "./usr/bin/hdhair-record",
+        self.assertEqual(files, ["./usr/bin/hdhair-convert", "./usr/bin/hdhair-farm", "./usr/bin/hdhair-record",
                                  "./usr/share/doc/hdhair/LICENSE", "./usr/share/doc/hdhair/README.md",
                                  "./usr/share/hdhair/cycles/renderCyclesScene.py",
                                  "./usr/share/hdhair/ocio/config.ocio"])
