@@ -118,7 +118,7 @@ class InstallPrefix(unittest.TestCase):
         # The installed hdhair-farm checks its arguments with the hdhair-record
         # beside it: an output without '#' is refused by that check's report.
         farm = subprocess.run([os.path.join(self.prefix, "bin", "hdhair-farm"), "submit", "--frames", "1", "--"] +
-                              arguments[:-1] + [os.path.join(self.work, "farm.exr")], capture_output=True, text=True)
+                              arguments + [os.path.join(self.work, "farm.exr")], capture_output=True, text=True)
         self.assertEqual(farm.returncode, 1, farm.stderr)
         self.assertIn("has no '#' for the frame number", farm.stderr)
 
