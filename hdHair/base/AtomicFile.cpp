@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <cctype>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -14,13 +15,28 @@ namespace fs = std::filesystem;
 
 namespace {
 
+constexpr size_t kSuffixDigits = 6;
+
+// ".<stem>.tmp-" and the extension: what every temporary sibling of `target`
+// starts and ends with, around kSuffixDigits hexadecimal digits.
+std::string temporaryPrefix(const fs::path& target) { return "." + target.stem().string() + ".tmp-"; }
+
 std::string temporarySibling(const fs::path& target) {
     std::random_device device;
     std::uniform_int_distribution<unsigned> digits(0, 0xffffff);
     char suffix[16];
-    std::snprintf(suffix, sizeof suffix, "%06x", digits(device));
-    return (target.parent_path() / ("." + target.stem().string() + ".tmp-" + suffix + target.extension().string()))
-        .string();
+    std::snprintf(suffix, sizeof suffix, "%0*x", static_cast<int>(kSuffixDigits), digits(device));
+    return (target.parent_path() / (temporaryPrefix(target) + suffix + target.extension().string())).string();
+}
+
+bool isTemporarySiblingOf(const std::string& name, const fs::path& target) {
+    const std::string prefix = temporaryPrefix(target), extension = target.extension().string();
+    if (name.size() != prefix.size() + kSuffixDigits + extension.size() || name.rfind(prefix, 0) != 0 ||
+        name.compare(name.size() - extension.size(), extension.size(), extension) != 0)
+        return false;
+    for (size_t i = prefix.size(); i < prefix.size() + kSuffixDigits; ++i)
+        if (!std::isxdigit(static_cast<unsigned char>(name[i]))) return false;
+    return true;
 }
 
 }  // namespace
@@ -62,6 +78,18 @@ void writeTextFileAtomically(const std::string& path, const std::string& text) {
         out.close();
         return out.good() ? std::string() : std::string("the file system refused the bytes");
     });
+}
+
+int removeLeftoverTemporaries(const std::string& path) {
+    const fs::path target = fs::absolute(path);
+    std::error_code error;
+    fs::directory_iterator entries(target.parent_path(), error);
+    if (error) return 0;
+    int removed = 0;
+    for (const fs::directory_entry& entry : entries)
+        if (isTemporarySiblingOf(entry.path().filename().string(), target) && fs::remove(entry.path(), error))
+            ++removed;
+    return removed;
 }
 
 }  // namespace hdhair

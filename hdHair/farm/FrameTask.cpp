@@ -6,6 +6,7 @@
 
 #include <fmt/format.h>
 
+#include "hdHair/base/AtomicFile.h"
 #include "hdHair/farm/ChildProcess.h"
 #include "hdHair/farm/CompleteFrame.h"
 #include "hdHair/farm/FarmJob.h"
@@ -43,7 +44,18 @@ FrameTaskResult runFrameTask(const FarmJob& job, int task, const std::string& sl
         std::vector<std::string> argv = {job.recordExecutable};
         argv.insert(argv.end(), job.recordArguments.begin(), job.recordArguments.end());
         argv.insert(argv.end(), {"--frames", frameName(frame), "--stats", job.statsFile(frame)});
+        // A try killed before it could clean up (SIGKILL, scancel, a node
+        // going down) leaves its hidden temporary image and stats behind;
+        // this task owns the frame now, so they go before each try and after
+        // a killed one.
+        const auto removeLeftovers = [&] {
+            const int removed = removeLeftoverTemporaries(output) + removeLeftoverTemporaries(job.statsFile(frame));
+            if (removed)
+                std::printf("hdhair-farm: frame %s: removed %d temporary file(s) a killed try left\n",
+                            frameName(frame).c_str(), removed);
+        };
         for (;;) {
+            removeLeftovers();
             ++record.attempts;
             record.state = FrameState::Running;
             writeFrameRecord(job, record);
@@ -61,6 +73,7 @@ FrameTaskResult runFrameTask(const FarmJob& job, int task, const std::string& sl
                 record.error.clear();
                 break;
             }
+            if (exit.signal != 0) removeLeftovers();
             if (!exit.started) record.error = exit.startError;
             else if (exit.signal != 0) record.error = fmt::format("hdhair-record was killed by signal {} ({})",
                                                                   exit.signal, strsignal(exit.signal));

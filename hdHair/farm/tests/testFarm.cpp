@@ -8,6 +8,7 @@
 
 #include <gtest/gtest.h>
 
+#include "hdHair/base/AtomicFile.h"
 #include "hdHair/farm/ChildProcess.h"
 #include "hdHair/farm/CompleteFrame.h"
 #include "hdHair/farm/FarmJob.h"
@@ -200,6 +201,21 @@ TEST_F(FarmFolder, ProgressCountsFramesFromTheLatestJobsRecords) {
     EXPECT_NE(progressLine(job, unknown).find("Slurm not answering: connection refused"), std::string::npos);
 }
 
+TEST_F(FarmFolder, OnlyTheFramesOwnLeftoverTemporariesAreRemoved) {
+    const fs::path out = folder / "out";
+    for (const char* name : {".frame.5.tmp-0a1b2c.exr", ".frame.5.tmp-ffffff.exr", ".frame.5.tmp-0a1b2.exr",
+                             ".frame.55.tmp-0a1b2c.exr", ".frame.5.tmp-0a1b2c.png", ".frame.5.tmp-0a1b2g.exr",
+                             "frame.5.exr"})
+        std::ofstream(out / name) << name;
+    EXPECT_EQ(removeLeftoverTemporaries((out / "frame.5.exr").string()), 2);
+    EXPECT_FALSE(fs::exists(out / ".frame.5.tmp-0a1b2c.exr"));
+    EXPECT_FALSE(fs::exists(out / ".frame.5.tmp-ffffff.exr"));
+    for (const char* kept : {".frame.5.tmp-0a1b2.exr", ".frame.55.tmp-0a1b2c.exr", ".frame.5.tmp-0a1b2c.png",
+                             ".frame.5.tmp-0a1b2g.exr", "frame.5.exr"})
+        EXPECT_TRUE(fs::exists(out / kept)) << kept;
+    EXPECT_EQ(removeLeftoverTemporaries((folder / "missing" / "frame.5.exr").string()), 0);
+}
+
 TEST(FrameTask, OnlyTheMachinesFailuresAreRetried) {
     EXPECT_TRUE(isMachineFailure(75, 0));
     EXPECT_TRUE(isMachineFailure(-1, SIGKILL));
@@ -241,11 +257,12 @@ TEST_F(FarmFolder, ATaskRetriesMachineFailuresAndRecordsEachFrame) {
                              "4) if [ ! -e " + (folder / "once").string() + " ]; then touch " +
                                  (folder / "once").string() +
                              "; echo 'hdhair-record: error: out of memory' >&2; exit 75; fi;;\n"
-                             "5) kill -9 $$;;\n"
+                             "5) touch " + (folder / "out").string() + "/.frame.5.tmp-0a1b2c.exr; kill -9 $$;;\n"
                              "esac\n"
                              "cp " + image + " " + (folder / "out").string() + "/frame.$f.exr\n";
     fs::permissions(script, fs::perms::owner_all);
     FarmJob job = jobOf({1, 2, 3, 4, 5}, 5);
+    std::ofstream(folder / "out" / ".frame.6.tmp-0a1b2c.exr") << "frame 6's";
     job.recordExecutable = script;
     job.retries = 2;
     writeFrameImage(job.outputOf(2), 4, 3);  // complete already: skipped
@@ -271,6 +288,9 @@ TEST_F(FarmFolder, ATaskRetriesMachineFailuresAndRecordsEachFrame) {
     EXPECT_EQ(five->state, FrameState::Failed);
     EXPECT_EQ(five->attempts, 3);  // the first try and two retries
     EXPECT_NE(five->error.find("signal 9"), std::string::npos) << five->error;
+    // The killed tries' hidden temporaries are gone; another file's are kept.
+    EXPECT_FALSE(fs::exists(folder / "out" / ".frame.5.tmp-0a1b2c.exr"));
+    EXPECT_TRUE(fs::exists(folder / "out" / ".frame.6.tmp-0a1b2c.exr"));
     EXPECT_EQ(whyFrameIncomplete(job.outputOf(4), 4, 3), "");
 
     // --force renders a complete frame again.
