@@ -97,6 +97,8 @@ std::string defaultJobFolder(const std::string& outputPattern) {
     return (pattern.parent_path() / (stem + ".farm")).string();
 }
 
-std::string frameName(double frame) { return fmt::format("{:g}", frame); }
+// The shortest text that reads back as the same frame (formatFrameSpec's),
+// so that no two frames share a record.
+std::string frameName(double frame) { return fmt::format("{}", frame); }
 
 }  // namespace hdhair::farm

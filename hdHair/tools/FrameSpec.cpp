@@ -57,8 +57,10 @@ std::string formatFrameSpec(const std::vector<double>& frames) {
         size_t end = i;
         if (frames[i] == std::floor(frames[i]))
             while (end + 1 < frames.size() && frames[end + 1] == frames[end] + 1.0) ++end;
-        spec += (spec.empty() ? "" : ",") + (end > i ? fmt::format("{:g}:{:g}", frames[i], frames[end])
-                                                     : fmt::format("{:g}", frames[i]));
+        // "{}" is the shortest text that reads back as the same double;
+        // "{:g}" would round to six digits (123456.5 -> 123456, 1e6 -> 1e+06).
+        spec += (spec.empty() ? "" : ",") + (end > i ? fmt::format("{}:{}", frames[i], frames[end])
+                                                     : fmt::format("{}", frames[i]));
         i = end + 1;
     }
     return spec;

@@ -77,6 +77,8 @@ TEST(FarmJob, TheDefaultFolderSitsBesideTheOutputs) {
     EXPECT_EQ(defaultJobFolder("####.exr"), "frames.farm");
     EXPECT_EQ(frameName(7), "7");
     EXPECT_EQ(frameName(7.5), "7.5");
+    EXPECT_EQ(frameName(123456.5), "123456.5");
+    EXPECT_EQ(frameName(1000000), "1000000");
 }
 
 TEST_F(FarmFolder, AJobReadsBackAsSaved) {

@@ -42,6 +42,7 @@ TEST(FrameSpec, FormattedSpecsReadBackAsTheSameFrames) {
     EXPECT_EQ(formatFrameSpec({7}), "7");
     EXPECT_EQ(formatFrameSpec({1, 2, 3, 4, 9, 12.5, 13, 14}), "1:4,9,12.5,13:14");
     EXPECT_EQ(formatFrameSpec({}), "");
+    EXPECT_EQ(formatFrameSpec({123456.5, 1000000, 1000001}), "123456.5,1000000:1000001");
     for (const std::vector<double>& frames :
          {std::vector<double>{3, 1, 2}, std::vector<double>{-2, -1, 0, 1}, std::vector<double>{1.5, 2.5, 3.5}})
         EXPECT_EQ(parseFrameSpec(formatFrameSpec(frames)), frames);
