@@ -49,8 +49,11 @@ FarmProgress measureProgress(const FarmJob& job, const std::optional<std::vector
         }
     const std::string jobId = job.latestJobId();
     std::vector<double> seconds;
+    // Looked up once a frame on every poll: sorted, not scanned.
+    std::vector<double> toRender = job.framesToRender;
+    std::sort(toRender.begin(), toRender.end());
     for (double frame : job.allFrames) {
-        if (std::find(job.framesToRender.begin(), job.framesToRender.end(), frame) == job.framesToRender.end()) {
+        if (!std::binary_search(toRender.begin(), toRender.end(), frame)) {
             ++progress.done;  // complete when this job was submitted
             continue;
         }

@@ -223,7 +223,15 @@ int submit(SubmitOptions options) {
     }
     job.slurmJobIds.push_back(jobId);
     job.save();
-    registerJob(jobId, job.jobFolder);
+    // The job runs whatever happens here: a registry that cannot be written
+    // costs `status JOB` by id only, not the submission's success.
+    try {
+        registerJob(jobId, job.jobFolder);
+    } catch (const std::exception& error) {
+        std::fprintf(stderr, "hdhair-farm: warning: job %s is not in the job registry (%s); give its job folder, %s, "
+                             "to status\n",
+                     jobId.c_str(), error.what(), job.jobFolder.c_str());
+    }
     std::fprintf(stderr,
                  "hdhair-farm: submitted job %s: %zu frames in %d tasks of up to %d frames%s; job folder %s\n",
                  jobId.c_str(), job.framesToRender.size(), job.taskCount(), job.chunkSize,

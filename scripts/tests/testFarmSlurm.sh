@@ -127,9 +127,12 @@ same_as_local resumed
 # 3. Frame 7 fails; the rest are written.
 mkdir -p broken
 rc=0
-"$farm" submit --frames 1:24 --chunk 4 --wait --poll 0.5 -- "$stages/broken-camera-at-7.usda" \
+# With a registry that cannot be written: a warning, and the job runs.
+HDHAIR_FARM_REGISTRY=/proc/hdhair-farm-registry \
+  "$farm" submit --frames 1:24 --chunk 4 --wait --poll 0.5 -- "$stages/broken-camera-at-7.usda" \
   broken/frame.####.exr "${record_args[@]}" 2>broken.log || rc=$?
 [[ $rc -eq 1 ]] || fail "a job with a failed frame exited $rc"
+grep -q 'warning: job .* is not in the job registry' broken.log || fail "no warning for the unwritable registry"
 grep -q 'frame 7 failed in task 1 (log .*/logs/task-1.log): .*main_cam.focalLength' broken.log ||
   fail "frame 7's failure is not named with its task, log and error: $(grep -i fail broken.log || true)"
 grep -q -- '--frames 7 ' broken.log || fail "no --frames 7 to resubmit: $(tail -n 2 broken.log)"
