@@ -1,11 +1,21 @@
 #version 450 core
 #extension GL_GOOGLE_include_directive : require
-// Exact transparency, pass 2: each pixel sorts its fragments by depth and
-// composites them front to back with the over operator:
+// Per-pixel fragment lists, pass 2: each pixel sorts its fragments by depth
+// and composites them front to back with the over operator:
 //   C = sum_i T_i c_i,  A = 1 - T_n,  T_i = prod_{j<i} (1 - a_j)
 // (c_i pre-multiplied). Lists that fit in registers are insertion-sorted;
-// longer ones are walked in depth order by repeated selection, which is
-// O(k^2) but exact for any length: this pass is the ground truth.
+// longer ones, up to SELECTED_FRAGMENTS, are walked in depth order by
+// repeated selection, which is O(k^2) but exact: this pass is the ground
+// truth. A longer list (hundreds of strands in one pixel) has its nearest
+// LOCAL_FRAGMENTS composited exactly and the rest behind them as one layer,
+// their pre-multiplied colours averaged by alpha, with their total
+// transmittance (weighted average order-independent transparency, Bavoil
+// and Myers 2008); the pixel is counted (overlongLists) and the renderer
+// warns. llvmpipe ends a shader invocation's loops after 65535 iterations
+// in all (gallivm's loop limiter, one count for every loop of the
+// invocation): SELECTED_FRAGMENTS keeps the selection under it, and a list
+// too long to walk whole within it is counted too (unwalkedLists), its
+// farthest-appended fragments left out, and the renderer says so.
 // Depth and ids come from the nearest fragment that definesDepthAndIds()
 // accepts, as in the other blended paths.
 // Opaque geometry drawn before (meshes) stays behind the lists: the pass
@@ -18,6 +28,7 @@
 #include "include/strandGeometry.glsl"
 
 #define LOCAL_FRAGMENTS 64
+#define SELECTED_FRAGMENTS 180u
 
 layout(r32ui, binding = 0) uniform readonly uimage2D listHeads;
 
@@ -39,8 +50,9 @@ bool nearer(float depthA, uint indexA, float depthB, uint indexB) {
 void writeIds(uint head) {
     uint front = HDHAIR_LIST_END;
     for (uint n = head; n != HDHAIR_LIST_END && n < capacity; n = nodes[n].next) {
-        if (!definesDepthAndIds(nodes[n].color.a)) continue;
-        if (front == HDHAIR_LIST_END || nearer(nodes[n].depth, n, nodes[front].depth, front)) front = n;
+        if (definesDepthAndIds(nodes[n].color.a) &&
+            (front == HDHAIR_LIST_END || nearer(nodes[n].depth, n, nodes[front].depth, front)))
+            front = n;
     }
     if (front == HDHAIR_LIST_END) discard;
     int segment = nodes[front].segment;
@@ -52,6 +64,9 @@ void writeIds(uint head) {
 
 void main() {
     uint head = imageLoad(listHeads, ivec2(gl_FragCoord.xy)).r;
+    // An empty list adds nothing: (0, 0) over the frame, depth 1 under the
+    // min blend, no ids. Most of a hair frame's pixels have none.
+    if (head == HDHAIR_LIST_END) discard;
     if (resolveIds != 0) {
         writeIds(head);
         return;
@@ -62,27 +77,38 @@ void main() {
     bool front = false;
     float frontDepth = 1.0;
 
-    // Gather first, sort afterwards, on copies of the depths held in
-    // registers: Mesa 22.3's llvmpipe composited wrong lists when the sort
-    // read depths from the storage buffer inside its loop condition.
+    // One walk keeps the nearest LOCAL_FRAGMENTS sorted, nearest first, on
+    // copies of the depths held in registers (Mesa 22.3's llvmpipe
+    // composited wrong lists when the sort read depths from the storage
+    // buffer inside its loop condition), and sums those behind them.
     uint local[LOCAL_FRAGMENTS];
     float localDepth[LOCAL_FRAGMENTS];
     int count = 0;
-    bool fits = true;
-    for (uint n = head; n != HDHAIR_LIST_END && n < capacity; n = nodes[n].next) {
+    uint total = 0u;
+    vec3 tailColor = vec3(0.0);
+    float tailAlpha = 0.0, tailTransmittance = 1.0;
+    uint n = head;
+    for (; n != HDHAIR_LIST_END && n < capacity; ++total) {
+        uint key = n;
+        float keyDepth = nodes[n].depth;
+        n = nodes[n].next;
         if (count == LOCAL_FRAGMENTS) {
-            fits = false;
-            break;
+            if (!nearer(keyDepth, key, localDepth[LOCAL_FRAGMENTS - 1], local[LOCAL_FRAGMENTS - 1])) {
+                vec4 behind = nodes[key].color;
+                tailColor += behind.rgb;
+                tailAlpha += behind.a;
+                tailTransmittance *= 1.0 - behind.a;
+                continue;
+            }
+            // The farthest kept one moves behind.
+            vec4 evicted = nodes[local[LOCAL_FRAGMENTS - 1]].color;
+            tailColor += evicted.rgb;
+            tailAlpha += evicted.a;
+            tailTransmittance *= 1.0 - evicted.a;
+            --count;
         }
-        local[count] = n;
-        localDepth[count] = nodes[n].depth;
-        ++count;
-    }
-    // Insertion sort, nearest first.
-    for (int i = 1; i < count; ++i) {
-        uint key = local[i];
-        float keyDepth = localDepth[i];
-        int j = i - 1;
+        // Insertion, nearest first.
+        int j = count - 1;
         while (j >= 0 && nearer(keyDepth, key, localDepth[j], local[j])) {
             local[j + 1] = local[j];
             localDepth[j + 1] = localDepth[j];
@@ -90,9 +116,12 @@ void main() {
         }
         local[j + 1] = key;
         localDepth[j + 1] = keyDepth;
+        ++count;
     }
+    // The loop limiter ended the walk before the list's end.
+    if (n != HDHAIR_LIST_END && n < capacity) atomicAdd(unwalkedLists, 1u);
 
-    if (fits) {
+    if (total <= uint(LOCAL_FRAGMENTS) || total > SELECTED_FRAGMENTS) {
         for (int i = 0; i < count; ++i) {
             FragmentNode node = nodes[local[i]];
             if (!front && definesDepthAndIds(node.color.a)) {
@@ -102,16 +131,22 @@ void main() {
             color.rgb += transmittance * node.color.rgb;
             transmittance *= 1.0 - node.color.a;
         }
+        if (total > SELECTED_FRAGMENTS) {
+            // The tail as one layer behind the nearest ones.
+            if (tailAlpha > 0.0) color.rgb += transmittance * tailColor / tailAlpha * (1.0 - tailTransmittance);
+            transmittance *= tailTransmittance;
+            atomicAdd(overlongLists, 1u);
+        }
     } else {
         // Select the next-nearest fragment after the last one taken, until none is left.
         float lastDepth = -1.0;
         uint lastIndex = 0u;
         bool first = true;
-        for (;;) {
+        for (uint taken = 0u; taken < total; ++taken) {
             uint best = HDHAIR_LIST_END;
-            for (uint n = head; n != HDHAIR_LIST_END && n < capacity; n = nodes[n].next) {
-                bool after = first || nearer(lastDepth, lastIndex, nodes[n].depth, n);
-                if (after && (best == HDHAIR_LIST_END || nearer(nodes[n].depth, n, nodes[best].depth, best))) best = n;
+            for (uint m = head; m != HDHAIR_LIST_END && m < capacity; m = nodes[m].next) {
+                bool after = first || nearer(lastDepth, lastIndex, nodes[m].depth, m);
+                if (after && (best == HDHAIR_LIST_END || nearer(nodes[m].depth, m, nodes[best].depth, best))) best = m;
             }
             if (best == HDHAIR_LIST_END) break;
             FragmentNode node = nodes[best];

@@ -17,10 +17,7 @@
 // One lookup a point instead of one a fragment, which on llvmpipe was most
 // of the strand pass's shading.
 //
-// Sub-pixel coverage (Svoboda 2012, section 1.2.3): a strand whose projected
-// width is below frame.minPixelWidth is drawn that wide instead, with its
-// alpha scaled by true width / drawn width, so thin hair fades with distance
-// instead of breaking up into dashes or vanishing.
+// The ribbon's width, colour and sub-pixel coverage are strandRibbonPoint.glsl's.
 //
 // Strand lines (HDHAIR_STRAND_LINES): the isolines go to the rasteriser as
 // one-pixel lines, whose vertices strandLinePoint.glsl writes.
@@ -34,6 +31,7 @@
 #include "include/shadowFragmentLists.glsl"
 #include "include/shadows.glsl"
 #endif
+#include "include/strandRibbonPoint.glsl"
 
 layout(isolines, equal_spacing) in;
 
@@ -68,35 +66,17 @@ void main() {
 #ifdef HDHAIR_STRAND_LINES
     emitStrandLinePoint(point, pointIds, u);
 #else
-    vec3 toEye = directionToEye(point.positionWidth.xyz);
-    vec3 side = cross(point.tangent, toEye);
-    if (dot(side, side) < 1e-12)
-        side = cross(point.tangent, abs(point.tangent.x) < 0.9 ? vec3(1, 0, 0) : vec3(0, 1, 0));
-    side = normalize(side);
-
-    // Cubic interpolation can overshoot: widths, colours and opacities are clamped.
-    float width = max(point.positionWidth.w, 0.0);
-    float opacity = clamp(point.shade.a, 0.0, 1.0);
-    float drawnWidth = width;
-    if (frame.minPixelWidth > 0.0) {
-        float clipW = max(abs((frame.viewProjection * vec4(point.positionWidth.xyz, 1.0)).w), 1e-12);
-        float widthPixels = width * frame.pixelsPerUnit / clipW;
-        if (widthPixels < frame.minPixelWidth) {
-            drawnWidth = frame.minPixelWidth * clipW / frame.pixelsPerUnit;
-            opacity *= widthPixels / frame.minPixelWidth;
-        }
-    }
-    tesCentre = point.positionWidth.xyz;
-    tesAcross = side * drawnWidth;
-    tesTangent = point.tangent;
-    tesColorAlpha = vec4(max(point.shade.rgb, vec3(0.0)), opacity);
+    RibbonPoint ribbon = strandRibbonPoint(point);
+    tesCentre = ribbon.centre;
+    tesAcross = ribbon.across;
+    tesTangent = ribbon.tangent;
+    tesColorAlpha = ribbon.colorAlpha;
     tesIds = pointIds;
     tesSpanU = u;
 #endif
 #ifdef HDHAIR_VERTEX_SHADOWS
-    for (int v = 0; v < HDHAIR_VERTEX_SHADOW_VECTORS; ++v) tesTransmittance[v] = vec4(1.0);
-    for (int i = 0; i < HDHAIR_VERTEX_SHADOWS; ++i)
-        tesTransmittance[i / 4][i % 4] =
-            isSrbfLight(i) ? srbfShadowTransmittance(i, tesCentre) : shadowTransmittance(i, tesCentre);
+    vec4 transmittance[HDHAIR_VERTEX_SHADOW_VECTORS];
+    vertexShadowTransmittance(tesCentre, transmittance);
+    tesTransmittance = transmittance;
 #endif
 }

@@ -1,9 +1,12 @@
 #pragma once
-// Exact transparency: every strand fragment goes into a per-pixel linked list
-// in a storage buffer (pass 1), then each pixel sorts its list by depth and
-// composites it exactly (pass 2). Slow on purpose: it is the ground truth
-// that bin sorting is measured against. The lists' memory is bounded; a frame
-// that needs more reports how much, and the renderer falls back.
+// Per-pixel fragment lists: every strand fragment goes into its pixel's
+// linked list in a storage buffer (pass 1), then each pixel sorts its list by
+// depth and composites it exactly (pass 2). Pass 1 is either the hardware
+// rasteriser running strandFragmentList.frag (exact transparency: the ground
+// truth that bin sorting is measured against) or the compute rasteriser,
+// strandRaster.comp (strandRaster=compute: thin strands on every core). The
+// lists' memory is bounded; a frame that needs more reports how much, and the
+// renderer falls back.
 
 #include <cstdint>
 #include <vector>
@@ -16,6 +19,12 @@
 namespace hdhair::gl {
 
 constexpr size_t kFragmentNodeBytes = 32;  // FragmentNode in shaders/include/fragmentLists.glsl
+
+// Who fills the lists (pass 1).
+enum class FragmentSource {
+    HardwareRaster,  // the strand program's tessellation and rasteriser
+    ComputeRaster    // strandRaster.comp
+};
 
 class FragmentListPass {
 public:
@@ -30,20 +39,41 @@ public:
     // (StrandPass::setUniforms). Depth and ids follow
     // hdHair/render/NearestStrandRule.h.
     // Returns how many fragments the strands produced; more than
-    // `capacity` means the image is incomplete and must not be used.
+    // `capacity` (the budget) means the image is incomplete and must not be
+    // used. Storage grows with what frames need, up to `capacity`.
     // `ranges`: the drawn prims' segments. `features`: the shading the list
-    // program compiles, as for StrandPass::setUniforms.
+    // program compiles, as for StrandPass::setUniforms. `frameDepth`: the
+    // bound framebuffer's depth texture (single-sampled), which the compute
+    // rasteriser tests against as the hardware's depth test would.
     uint64_t render(const StrandGeometry& geometry, const std::vector<SegmentRange>& ranges, int width, int height,
-                    size_t capacity, float maxSegmentsPerSpan, bool writeIds, ShadingFeatures features);
+                    size_t capacity, float maxSegmentsPerSpan, bool writeIds, ShadingFeatures features,
+                    FragmentSource source = FragmentSource::HardwareRaster, GLuint frameDepth = 0);
+
+    // Pixels of the last render() whose lists were too long to sort whole
+    // (more than 180 fragments, shaders/fragmentListResolve.frag): composited
+    // exactly for their nearest 64 and as one averaged layer behind them;
+    // and those of them too long to walk whole within llvmpipe's loop limit.
+    uint64_t overlongPixels() const { return overlongPixels_; }
+    uint64_t unwalkedPixels() const { return unwalkedPixels_; }
 
 private:
+    // Node storage for at least `nodes` fragments (grown, never shrunk).
+    void ensureNodes(size_t nodes);
+    // Pass 1 into storage as it is; returns the fragments offered (also
+    // those past the storage).
+    uint64_t fillLists(const StrandGeometry& geometry, const std::vector<SegmentRange>& ranges,
+                       float maxSegmentsPerSpan, ShadingFeatures features, FragmentSource source, GLuint frameDepth);
+    void rasterizeInCompute(const std::vector<SegmentRange>& ranges, ShadingFeatures features, GLuint frameDepth);
+
     ShadingPrograms listPrograms_;
+    ShadingPrograms computePrograms_;
     Program resolveProgram_;
     VertexArray emptyVertexArray_;
     Texture heads_;
     int headsWidth_ = 0, headsHeight_ = 0;
     Buffer nodes_, counter_, order_;
     size_t nodeCapacity_ = 0;
+    uint64_t overlongPixels_ = 0, unwalkedPixels_ = 0;
 };
 
 }  // namespace hdhair::gl

@@ -59,6 +59,9 @@ public:
     // The single-sampled colour (resolved when multisampled), and a binding
     // of it for drawing only colour onto it (light batches add up there).
     GLuint resolvedColorTexture() const;
+    // The depth buffer passes draw against (multisampled when samples > 0):
+    // what the compute rasteriser tests its fragments against.
+    GLuint depthTexture() const { return draw_.depth.get(); }
     void bindResolvedColorForDrawing();
     // RGBA floats, rows from the top of the image down.
     std::vector<float> readColor() const;

@@ -199,28 +199,72 @@ void drawStrandPieces(FrameContext& context, bool ordered, gl::StrandBlending bl
     if (!pieceRanges.empty() && !stopRequested(context)) drawPiece();
 }
 
+// MB for `fragments` list nodes, rounded up.
+uint64_t fragmentListMB(uint64_t fragments) { return (fragments * gl::kFragmentNodeBytes + (1 << 20) - 1) >> 20; }
+
+// Warns when the lists just resolved had pixels too long to sort whole, or
+// to walk whole.
+void warnOverlongLists(FrameContext& context) {
+    const gl::FragmentListPass& lists = context.resources.fragmentLists;
+    if (lists.overlongPixels() > 0)
+        context.diagnostics.warn("render", fmt::format("{} pixel(s) held more than 180 strand fragments: each was "
+                                                       "composited in depth order for its nearest 64 and as one "
+                                                       "alpha-weighted layer behind them",
+                                                       lists.overlongPixels()));
+    if (lists.unwalkedPixels() > 0)
+        context.diagnostics.warn("render", fmt::format("{} pixel(s) held more strand fragments than the GL driver "
+                                                       "lets one shader walk (llvmpipe: 65535 loop steps); their "
+                                                       "last-listed fragments are missing from the picture",
+                                                       lists.unwalkedPixels()));
+}
+
 // Draws the strands with the lights of one batch into `target`, over what
-// it holds (the meshes of that batch, or nothing), as the plan says. Exact
-// transparency over its memory budget warns, falls back to the finest bin
-// sort (this batch and those after it) and draws again, meshes first.
+// it holds (the meshes of that batch, or nothing), as the plan says. The
+// compute rasteriser over its memory budget warns and falls back to the
+// hardware path with the planned transparency (this batch and those after
+// it); exact transparency over its budget warns and falls back to the finest
+// bin sort. Either draws again, meshes first.
 void drawStrands(FrameContext& context, gl::RenderTarget& target, size_t batch) {
     FrameInputs& inputs = context.inputs;
     RenderPlan& plan = context.plan;
     FrameResources& resources = context.resources;
-    const gl::ShadingFeatures features = bindBatchInputs(context, target, batch);
+    gl::ShadingFeatures features = bindBatchInputs(context, target, batch);
+    const CameraView& camera = *inputs.camera;
+    auto redraw = [&] {
+        target.bindAndClear(glm::vec4(0.0f));
+        if (plan.isEnabled(PassKind::Meshes)) drawMeshes(context, target, batch);
+        features = bindBatchInputs(context, target, batch);
+    };
+    if (plan.strandRaster == StrandRaster::Compute) {
+        const uint64_t fragments = resources.fragmentLists.render(
+            resources.strands, inputs.uploads.drawRanges, camera.imageWidth, camera.imageHeight,
+            inputs.computeRasterCapacity, inputs.frame.maxSegmentsPerSpan, target.images().ids, features,
+            gl::FragmentSource::ComputeRaster, target.depthTexture());
+        context.result.stats.fragments = fragments;
+        if (fragments <= inputs.computeRasterCapacity) return warnOverlongLists(context);
+        context.diagnostics.warn(
+            "render", fmt::format("the compute rasteriser needs {} MB for {} fragments, more than "
+                                  "strandRasterMemoryMB={}; drawn by the hardware rasteriser instead",
+                                  fragmentListMB(fragments), fragments, plan.strandRasterMemoryMB));
+        plan.fallBackToHardwareRaster(inputs.idsRequested);
+        context.result.stats.strandRaster = toString(plan.strandRaster);
+        context.result.stats.fallback = "compute -> hardware rasteriser: fragment lists over strandRasterMemoryMB";
+        if (plan.drawsSorted()) {
+            sortAndSend(context);
+            inputs.frame.orderedDraw = 1;
+        }
+        redraw();
+    }
     if (plan.transparency == TransparencyPath::Exact) {
-        const CameraView& camera = *inputs.camera;
         uint64_t fragments = resources.fragmentLists.render(resources.strands, inputs.uploads.drawRanges,
                                                             camera.imageWidth, camera.imageHeight,
                                                             inputs.fragmentListCapacity, inputs.frame.maxSegmentsPerSpan,
                                                             target.images().ids, features);
         context.result.stats.fragments = fragments;
-        if (fragments <= inputs.fragmentListCapacity) return;
-        const int memoryMB = plan.exactMemoryMB;
+        if (fragments <= inputs.fragmentListCapacity) return warnOverlongLists(context);
         const std::string needed = fmt::format("exact transparency needs {} MB for {} fragments, more than "
                                                "exactMemoryMB={}",
-                                               (fragments * gl::kFragmentNodeBytes + (1 << 20) - 1) >> 20,
-                                               fragments, memoryMB);
+                                               fragmentListMB(fragments), fragments, plan.exactMemoryMB);
         // A reference that quietly became an approximation would be measured
         // against as if it were exact: exactOverflow=fail stops the frame.
         if (plan.exactOverflowFails) {
@@ -233,9 +277,7 @@ void drawStrands(FrameContext& context, gl::RenderTarget& target, size_t batch) 
         context.result.stats.fallback = "exact -> binSorted (1024 bins): fragment lists over exactMemoryMB";
         sortAndSend(context);
         inputs.frame.orderedDraw = 1;
-        target.bindAndClear(glm::vec4(0.0f));
-        if (plan.isEnabled(PassKind::Meshes)) drawMeshes(context, target, batch);
-        bindBatchInputs(context, target, batch);
+        redraw();
     }
     drawStrandPieces(context, inputs.frame.orderedDraw != 0,
                      plan.transparency == TransparencyPath::Opaque ? gl::StrandBlending::Opaque

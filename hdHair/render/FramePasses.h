@@ -72,6 +72,7 @@ struct FrameInputs {
     gl::FrameUniforms frame;
     int samples = 0;                         // multisampling the driver gives
     size_t fragmentListCapacity = 0;         // exact transparency's budget, in fragments
+    size_t computeRasterCapacity = 0;        // the compute rasteriser's, in fragments
 };
 
 struct FrameContext {

@@ -1,7 +1,8 @@
 #pragma once
 // Everything decided about a frame before any GL work, by one planner per
 // concern: the lights and their batches (LightPlanner.h), the transparency
-// path (TransparencyPlanner.h) and the shadows (ShadowPlanner.h). The frame
+// path (TransparencyPlanner.h), who rasterises the strands
+// (StrandRasterPlanner.h) and the shadows (ShadowPlanner.h). The frame
 // graph is built from it (RenderPlan.h), and the passes execute with what it
 // says: no pass reads a setting.
 
@@ -14,6 +15,7 @@
 #include "hdHair/render/LightPlanner.h"
 #include "hdHair/render/SceneSummary.h"
 #include "hdHair/render/ShadowPlanner.h"
+#include "hdHair/render/StrandRasterPlanner.h"
 #include "hdHair/render/TransparencyPlanner.h"
 #include "hdHair/shading/ShadingLight.h"
 
@@ -44,8 +46,26 @@ struct FrameRecipe {
     int exactMemoryMB = 512;
     bool exactOverflowFails = false;
 
+    // StrandRasterPlanner: the compute rasteriser's fragment lists are
+    // bounded by strandRasterMemoryMB; a frame over it warns and is drawn by
+    // the hardware path.
+    StrandRaster strandRaster = StrandRaster::Hardware;
+    std::string strandRasterReason;
+    int strandRasterMemoryMB = 512;
+
     // ShadowPlanner
     ShadowPlan shadows;
+
+    // Whether the strands are composited from per-pixel lists (exact
+    // transparency, or the compute rasteriser), whose resolve gives the
+    // frame its depth and ids.
+    bool compositesFromLists() const {
+        return transparency == TransparencyPath::Exact || strandRaster == StrandRaster::Compute;
+    }
+    // Whether the strands are drawn in the bin sort's order.
+    bool drawsSorted() const {
+        return transparency == TransparencyPath::BinSorted && strandRaster == StrandRaster::Hardware;
+    }
 
     // Each strand program compiled with only the shading its draw can reach
     // (specializeShaders), or with all of it.

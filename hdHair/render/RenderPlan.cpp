@@ -15,29 +15,25 @@ namespace hdhair {
 namespace {
 
 // Where the frame's depth comes from on each path (and, blended, its ids).
-std::string depthSource(TransparencyPath path) {
-    switch (path) {
-    case TransparencyPath::Opaque: return "depth: the depth buffer";
-    case TransparencyPath::Exact:
+std::string depthSource(const FrameRecipe& plan) {
+    if (plan.transparency == TransparencyPath::Opaque) return "depth: the depth buffer";
+    if (plan.compositesFromLists())
         return fmt::format("depth and ids: the nearest listed fragment with alpha >= {}", kNearestStrandMinAlpha);
-    case TransparencyPath::BinSorted:
-    case TransparencyPath::Unsorted: break;
-    }
     return fmt::format("depth: the nearest fragment with alpha >= {}, min-blended", kNearestStrandMinAlpha);
 }
 
 // Ids need a pass of their own only where blending draws strands in an
 // order that is not nearest-last (integer images cannot be min-blended).
-FramePass idsPass(TransparencyPath path, bool idsRequested, bool anyStrands, bool anyMeshes) {
+FramePass idsPass(const FrameRecipe& plan, bool idsRequested, bool anyStrands, bool anyMeshes) {
     FramePass ids{PassKind::Ids, "ids", {"strands", "depth"}, {"ids"}, false, ""};
     if (!idsRequested) {
         ids.reason = "no ids asked for";
     } else if (!anyStrands) {
         ids.reason = anyMeshes ? "no visible curves: the meshes pass writes the ids" : "no visible curves: ids are -1 everywhere";
-    } else if (path == TransparencyPath::Opaque) {
+    } else if (plan.transparency == TransparencyPath::Opaque) {
         ids.reason = "the strand pass writes them, with depth";
-    } else if (path == TransparencyPath::Exact) {
-        ids.reason = "the exact resolve writes them, with depth";
+    } else if (plan.compositesFromLists()) {
+        ids.reason = "the fragment lists' resolve writes them, with depth";
     } else {
         ids.wanted = true;
         ids.reason = fmt::format("the host asked for ids: the nearest strand with alpha >= {}, the fragment the "
@@ -48,10 +44,10 @@ FramePass idsPass(TransparencyPath path, bool idsRequested, bool anyStrands, boo
 }
 
 // What the strand and light-batch passes read: the strands, and the draw
-// order when they are bin sorted.
-std::vector<FrameResource> strandReads(TransparencyPath path, std::vector<FrameResource> more) {
+// order when they are drawn bin sorted.
+std::vector<FrameResource> strandReads(const FrameRecipe& plan, std::vector<FrameResource> more) {
     std::vector<FrameResource> reads{"strands"};
-    if (path == TransparencyPath::BinSorted) reads.push_back("drawOrder");
+    if (plan.drawsSorted()) reads.push_back("drawOrder");
     reads.insert(reads.end(), more.begin(), more.end());
     return reads;
 }
@@ -149,11 +145,13 @@ void addUploadPasses(FrameGraph& graph, const RenderPlan& plan, const StrandSumm
                                                        "the last frame",
                                                        meshes.meshes, meshes.triangles)
                                          : "the meshes on the GPU are current: nothing to send"});
-    const bool sorted = plan.transparency == TransparencyPath::BinSorted && anyStrands;
+    const bool sorted = plan.drawsSorted() && anyStrands;
     graph.add(FramePass{PassKind::Sort, "sort", {"preparedStrands"}, {"drawOrder"}, sorted,
                         sorted ? fmt::format("{} segments into {} depth bins on the CPU, O(n)", strands.segments,
                                              plan.sortBins)
-                               : "no bin sorting on this path"});
+                        : plan.strandRaster == StrandRaster::Compute
+                            ? "no bin sorting: the compute rasteriser's lists are sorted per pixel"
+                            : "no bin sorting on this path"});
 }
 
 // Every shadow map's passes, then the mip chain that averages them when an
@@ -226,18 +224,18 @@ FramePass strandsPass(const RenderPlan& plan, const StrandSummary& strands, bool
     // The strand pass writes ids itself where it can keep the nearest
     // fragment's (opaque, and exact's resolve).
     std::vector<FrameResource> writes{"color", "depth"};
-    if (idsRequested && (plan.transparency == TransparencyPath::Opaque || plan.transparency == TransparencyPath::Exact))
+    if (idsRequested && (plan.transparency == TransparencyPath::Opaque || plan.compositesFromLists()))
         writes.push_back("ids");
     std::vector<FrameResource> inPlace = writes;
     for (const FrameResource& shadow : batchShadowReads(plan, 0)) inPlace.push_back(shadow);
     const bool anyStrands = strands.segments > 0;
     const std::string multisampling =
         plan.msaaSamples > 0 ? fmt::format(", {}x MSAA", plan.msaaSamples) : std::string();
-    return FramePass{PassKind::Strands, "strands", strandReads(plan.transparency, inPlace), writes, anyStrands,
-                     anyStrands ? fmt::format("{} segments, {}: {}{}, {}; {}", strands.segments,
+    return FramePass{PassKind::Strands, "strands", strandReads(plan, inPlace), writes, anyStrands,
+                     anyStrands ? fmt::format("{} segments, {}: {}{}; {}; {}; {}", strands.segments,
                                               toString(plan.transparency), plan.transparencyReason, multisampling,
-                                              shadingDescription(plan, strands, lightsPerPass),
-                                              depthSource(plan.transparency))
+                                              plan.strandRasterReason, shadingDescription(plan, strands, lightsPerPass),
+                                              depthSource(plan))
                                 : "no visible curves: background only"};
 }
 
@@ -255,7 +253,7 @@ void addLightBatchPasses(FrameGraph& graph, const RenderPlan& plan, bool anyStra
         reads.push_back("color");
         for (const FrameResource& shadow : batchShadowReads(plan, batch)) reads.push_back(shadow);
         FramePass lights{PassKind::LightBatch, fmt::format("lightBatch {}", batch + 1),
-                         anyStrands ? strandReads(plan.transparency, reads) : reads, {"color"},
+                         anyStrands ? strandReads(plan, reads) : reads, {"color"},
                          anyStrands || anyMeshes,
                          fmt::format("lights {}-{} of {} (lightsPerPass {}): {} again, colour added, alpha counted "
                                      "once",
@@ -282,7 +280,7 @@ void buildFrameGraph(RenderPlan& plan, const Scene& scene, const StrandSummary& 
                         "the frame's images, empty (transparent black, depth 1, ids -1)"});
     graph.add(meshesPass(frameImages, plan, meshes, idsRequested, noMeshes));
     graph.add(strandsPass(plan, strands, idsRequested, lightsPerPass));
-    graph.add(idsPass(plan.transparency, idsRequested, anyStrands, anyMeshes));
+    graph.add(idsPass(plan, idsRequested, anyStrands, anyMeshes));
     // Light batches add onto the frame's resolved colour, and readback reads
     // it: a multisampled frame is resolved once, here.
     graph.add(FramePass{PassKind::Resolve, "resolve", frameImages, frameImages, plan.msaaSamples > 0,
@@ -335,24 +333,36 @@ bool RenderPlan::shadowUsed(size_t shadow) const {
 void RenderPlan::fallBackToBinSorted(uint32_t bins, bool idsRequested) {
     transparency = TransparencyPath::BinSorted;
     sortBins = bins;
+    redrawStrandsWithHardware(fmt::format("exact fell back: segments into {} depth bins on the CPU", bins), idsRequested);
+}
+
+void RenderPlan::fallBackToHardwareRaster(bool idsRequested) {
+    strandRaster = StrandRaster::Hardware;
+    strandRasterReason = "hardware: the compute rasteriser's lists were over strandRasterMemoryMB";
+    redrawStrandsWithHardware(fmt::format("the compute rasteriser fell back: segments into {} depth bins on the CPU",
+                                          sortBins),
+                              idsRequested);
+}
+
+void RenderPlan::redrawStrandsWithHardware(const std::string& sortReason, bool idsRequested) {
     const bool anyStrands = graph.find(PassKind::Strands)->wanted;
     const bool anyMeshes = graph.find(PassKind::Meshes)->wanted;
     for (FramePass& pass : graph.passes()) {
         if (pass.kind == PassKind::Sort) {
-            pass.wanted = true;
-            pass.reason = fmt::format("exact fell back: segments into {} depth bins on the CPU", bins);
+            pass.wanted = drawsSorted();
+            if (pass.wanted) pass.reason = sortReason;
         } else if (pass.kind == PassKind::Ids) {
-            FramePass replacement = idsPass(transparency, idsRequested, anyStrands, anyMeshes);
+            FramePass replacement = idsPass(*this, idsRequested, anyStrands, anyMeshes);
             pass.wanted = replacement.wanted;
             pass.reason = replacement.reason;
         } else if (pass.kind == PassKind::Strands || pass.kind == PassKind::LightBatch) {
-            // The strands now read the draw order; what else they read stays.
+            // The strands now read the draw order when sorted; what else they read stays.
             auto drawsStrands = std::find(pass.reads.begin(), pass.reads.end(), "strands");
             if (drawsStrands == pass.reads.end()) continue;
             std::vector<FrameResource> rest;
             for (const FrameResource& read : pass.reads)
                 if (read != "strands" && read != "drawOrder") rest.push_back(read);
-            pass.reads = strandReads(transparency, rest);
+            pass.reads = strandReads(*this, rest);
         }
     }
     graph.compile();
@@ -367,6 +377,7 @@ RenderPlan makeRenderPlan(const Scene& scene, const RenderSettings& settings, co
     planLights(plan, scene, settings, camera, strands, meshes, domes);
     planShadows(plan, settings, strands, meshes.meshes > 0);
     planTransparency(plan, settings.values(), strands);
+    planStrandRaster(plan, settings.values(), strands);
     plan.specializeShaders = settings.values().specializeShaders;
     buildFrameGraph(plan, scene, strands, meshes, idsRequested, displayOnGpu, size_t(settings.values().lightsPerPass));
     return plan;

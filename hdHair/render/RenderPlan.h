@@ -22,7 +22,7 @@ struct CameraView;
 // The passes, in the order they run:
 //   upload        preparedStrands -> strands        GPU copy of the changed prims
 //   meshUpload    preparedMeshes -> meshGeometry    GPU copy of the meshes, when one changed
-//   sort          preparedStrands -> drawOrder      binSorted only
+//   sort          preparedStrands -> drawOrder      binSorted only, by the hardware rasteriser
 //   shadowDepth L      strands -> hairDepth L       per shadow-casting light L: its nearest hair
 //   deepOpacity L      strands, hairDepth L -> deepOpacity L   its opacity layers
 //   shadowFragments L  strands -> shadowFragments L  shadowMode=reference instead: every fragment
@@ -47,12 +47,22 @@ struct RenderPlan : FrameRecipe {
     // Exact transparency over its memory budget: the frame is redrawn
     // binSorted with `bins` bins, which needs the ids pass when ids are asked for.
     void fallBackToBinSorted(uint32_t bins, bool idsRequested);
+    // The compute rasteriser over its memory budget: the frame is redrawn
+    // by the hardware path with the transparency planned (binSorted needs
+    // the sort, and the ids pass when ids are asked for).
+    void fallBackToHardwareRaster(bool idsRequested);
     // The renderer's decision for shadow `shadow` (ShadowMapCache): rebuilt
     // by its passes, or kept, when its map becomes an input of the graph and
     // its passes do not run.
     void setShadowMap(size_t shadow, int slot, bool rebuild, const std::string& reason);
     // Whether an enabled pass reads shadow `shadow`'s map.
     bool shadowUsed(size_t shadow) const;
+private:
+    // The sort, ids and strand passes again for the hardware path with the
+    // recipe's transparency.
+    void redrawStrandsWithHardware(const std::string& sortReason, bool idsRequested);
+
+public:
     std::string describe() const { return graph.describe(); }  // for --explain
     nlohmann::json toJson() const;
 };

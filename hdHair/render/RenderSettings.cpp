@@ -81,6 +81,19 @@ const std::vector<SettingDescriptor>& RenderSettings::descriptors() {
          "When exact transparency's fragments do not fit exactMemoryMB: fallBack (warn and render binSorted with "
          "1024 bins) or fail (the frame fails with the memory it needed: a reference must never be approximate)",
          0, 0, {"fallBack", "fail"}, &SettingValues::exactOverflow},
+        {"strandRaster", SettingType::Token, "hardware",
+         "Who rasterises the camera's strands when they are blended: hardware (GL's tessellator and rasteriser), "
+         "compute (strandRaster.comp: spans cut, rasterised and shaded in compute on every core, composited "
+         "from per-pixel lists), or auto (compute where every strand is thinner than strandRasterMaxPixelWidth)",
+         0, 0, {"hardware", "compute", "auto"}, &SettingValues::strandRaster},
+        {"strandRasterMaxPixelWidth", SettingType::Float, "4",
+         "strandRaster=auto: the compute rasteriser takes a frame only when its widest strand projects at most "
+         "this many pixels wide (wide ribbons cost it a scan over their bounding box per segment)",
+         0.0, 1000.0, {}, &SettingValues::strandRasterMaxPixelWidth},
+        {"strandRasterMemoryMB", SettingType::Int, "512",
+         "Memory for the compute rasteriser's fragment lists; a frame needing more warns and is drawn by the "
+         "hardware rasteriser instead",
+         16, 65536, {}, &SettingValues::strandRasterMemoryMB},
         {"supersampling", SettingType::Int, "1",
          "N x N samples per pixel: the frame is rendered N times as wide and high and box-filtered in linear "
          "pre-multiplied RGBA; depth and ids are those of the nearest of a pixel's samples (docs/settings.md, Quality presets)",

@@ -31,6 +31,7 @@ nlohmann::json RenderStats::toJson() const {
     json["plan"] = plan;
     json["warnings"] = warnings;
     json["transparency"] = transparency;
+    json["strandRaster"] = strandRaster;
     json["lightPasses"] = lightPasses;
     json["preparedPrims"] = preparedPrims;
     json["preparedMeshes"] = preparedMeshes;

@@ -43,7 +43,8 @@ struct RenderStats {
     nlohmann::json plan;
     size_t warnings = 0;
     std::string transparency;     // the path taken: opaque, binSorted, exact or unsorted
-    uint64_t fragments = 0;       // strand fragments, when known (exact transparency counts them)
+    std::string strandRaster;     // who rasterised the camera's strands: hardware or compute
+    uint64_t fragments = 0;       // strand fragments, when known (exact transparency and the compute rasteriser count them)
     std::string fallback;         // what replaced the requested path, and why ("" when nothing did)
     size_t lightPasses = 1;       // passes over the strands, one per batch of at most lightsPerPass lights
     size_t preparedPrims = 0;     // curves prims prepared for this frame (only new and changed ones)

@@ -56,7 +56,7 @@ gl::FrameUniforms frameUniforms(const CameraView& camera, const RenderSettings& 
     // The opaque path draws true widths; every blended path applies coverage.
     frame.minPixelWidth = opaque ? 0.0f : float(settings.values().minPixelWidth);
     frame.drawMode = opaque ? 0 : 1;
-    frame.orderedDraw = plan.transparency == TransparencyPath::BinSorted ? 1 : 0;
+    frame.orderedDraw = plan.drawsSorted() ? 1 : 0;
     frame.nearestStrandMinAlpha = kNearestStrandMinAlpha;
     const glm::mat3 toRec709 = glm::inverse(rec709To(settings.renderingSpace()));
     for (int column = 0; column < 3; ++column) frame.colorToRec709[column] = glm::vec4(toRec709[column], 0.0f);
@@ -64,22 +64,37 @@ gl::FrameUniforms frameUniforms(const CameraView& camera, const RenderSettings& 
     return frame;
 }
 
+// The clip w of the curves' bounds at their nearest (`nearest`) or farthest
+// corner: w is linear, so its extremes over the box are at corners. 1 for
+// orthographic cameras, where widths do not shrink with depth.
+double boundsClipW(const CameraView& camera, const PreparedCurves& curves, bool nearest) {
+    if (camera.orthographic) return 1.0;
+    double extreme = nearest ? std::numeric_limits<double>::infinity() : -std::numeric_limits<double>::infinity();
+    for (int corner = 0; corner < 8; ++corner) {
+        glm::dvec3 p((corner & 1) ? curves.boundsMax.x : curves.boundsMin.x,
+                     (corner & 2) ? curves.boundsMax.y : curves.boundsMin.y,
+                     (corner & 4) ? curves.boundsMax.z : curves.boundsMin.z);
+        const double w = (camera.projection * camera.view * glm::dvec4(p, 1.0)).w;
+        extreme = nearest ? std::min(extreme, w) : std::max(extreme, w);
+    }
+    return extreme;
+}
+
 // The thinnest projected width of any strand: its thinnest span end at the
 // farthest depth of its bounds (a lower bound for perspective cameras).
 double minProjectedWidthPixels(const CameraView& camera, const PreparedCurves& curves, float minSpanWidth) {
-    double farthest = 0.0;
-    if (!camera.orthographic) {
-        for (int corner = 0; corner < 8; ++corner) {
-            glm::dvec3 p((corner & 1) ? curves.boundsMax.x : curves.boundsMin.x,
-                         (corner & 2) ? curves.boundsMax.y : curves.boundsMin.y,
-                         (corner & 4) ? curves.boundsMax.z : curves.boundsMin.z);
-            farthest = std::max(farthest, (camera.projection * camera.view * glm::dvec4(p, 1.0)).w);
-        }
-        if (farthest <= 0.0) return std::numeric_limits<double>::infinity();  // behind the camera
-    } else {
-        farthest = 1.0;
-    }
+    const double farthest = boundsClipW(camera, curves, false);
+    if (farthest <= 0.0) return std::numeric_limits<double>::infinity();  // behind the camera
     return double(minSpanWidth) * camera.pixelsPerUnit() / farthest;
+}
+
+// The widest projected width of any strand: its widest control point at the
+// nearest depth of its bounds (an upper bound); infinity when the bounds
+// reach the camera's plane.
+double maxProjectedWidthPixels(const CameraView& camera, const PreparedCurves& curves, float maxWidth) {
+    const double nearest = boundsClipW(camera, curves, true);
+    if (nearest <= 0.0) return std::numeric_limits<double>::infinity();
+    return double(maxWidth) * camera.pixelsPerUnit() / nearest;
 }
 
 // The instances of an instanced prim are copies of its first instance but for
@@ -489,6 +504,8 @@ void Renderer::gatherDrawnCurves(const Scene& scene, const CameraView& camera, c
         summary.minProjectedWidthPixels =
             std::min(summary.minProjectedWidthPixels,
                      minProjectedWidthPixels(camera, *cached.prepared, cached.minSpanWidth));
+        summary.maxProjectedWidthPixels =
+            std::max(summary.maxProjectedWidthPixels, maxProjectedWidthPixels(camera, *cached.prepared, cached.maxWidth));
         // Every drawn strand casts shadows.
         CasterBounds& casters = summary.casters;
         const glm::dvec3 low(cached.prepared->boundsMin), high(cached.prepared->boundsMax);
@@ -617,6 +634,7 @@ void Renderer::reportFrame(const Scene& scene, const CameraView& camera, const R
     stats.segments = frame.strands.segments;
     stats.meshTriangles = frame.meshes.triangles;
     stats.transparency = toString(plan.transparency);
+    stats.strandRaster = toString(plan.strandRaster);
     stats.glRenderer = glDescription();
     stats.glDevice = glDevice();
     stats.settings = settings.toJson();
@@ -654,6 +672,7 @@ RenderResult Renderer::renderSamples(const Scene& scene, const CameraView& camer
     inputs.displayOverBlack = outputs.displayOverBlack;
     inputs.frame = frameUniforms(camera, settings, result.plan);
     inputs.fragmentListCapacity = size_t(result.plan.exactMemoryMB) * 1024 * 1024 / gl::kFragmentNodeBytes;
+    inputs.computeRasterCapacity = size_t(result.plan.strandRasterMemoryMB) * 1024 * 1024 / gl::kFragmentNodeBytes;
     runFrame(inputs, result, settings, diagnostics, control);
     reportFrame(scene, camera, settings, frame, diagnostics, result);
     result.stats.warnings = diagnostics.warningCount() - warningsBefore;

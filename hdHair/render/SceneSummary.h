@@ -21,6 +21,10 @@ struct StrandSummary {
     // The thinnest any strand can project, in pixels, at the far side of the
     // strands' bounds (conservative); infinity when there are none.
     double minProjectedWidthPixels = 0.0;
+    // The widest any strand can project, at the near side of its bounds
+    // (conservative); infinity when the bounds reach the camera, 0 when
+    // there are no strands.
+    double maxProjectedWidthPixels = 0.0;
     bool anyLit = true;          // some prim's material is lit (not flat)
     std::string shadingModels;   // the models in use, e.g. "kajiyaKay+marschner"
     size_t perPointPrims = 0;    // prims whose hair parameters vary per curve or vertex

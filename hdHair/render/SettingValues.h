@@ -25,6 +25,9 @@ struct SettingValues {
     int msaaSamples = 0;
     int exactMemoryMB = 0;
     std::string exactOverflow;
+    std::string strandRaster;
+    double strandRasterMaxPixelWidth = 0.0;
+    int strandRasterMemoryMB = 0;
     int supersampling = 1;
     int lightsPerPass = 0;
     std::string shadingModel;

@@ -18,4 +18,8 @@ layout(std430, binding = 5) buffer FragmentNodes {
 layout(std430, binding = 6) buffer FragmentCounter {
     uint fragmentCount;
     uint capacity;
+    // Pixels whose lists were too long to sort whole, and too long to walk
+    // whole (fragmentListResolve.frag).
+    uint overlongLists;
+    uint unwalkedLists;
 };

@@ -21,7 +21,13 @@
 // (shadowSampling=vertex); the lights after them have no map. Selected, not
 // indexed, and no per-fragment lookup compiled at all: llvmpipe would run it
 // masked anyway.
+#ifdef HDHAIR_COMPUTE_RASTER
+// strandRaster.comp sets them for each fragment, interpolated as the
+// hardware rasteriser interpolates strand.geom's outputs.
+vec4 vertexTransmittance[HDHAIR_VERTEX_SHADOW_VECTORS];
+#else
 layout(location = 6) in vec4 vertexTransmittance[HDHAIR_VERTEX_SHADOW_VECTORS];
+#endif
 float strandShadowTransmittance(int i, vec3 centre) {
 #if HDHAIR_VERTEX_SHADOW_VECTORS == 1
     vec4 four = vertexTransmittance[0];

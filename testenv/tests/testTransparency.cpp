@@ -259,16 +259,31 @@ TEST(Transparency, MsaaSmoothsOpaqueEdges) {
     EXPECT_NEAR(total(smoothed) / total(aliased), 1.0, 0.05);
 }
 
-TEST(Transparency, ExactModeOverItsMemoryBudgetFallsBackAndSaysSo) {
+namespace {
+
+// Forty faint white sheets over a 128 px view: 40 x 128 x 128 = 655,360
+// fragments, over 16 MB of lists (32 bytes each); alpha 1 - 0.9^40.
+Scene fortyFaintSheets() {
     Scene scene;
     for (int i = 0; i < 40; ++i) scene.setCurves(sheet("/s" + std::to_string(i), float(i) * 0.1f, {1, 1, 1}, 0.1f));
-    CameraView camera = orthographicCamera(128);  // 40 x 128 x 128 = 655,360 fragments > 16 MB / 32 B
+    return scene;
+}
+
+// Renders `scene` flat-shaded with `assignments`, keeping the warnings.
+RenderResult renderWithWarnings(const Scene& scene, const CameraView& camera,
+                                const std::vector<std::string>& assignments, Diagnostics& diagnostics) {
     RenderSettings settings;
     settings.set("shadingModel", "flat");
-    settings.set("transparency", "exact");
-    settings.set("exactMemoryMB", "16");
+    for (const std::string& assignment : assignments) settings.setFromAssignment(assignment);
+    return sharedRenderer().render(scene, camera, settings, diagnostics);
+}
+
+}  // namespace
+
+TEST(Transparency, ExactModeOverItsMemoryBudgetFallsBackAndSaysSo) {
     Diagnostics diagnostics;
-    RenderResult result = sharedRenderer().render(scene, camera, settings, diagnostics);
+    RenderResult result = renderWithWarnings(fortyFaintSheets(), orthographicCamera(128),
+                                             {"transparency=exact", "exactMemoryMB=16"}, diagnostics);
     EXPECT_EQ(result.stats.transparency, "binSorted");
     EXPECT_EQ(result.stats.fragments, 655360u);
     EXPECT_NE(result.stats.fallback.find("exact -> binSorted"), std::string::npos);
@@ -305,4 +320,274 @@ TEST(Transparency, ExactCompositesLongFragmentListsInDepthOrder) {
     expectPixel(render(scene, camera, {"transparency=exact"}).color, 8, 8, expected, kOneStep, "exact");
     expectPixel(render(scene, camera, {"transparency=binSorted", "sortBins=1024"}).color, 8, 8, expected, kOneStep,
                 "binSorted");
+}
+
+// The compute rasteriser (strandRaster=compute) composites per-pixel lists
+// sorted by depth: the over operator by hand, as exact does.
+TEST(Transparency, ComputeRasterCompositesLayeredSheetsAsTheOverOperatorPredicts) {
+    Scene scene;
+    scene.setCurves(sheet("/layer1nearest", 3.0f, {0, 1, 0}, 0.25f));
+    scene.setCurves(sheet("/layer2near", 1.0f, {1, 0, 0}, 0.5f));
+    scene.setCurves(sheet("/layer3far", -1.0f, {0, 0, 1}, 0.8f));
+    glm::vec4 expected(0.75f * 0.5f, 0.25f, 0.75f * 0.5f * 0.8f, 1.0f - 0.75f * 0.5f * 0.2f);
+    CameraView camera = orthographicCamera(32);
+    for (const char* mode : {"binSorted", "exact", "unsorted"}) {
+        RenderResult result = render(scene, camera, {std::string("transparency=") + mode, "strandRaster=compute"});
+        EXPECT_EQ(result.stats.strandRaster, "compute") << mode;
+        EXPECT_EQ(result.stats.fragments, 3u * 32u * 32u) << mode;
+        for (int y : {0, 16, 31})
+            for (int x : {0, 16, 31}) expectPixel(result.color, x, y, expected, kOneStep, mode);
+    }
+}
+
+TEST(Transparency, ComputeRasterCompositesLongFragmentListsInDepthOrder) {
+    Scene scene;
+    const int layers = 80;
+    glm::vec4 expected(0.0f);
+    float transmittance = 1.0f;
+    for (int i = 0; i < layers; ++i) {  // i = 0 is nearest (z = 4), authored scrambled
+        glm::vec3 color(float(i) / layers, 1.0f - float(i) / layers, float(i % 2));
+        scene.setCurves(sheet("/layer" + std::to_string((i * 37) % layers), 4.0f - 0.1f * float(i), color, 0.05f));
+        expected += glm::vec4(color * 0.05f * transmittance, 0.0f);
+        transmittance *= 0.95f;
+    }
+    expected.a = 1.0f - transmittance;
+    expectPixel(render(scene, orthographicCamera(16), {"strandRaster=compute"}).color, 8, 8, expected, kOneStep,
+                "compute");
+}
+
+namespace {
+
+// A clump of thin translucent strands crossing each other at many depths,
+// flat-shaded so that only coverage and compositing order make the picture.
+Scene thinClump(float opacityScale = 1.0f) {
+    Scene scene;
+    std::mt19937 random(7);
+    std::uniform_real_distribution<float> unit(-1.0f, 1.0f);
+    for (int i = 0; i < 6; ++i) {
+        CurvesPrim prim;
+        prim.path = "/clump" + std::to_string(i);
+        prim.type = CurveType::Cubic;
+        prim.basis = CurveBasis::CatmullRom;
+        std::vector<float> colors;
+        for (int curve = 0; curve < 40; ++curve) {
+            prim.curveVertexCounts.push_back(4);
+            glm::vec3 start(unit(random), unit(random), unit(random)), end(unit(random), unit(random), unit(random));
+            for (int k = 0; k < 4; ++k) {
+                const float t = float(k) / 3.0f;
+                prim.points.push_back(glm::mix(start, end, t) + 0.15f * glm::vec3(unit(random), unit(random), 0.0f));
+            }
+            colors.insert(colors.end(), {0.5f + 0.5f * unit(random), 0.5f + 0.5f * unit(random), 0.5f + 0.5f * unit(random)});
+        }
+        prim.primvars["widths"] = constantPrimvar("widths", {0.012f});
+        Primvar color = constantPrimvar("displayColor", colors);
+        color.tupleSize = 3;
+        color.interpolation = Interpolation::Uniform;
+        prim.primvars["displayColor"] = color;
+        prim.primvars["displayOpacity"] = constantPrimvar("displayOpacity", {0.7f * opacityScale});
+        scene.setCurves(prim);
+    }
+    return scene;
+}
+
+// Turned half a turn about y: every depth order reversed, the image mirrored in x.
+Scene turnedAround(const Scene& original) {
+    Scene scene = original;
+    for (const auto& [path, entry] : original.curves()) {
+        CurvesPrim prim = *entry.prim;
+        for (glm::vec3& point : prim.points) point = glm::vec3(-point.x, point.y, -point.z);
+        scene.setCurves(prim);
+    }
+    return scene;
+}
+
+Image mirroredInX(const Image& image) {
+    Image mirrored = image;
+    for (int y = 0; y < image.height; ++y)
+        for (int x = 0; x < image.width; ++x)
+            for (int c = 0; c < image.channels; ++c) mirrored.at(x, y, c) = image.at(image.width - 1 - x, y, c);
+    return mirrored;
+}
+
+}  // namespace
+
+// Thin strands drawn by the compute rasteriser against the hardware's exact
+// lists: the same ribbons, cut, covered and composited alike. Within a bound
+// far tighter than binSorted meets against exact, and which the defects it
+// guards against break: coverage halved, and the lists composited in
+// reverse depth order.
+TEST(Transparency, ComputeRasterMatchesExactOnAThinClumpAndCatchesMutations) {
+    CameraView camera = orthographicCamera(128);
+    const Scene scene = thinClump();
+    Image exact = render(scene, camera, {"transparency=exact"}).color;
+    RenderResult compute = render(scene, camera, {"strandRaster=compute"});
+    ASSERT_EQ(compute.stats.strandRaster, "compute");
+    // A few pixels along edges may differ by a sample that one rasteriser
+    // covers and the other does not (llvmpipe's fixed-point positions).
+    CoveredPixelTolerance tolerance;
+    tolerance.threshold = 2.0 * kOneStep;
+    tolerance.allowedShareOverThreshold = 0.01;
+    tolerance.outlierLimit = 0.5;
+    tolerance.allowedOutliers = 0;
+    ImageComparison comparison = compareImages(compute.color, exact, tolerance);
+    std::printf("compute against exact: %s\n", comparison.description.c_str());
+    EXPECT_TRUE(comparison.passed) << comparison.description;
+    // binSorted against exact, for scale.
+    Image sorted = render(scene, camera, {"transparency=binSorted"}).color;
+    std::printf("binSorted against exact: %s\n", compareImages(sorted, exact, tolerance).description.c_str());
+
+    // Mutations the comparison must catch.
+    Image halved = render(thinClump(0.5f), camera, {"strandRaster=compute"}).color;
+    std::printf("coverage halved: %s\n", compareImages(halved, exact, tolerance).description.c_str());
+    EXPECT_FALSE(compareImages(halved, exact, tolerance).passed) << "coverage halved";
+    Image reversed = mirroredInX(render(turnedAround(scene), camera, {"strandRaster=compute"}).color);
+    EXPECT_TRUE(compareImages(mirroredInX(render(turnedAround(scene), camera, {"transparency=exact"}).color),
+                              reversed, tolerance)
+                    .passed)
+        << "the turned clump is the same picture seen from behind";
+    std::printf("depth order reversed: %s\n", compareImages(reversed, exact, tolerance).description.c_str());
+    EXPECT_FALSE(compareImages(reversed, exact, tolerance).passed) << "depth order reversed";
+}
+
+TEST(Transparency, ComputeRasterOverItsMemoryBudgetFallsBackToTheHardwareAndSaysSo) {
+    const Scene scene = fortyFaintSheets();
+    const CameraView camera = orthographicCamera(128);
+    Diagnostics diagnostics;
+    RenderResult result =
+        renderWithWarnings(scene, camera, {"strandRaster=compute", "strandRasterMemoryMB=16"}, diagnostics);
+    EXPECT_EQ(result.stats.strandRaster, "hardware");
+    EXPECT_EQ(result.stats.transparency, "binSorted");
+    EXPECT_NE(result.stats.fallback.find("compute -> hardware"), std::string::npos);
+    ASSERT_EQ(diagnostics.warnings().size(), 1u);
+    EXPECT_EQ(diagnostics.warnings()[0].message,
+              "the compute rasteriser needs 20 MB for 655360 fragments, more than strandRasterMemoryMB=16; drawn by "
+              "the hardware rasteriser instead");
+    EXPECT_NEAR(result.color.at(64, 64, 3), 1.0 - std::pow(0.9, 40), kOneStep);
+    // Within budget the same frame stays in compute, with the same picture.
+    RenderResult inBudget =
+        renderWithWarnings(scene, camera, {"strandRaster=compute", "strandRasterMemoryMB=32"}, diagnostics);
+    EXPECT_EQ(inBudget.stats.strandRaster, "compute");
+    EXPECT_NEAR(inBudget.color.at(64, 64, 3), 1.0 - std::pow(0.9, 40), kOneStep);
+}
+
+// Hard cases of the compute rasteriser.
+
+TEST(Transparency, ComputeRasterCoversAPixelOnASharedEdgeOnce) {
+    // A straight linear strand a pixel wide along the boundary between
+    // pixel rows 7 and 8: its ribbon's long edges run exactly through the
+    // centres of both rows, and its two segments meet exactly on the centre
+    // of column 8. Every column must get exactly one fragment from the rows
+    // on the edges (alpha 0.5, not 0 or 0.75), the column on the join too.
+    const float pixel = 2.4f / 16.0f;
+    Scene scene;
+    CurvesPrim strand = sheet("/strand", 0.0f, {1, 1, 1}, 0.5f, pixel);
+    strand.points = {{-1.0f, 0.0f, 0.0f}, {0.5f * pixel, 0.0f, 0.0f}, {1.0f, 0.0f, 0.0f}};
+    strand.curveVertexCounts = {3};
+    scene.setCurves(strand);
+    RenderResult result = render(scene, orthographicCamera(16), {"strandRaster=compute"});
+    for (int x = 2; x < 14; ++x) {
+        double alpha = 0.0;
+        for (int y = 0; y < 16; ++y) alpha += result.color.at(x, y, 3);
+        EXPECT_NEAR(alpha, 0.5, 1e-6) << "column " << x;
+    }
+}
+
+TEST(Transparency, ComputeRasterDrawsStrandsCrossingTheNearPlaneAsTheHardwareDoes) {
+    // Strands from far in front of the camera to behind it: clipped at the
+    // near plane, finite everywhere, the same picture as the hardware's exact lists.
+    CameraPrim prim;
+    prim.clippingRange = {0.1f, 100.0f};
+    prim.worldTransform = glm::translate(glm::dmat4(1.0), glm::dvec3(0.0, 0.0, 1.0));
+    CameraView camera = cameraViewFromPrim(prim, 96);
+    Scene scene;
+    for (int i = 0; i < 5; ++i) {
+        CurvesPrim strand = sheet("/through" + std::to_string(i), 0.0f, {0.2f * float(i), 1, 0.5f}, 0.6f, 0.01f);
+        const float x = -0.2f + 0.1f * float(i);
+        strand.points = {{x, -0.05f, -3.0f}, {x + 0.05f, 0.05f, 3.0f}};
+        scene.setCurves(strand);
+    }
+    Image exact = render(scene, camera, {"transparency=exact"}).color;
+    Image compute = render(scene, camera, {"strandRaster=compute"}).color;
+    for (float value : compute.pixels) ASSERT_TRUE(std::isfinite(value));
+    ImageComparison comparison = compareImages(compute, exact, CoveredPixelTolerance{2.0 * kOneStep, 0.02, 0.5, 0});
+    EXPECT_TRUE(comparison.passed) << comparison.description;
+    EXPECT_GT(comparison.coveredPixels, 200u);
+}
+
+TEST(Transparency, ComputeRasterDrawsNothingForZeroWidthStrands) {
+    Scene scene;
+    scene.setCurves(sheet("/zero", 0.0f, {1, 1, 1}, 1.0f, 0.0f));
+    RenderResult result = render(scene, orthographicCamera(32), {"strandRaster=compute"});
+    EXPECT_EQ(*std::max_element(result.color.pixels.begin(), result.color.pixels.end()), 0.0f);
+    EXPECT_EQ(result.stats.fragments, 0u);
+}
+
+// Long lists in one pixel, on both list paths: a few hundred fragments are
+// too many to sort whole, so their nearest 64 are composited in order and
+// the rest averaged behind them, which for strands of one colour is the
+// exact picture; a million are more than llvmpipe lets one shader walk
+// (65535 loop steps in all), and the picture misses some, which the
+// renderer says. Never a hang: the selection sort would take a
+// million-fragment pixel 10^12 steps.
+CurvesPrim strandsThroughOnePixel(int strands, double pixel) {
+    CurvesPrim prim;
+    prim.path = "/strands";
+    prim.type = CurveType::Linear;
+    const float centre = float(0.5 * pixel);
+    for (int i = 0; i < strands; ++i) {
+        const float z = -1.0f + 2.0f * float(i) / float(strands);
+        prim.curveVertexCounts.push_back(2);
+        prim.points.push_back({centre - 0.1f, centre, z});
+        prim.points.push_back({centre + 0.1f, centre, z});
+    }
+    prim.primvars["widths"] = constantPrimvar("widths", {0.05f});
+    prim.primvars["displayColor"] = constantPrimvar("displayColor", {1, 1, 1});
+    prim.primvars["displayOpacity"] = constantPrimvar("displayOpacity", {0.02f});
+    return prim;
+}
+
+TEST(Transparency, LongListsInOnePixelAreCompositedAndSaidOnBothListPaths) {
+    // Each strand crosses only the pixel whose window centre is (2.5, 2.5)
+    // in a 4 px image (image rows run from the top: row 1).
+    const double pixel = 2.4 / 4.0;
+    // Coverage: the strand is 0.05 / 0.6 of a pixel wide, drawn a pixel wide.
+    const double alpha = 0.02 * (0.05 / pixel);
+    for (int strands : {150, 1000, 1 << 20}) {
+        Scene scene;
+        scene.setCurves(strandsThroughOnePixel(strands, pixel));
+        const double expected = 1.0 - std::pow(1.0 - alpha, double(strands));
+        for (const char* path : {"strandRaster=compute", "transparency=exact"}) {
+            const std::string what = std::string(path) + ", " + std::to_string(strands) + " strands";
+            Diagnostics diagnostics;
+            RenderResult result = renderWithWarnings(scene, orthographicCamera(4),
+                                                     {path, "strandRasterMemoryMB=64", "exactMemoryMB=64"}, diagnostics);
+            EXPECT_EQ(result.stats.fragments, uint64_t(strands)) << what;
+            EXPECT_EQ(result.color.at(2, 2, 3), 0.0f) << what;
+            std::vector<std::string> warnings;
+            for (const auto& warning : diagnostics.warnings()) warnings.push_back(warning.message);
+            if (strands == 150) {
+                EXPECT_NEAR(result.color.at(2, 1, 3), expected, 1e-4) << what;
+                EXPECT_TRUE(warnings.empty()) << what << ": " << warnings.front();
+                continue;
+            }
+            ASSERT_FALSE(warnings.empty()) << what;
+            EXPECT_EQ(warnings[0], "1 pixel(s) held more than 180 strand fragments: each was composited in depth "
+                                   "order for its nearest 64 and as one alpha-weighted layer behind them")
+                << what;
+            if (strands == 1000) {
+                EXPECT_EQ(warnings.size(), 1u) << what;
+                EXPECT_NEAR(result.color.at(2, 1, 3), expected, 1e-4) << what;
+                EXPECT_NEAR(result.color.at(2, 1, 0), expected, 1e-4) << what;
+            } else {
+                ASSERT_EQ(warnings.size(), 2u) << what;
+                EXPECT_EQ(warnings[1], "1 pixel(s) held more strand fragments than the GL driver lets one shader "
+                                       "walk (llvmpipe: 65535 loop steps); their last-listed fragments are missing "
+                                       "from the picture")
+                    << what;
+                // What was walked is composited: the 30,000 or so llvmpipe
+                // walks are already opaque at this alpha (1 - 10^-21).
+                EXPECT_NEAR(result.color.at(2, 1, 3), 1.0, 1e-6) << what;
+            }
+        }
+    }
 }

@@ -107,6 +107,23 @@ TEST(ShadingFeatures, EveryProgramOneSwitchFromAllOrWithOneAloneCompiles) {
                 EXPECT_NO_THROW(programs.get(features)) << fragment << " with " << features.describe();
             EXPECT_EQ(programs.compiled(), sets.size());
         }
+        // The compute rasteriser shades through the same includes; what is
+        // its own is the vertex shadows it interpolates. Compute programs
+        // compile eagerly on llvmpipe (about a second each), so these sets
+        // rather than all of the above.
+        const std::vector<ShadingFeatures> computeSets{
+            ShadingFeatures(),
+            ShadingFeatures::all(),
+            only({ShadingFeature::Shade, ShadingFeature::KajiyaKay, ShadingFeature::DeepOpacity,
+                  ShadingFeature::BilinearShadows})
+                .setShadowLayers(3)
+                .setVertexShadowLights(1),
+            ShadingFeatures::all().setVertexShadowLights(5),
+            ShadingFeatures::all().setVertexShadowLights(16)};
+        ShadingPrograms compute({"strandRaster.comp"});
+        for (const ShadingFeatures& features : computeSets)
+            EXPECT_NO_THROW(compute.get(features)) << "strandRaster.comp with " << features.describe();
+        EXPECT_EQ(compute.compiled(), computeSets.size());
     });
 }
 

@@ -1,4 +1,5 @@
 #include <algorithm>
+#include <limits>
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
@@ -135,6 +136,57 @@ TEST(RenderPlan, SaysWhichPassProducesDepthAndIds) {
     RenderPlan exactWithoutIds = plan("exact", false);
     exactWithoutIds.fallBackToBinSorted(1024, false);
     EXPECT_FALSE(exactWithoutIds.isEnabled("ids"));
+}
+
+TEST(RenderPlan, AutoRasterisesThinBlendedStrandsInComputeAndSaysWhy) {
+    StrandSummary thin = wideOpaqueStrands(10);
+    thin.minProjectedWidthPixels = 0.4;
+    thin.maxProjectedWidthPixels = 1.5;
+    auto plan = [&](std::vector<std::string> assignments, const StrandSummary& strands, bool ids = false) {
+        RenderSettings settings;
+        for (const std::string& assignment : assignments) settings.setFromAssignment(assignment);
+        return makeRenderPlan(Scene{}, settings, cameraAtPlusZ(), strands, ids);
+    };
+    auto strandsReason = [](const RenderPlan& p) { return p.graph.find("strands")->reason; };
+
+    RenderPlan automatic = plan({"strandRaster=auto"}, thin, true);
+    EXPECT_EQ(automatic.strandRaster, StrandRaster::Compute);
+    EXPECT_EQ(automatic.transparency, TransparencyPath::BinSorted);
+    EXPECT_NE(strandsReason(automatic).find("compute: every strand projects at most 1.50 px wide "
+                                            "(strandRasterMaxPixelWidth 4; strandRaster=auto)"),
+              std::string::npos)
+        << strandsReason(automatic);
+    // Lists sorted per pixel: no bin sort, no draw order, ids from the resolve.
+    EXPECT_FALSE(automatic.isEnabled("sort"));
+    EXPECT_FALSE(automatic.isEnabled("ids"));
+    const std::vector<FrameResource>& reads = automatic.graph.find("strands")->reads;
+    EXPECT_EQ(std::find(reads.begin(), reads.end(), "drawOrder"), reads.end());
+    EXPECT_NE(strandsReason(automatic).find("depth and ids: the nearest listed fragment"), std::string::npos);
+
+    // Over its memory budget the frame goes back to the hardware path with
+    // the transparency planned: binSorted needs its sort and, with ids, the ids pass.
+    automatic.fallBackToHardwareRaster(true);
+    EXPECT_EQ(automatic.strandRaster, StrandRaster::Hardware);
+    EXPECT_TRUE(automatic.isEnabled("sort"));
+    EXPECT_TRUE(automatic.isEnabled("ids"));
+
+    StrandSummary wide = thin;
+    wide.maxProjectedWidthPixels = 6.0;
+    RenderPlan wideAuto = plan({"strandRaster=auto"}, wide);
+    EXPECT_EQ(wideAuto.strandRaster, StrandRaster::Hardware);
+    EXPECT_NE(wideAuto.strandRasterReason.find("widest strand may project 6.00 px"), std::string::npos);
+    EXPECT_EQ(plan({"strandRaster=auto", "strandRasterMaxPixelWidth=8"}, wide).strandRaster, StrandRaster::Compute);
+    StrandSummary reachesCamera = thin;
+    reachesCamera.maxProjectedWidthPixels = std::numeric_limits<double>::infinity();
+    EXPECT_EQ(plan({"strandRaster=auto"}, reachesCamera).strandRaster, StrandRaster::Hardware);
+
+    // Asked for, compute takes any blended frame; never the opaque path.
+    EXPECT_EQ(plan({"strandRaster=compute"}, wide).strandRaster, StrandRaster::Compute);
+    EXPECT_EQ(plan({"strandRaster=hardware"}, thin).strandRaster, StrandRaster::Hardware);
+    RenderPlan opaque = plan({"strandRaster=compute"}, wideOpaqueStrands(10));
+    EXPECT_EQ(opaque.transparency, TransparencyPath::Opaque);
+    EXPECT_EQ(opaque.strandRaster, StrandRaster::Hardware);
+    EXPECT_TRUE(plan({"strandRaster=hardware"}, thin).isEnabled("sort"));
 }
 
 // A stage without meshes builds neither mesh pass; one with visible meshes
