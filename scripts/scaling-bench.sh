@@ -6,6 +6,9 @@
 # scaling.md (the table docs/performance.md shows), scaling.csv and, with python3-matplotlib,
 # scaling.png (frame time and peak memory against spans, log-log).
 #   scripts/scaling-bench.sh [--build DIR] [--out DIR] [--imageWidth N] [--complexity LEVEL]
+#                            [--setting NAME=VALUE ...]
+# --setting: a renderer setting for every render (repeatable), as hdhair-record's -s,
+#   e.g. --setting strandRaster=compute; the table's heading names them.
 # Figures are one run each on whatever machine runs it: read the ratios
 # (time and bytes a span against the smallest groom), not the seconds.
 set -euo pipefail
@@ -14,12 +17,14 @@ build="$root/build"
 out="$root/build/scaling"
 width=512
 complexity=high
+settings=()
 while [[ $# -gt 0 ]]; do
   case "$1" in
     --build) build="$2"; shift 2 ;;
     --out) out="$2"; shift 2 ;;
     --imageWidth) width="$2"; shift 2 ;;
     --complexity) complexity="$2"; shift 2 ;;
+    --setting) settings+=(-s "$2"); shift 2 ;;
     *) echo "scaling-bench: unknown argument '$1'" >&2; exit 2 ;;
   esac
 done
@@ -54,7 +59,7 @@ for entry in "${grooms[@]}"; do
   echo "scaling-bench: rendering $name spans"
   /usr/bin/time -f "%M" -o "$out/rss-$name.txt" \
     "$build/bin/hdhair-record" --imageWidth "$width" --complexity "$complexity" --stats "$out/stats-$name.json" \
-    "$stage" "$out/bear-$name.exr" >/dev/null
+    "${settings[@]}" -- "$stage" "$out/bear-$name.exr" >/dev/null
   python3 - "$out" "$name" >> "$out/scaling.csv" <<'EOF'
 import json, sys
 out, name = sys.argv[1], sys.argv[2]
@@ -69,9 +74,10 @@ done
 
 # Debian's python3, where python3-matplotlib is (a python3 earlier on PATH,
 # such as pyenv's for OpenUSD, may not have it).
-/usr/bin/python3 - "$out" "$width" "$complexity" <<'EOF'
+/usr/bin/python3 - "$out" "$width" "$complexity" "${settings[@]}" <<'EOF'
 import csv, sys
 out, width, complexity = sys.argv[1], sys.argv[2], sys.argv[3]
+assignments = [a for a in sys.argv[4:] if a != "-s"]
 rows = list(csv.DictReader(open(f"{out}/scaling.csv")))
 base = rows[0]
 base_ms_per_span = float(base["frame_ms"]) / int(base["spans"])
@@ -85,7 +91,8 @@ for r in rows:
     marginal = f"{(rss - float(base['peak_rss_mb'])) * 2**20 / extra_spans:.0f}" if extra_spans > 0 else "-"
     lines.append(f"| {r['groom']} | {spans:,} | {float(r['frame_ms']) / 1000:.2f} s | {float(r['strand_pass_ms']) / 1000:.2f} s "
                  f"| {int(r['triangles']):,} | {per_span:.2f}x | {rss:.0f} MB | {marginal} |")
-open(f"{out}/scaling.md", "w").write(f"hdhair-record at {width} px, complexity {complexity}, one process a groom:\n\n" +
+with_settings = f", {' '.join(assignments)}" if assignments else ""
+open(f"{out}/scaling.md", "w").write(f"hdhair-record at {width} px, complexity {complexity}{with_settings}, one process a groom:\n\n" +
                                      "\n".join(lines) + "\n")
 print(open(f"{out}/scaling.md").read())
 try:

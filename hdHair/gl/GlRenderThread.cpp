@@ -1,5 +1,7 @@
 #include "hdHair/gl/GlRenderThread.h"
 
+#include <pthread.h>
+
 namespace hdhair::gl {
 
 GlRenderThread::GlRenderThread(GlBackend backend) : backend_(backend) {
@@ -32,6 +34,11 @@ void GlRenderThread::post(std::function<void()> job) {
 }
 
 void GlRenderThread::loop(std::promise<void>& started) {
+    // Named for profilers (top -H, perf, /proc/PID/task/TID/comm). Threads
+    // the driver starts from here inherit the name unless they set their own:
+    // llvmpipe's rasteriser threads are llvmpipe-N, its compute workers stay
+    // hdhair-gl (scripts/strand-raster-bench.py tells them apart).
+    pthread_setname_np(pthread_self(), "hdhair-gl");
     try {
         context_ = createGlContext(backend_);
         description_ = context_->description();
