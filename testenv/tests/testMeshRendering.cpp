@@ -32,7 +32,13 @@ using namespace hdhair::testenv;
 namespace {
 
 constexpr int kPixels = 64;
-const std::vector<const char*> kModes = {"binSorted", "exact", "unsorted", "opaque"};
+// The transparency paths, and the compute rasteriser (over binSorted).
+const std::vector<const char*> kModes = {"binSorted", "exact", "unsorted", "opaque", "compute"};
+
+// The setting that selects `mode`.
+std::string modeSetting(const std::string& mode) {
+    return mode == "compute" ? "strandRaster=compute" : "transparency=" + mode;
+}
 
 // Strands across the whole view at heights `ys` (HorizontalStrands.h).
 CurvesPrim strands(const std::string& path, int primId, float z, const std::vector<double>& ys, float width,
@@ -101,11 +107,14 @@ TEST(MeshRendering, ASphereHidesExactlyTheStrandsBehindIt) {
     }
     const RenderResult covered = render(sphereOnly, camera);
     for (const char* mode : kModes) {
-        const std::vector<std::string> settings{std::string("transparency=") + mode};
+        const std::vector<std::string> settings{modeSetting(mode)};
         const RenderResult frame = render(all, camera, settings);
         const RenderResult expectedOnSphere = render(sphereAndFront, camera, settings);
         const RenderResult expectedElsewhere = render(strandsOnly, camera, settings);
-        ASSERT_EQ(frame.stats.transparency, mode);
+        if (std::string(mode) == "compute")
+            ASSERT_EQ(frame.stats.strandRaster, "compute");
+        else
+            ASSERT_EQ(frame.stats.transparency, mode);
         EXPECT_TRUE(frame.plan.isEnabled("meshes"));
         size_t sphereCount = 0, hiddenStrandPixels = 0;
         for (int y = 0; y < kPixels; ++y) {
@@ -149,7 +158,7 @@ TEST(MeshRendering, DepthAndIdsAreTheMeshsWhereItIsNearest) {
     scene.setCurves(strands("/faint", 3, 3.0f, {0.0f}, 0.25f, {1, 1, 1}, 0.05f));
     const float meshDepth = float((8.0 - 0.1) / 99.9), frontDepth = float((7.0 - 0.1) / 99.9);
     for (const char* mode : kModes) {
-        const RenderResult frame = render(scene, camera, {std::string("transparency=") + mode});
+        const RenderResult frame = render(scene, camera, {modeSetting(mode)});
         auto expectPixel = [&](double x, double y, float depth, int primId, int instanceId, int elementId) {
             const glm::ivec2 p = pixelAt(camera, x, y);
             const size_t i = pixelIndex(p.x, p.y);
@@ -332,7 +341,7 @@ TEST(MeshRendering, LightBatchesSumTheMeshesColours) {
         scene.setLight(light);
     }
     for (const char* mode : kModes) {
-        const std::string transparency = std::string("transparency=") + mode;
+        const std::string transparency = modeSetting(mode);
         const RenderResult together = render(scene, camera, {transparency, "shadingModel=kajiyaKay", "lightsPerPass=16"});
         const RenderResult batched = render(scene, camera, {transparency, "shadingModel=kajiyaKay", "lightsPerPass=1"});
         EXPECT_EQ(batched.stats.lightPasses, 5u);

@@ -73,8 +73,9 @@ TEST(Renderer, IdOutputsNamePrimAndCurveUnderEachPixel) {
 
 TEST(Renderer, IdOutputsNameTheInstanceInEveryTransparencyMode) {
     // Instances of one prim (as the Hydra plugin expands them) share the
-    // prim id and differ by instance id; the exact mode resolves ids from its
-    // fragment lists rather than from the strand pass.
+    // prim id and differ by instance id; the exact mode and the compute
+    // rasteriser resolve ids from their fragment lists rather than from the
+    // strand pass.
     Scene scene;
     CurvesPrim first = horizontalStrands("/proto{0}", 5, {0.5f});
     CurvesPrim second = horizontalStrands("/proto{1}", 5, {0.5f});
@@ -85,11 +86,12 @@ TEST(Renderer, IdOutputsNameTheInstanceInEveryTransparencyMode) {
     scene.setCurves(second);
     Renderer renderer(gl::GlBackend::Egl);
     CameraView camera = squareCamera(64);
-    for (const char* mode : {"binSorted", "exact", "unsorted", "opaque"}) {
+    for (const char* mode : {"binSorted", "exact", "unsorted", "opaque", "compute"}) {
         RenderSettings settings;
-        settings.set("transparency", mode);
+        settings.set(mode == std::string("compute") ? "strandRaster" : "transparency", mode);
         Diagnostics diagnostics;
         RenderResult result = renderer.render(scene, camera, settings, diagnostics, RenderOutputs{true});
+        EXPECT_EQ(result.stats.strandRaster, mode == std::string("compute") ? "compute" : "hardware") << mode;
         auto at = [&](const std::vector<int32_t>& ids, float y) { return ids[size_t(pixelRow(camera, y)) * 64 + 32]; };
         EXPECT_EQ(at(result.primIds, 0.5f), 5) << mode;
         EXPECT_EQ(at(result.instanceIds, 0.5f), 0) << mode;
