@@ -41,9 +41,10 @@ void expectIdentical(const RenderResult& actual, const RenderResult& expected, c
     EXPECT_EQ(actual.elementIds, expected.elementIds) << what;
 }
 
-RenderSettings tuftSettings(const std::string& transparency) {
+// `path`: a transparency path, or "compute" (the compute rasteriser).
+RenderSettings tuftSettings(const std::string& path) {
     RenderSettings settings;
-    settings.set("transparency", transparency);
+    settings.set(path == "compute" ? "strandRaster" : "transparency", path);
     settings.set("lightsPerPass", "2");  // three light batches, each drawing the strands again
     return settings;
 }
@@ -55,7 +56,7 @@ TEST(FrameCancellation, StrandPiecesGiveTheSingleDrawsImageOnEveryPath) {
     const CameraView camera = tuftCamera(0.0, 96);
     Renderer renderer(gl::defaultGlBackend());
     Diagnostics diagnostics;
-    for (const char* path : {"binSorted", "unsorted", "opaque", "exact"}) {
+    for (const char* path : {"binSorted", "unsorted", "opaque", "exact", "compute"}) {
         const RenderSettings settings = tuftSettings(path);
         const RenderResult whole = renderer.render(scene, camera, settings, diagnostics, RenderOutputs{true});
         StopAtPoll never(INT_MAX);
@@ -64,10 +65,11 @@ TEST(FrameCancellation, StrandPiecesGiveTheSingleDrawsImageOnEveryPath) {
         pieces.strandPieceSegments = 7;
         const RenderResult pieced = renderer.render(scene, camera, settings, diagnostics, RenderOutputs{true}, pieces);
         // Asked before every piece of every strand draw (three light batches,
-        // and the ids pass where it runs); exact transparency draws its
-        // fragment lists at once and is asked between passes only.
+        // and the ids pass where it runs); exact transparency and the
+        // compute rasteriser fill their fragment lists at once and are asked
+        // between passes only.
         ASSERT_EQ(whole.stats.segments, 360u);  // 120 curves of 3 spans
-        if (std::string(path) != "exact") {
+        if (std::string(path) != "exact" && std::string(path) != "compute") {
             EXPECT_GE(never.polls(), 3 * (360 + 6) / 7) << path;
         }
         expectIdentical(pieced, whole, path);
@@ -82,32 +84,36 @@ TEST(FrameCancellation, AFrameStoppedAtAnyPointLeavesTheRendererAsIfItNeverRan) 
     Scene after = before;
     after.setCurves(tuftStrands("/tuft/b", 2, 30, 1.5f));
     const CameraView a = tuftCamera(0.0, 64), b = tuftCamera(35.0, 64);
-    const RenderSettings settings = tuftSettings("binSorted");
-    Diagnostics diagnostics;
-    const RenderResult expected = synchronousSecondFrame(before, a, after, b, settings, diagnostics);
-
-    Renderer renderer(gl::defaultGlBackend());
     auto stoppable = [](const FrameCancellation& cancellation) {
         FrameControl control;
         control.cancellation = &cancellation;
         control.strandPieceSegments = 64;
         return control;
     };
-    renderer.render(before, a, settings, diagnostics, RenderOutputs{true});
-    StopAtPoll never(INT_MAX);
-    expectIdentical(renderer.render(after, b, settings, diagnostics, RenderOutputs{true}, stoppable(never)), expected,
-                    "not stopped");
-    const int polls = never.polls();
-    ASSERT_GT(polls, 20);  // every pass, and every piece of 64 of the 270 segments in three batches and ids
+    for (const char* path : {"binSorted", "compute"}) {
+        const RenderSettings settings = tuftSettings(path);
+        Diagnostics diagnostics;
+        const RenderResult expected = synchronousSecondFrame(before, a, after, b, settings, diagnostics);
 
-    for (int stopAt = 1; stopAt <= polls; ++stopAt) {
+        Renderer renderer(gl::defaultGlBackend());
         renderer.render(before, a, settings, diagnostics, RenderOutputs{true});
-        StopAtPoll stop(stopAt);
-        EXPECT_THROW(renderer.render(after, b, settings, diagnostics, RenderOutputs{true}, stoppable(stop)),
-                     FrameCancelled)
-            << "stopped at poll " << stopAt;
-        expectIdentical(renderer.render(after, b, settings, diagnostics, RenderOutputs{true}), expected,
-                        "the frame after one stopped at poll " + std::to_string(stopAt));
+        StopAtPoll never(INT_MAX);
+        expectIdentical(renderer.render(after, b, settings, diagnostics, RenderOutputs{true}, stoppable(never)),
+                        expected, std::string(path) + ", not stopped");
+        const int polls = never.polls();
+        // binSorted: every pass, and every piece of 64 of the 270 segments in
+        // three batches and ids; compute: every pass.
+        ASSERT_GT(polls, std::string(path) == "compute" ? 8 : 20) << path;
+
+        for (int stopAt = 1; stopAt <= polls; ++stopAt) {
+            renderer.render(before, a, settings, diagnostics, RenderOutputs{true});
+            StopAtPoll stop(stopAt);
+            EXPECT_THROW(renderer.render(after, b, settings, diagnostics, RenderOutputs{true}, stoppable(stop)),
+                         FrameCancelled)
+                << path << ", stopped at poll " << stopAt;
+            expectIdentical(renderer.render(after, b, settings, diagnostics, RenderOutputs{true}), expected,
+                            std::string(path) + ", the frame after one stopped at poll " + std::to_string(stopAt));
+        }
+        EXPECT_TRUE(diagnostics.warnings().empty()) << path;
     }
-    EXPECT_TRUE(diagnostics.warnings().empty());
 }
