@@ -114,6 +114,8 @@ def run_record(record, stage, complexity, raster, width, frames, stats_path):
         stats = json.load(file)
     strands, totals = [], []
     for frame in stats["frames"][1:]:
+        if frame.get("transparency") == "opaque":
+            return None  # wide opaque strands: the opaque path, which the compute rasteriser never takes
         if frame.get("strandRaster") != raster:
             fail(f"{stage} {complexity}: strandRaster={raster} rendered {frame.get('strandRaster')}")
         strands.append(sum(p["milliseconds"] for p in frame["passes"] if p["name"] == "strands"))
@@ -197,12 +199,16 @@ def main():
         writer = csv.writer(file)
         writer.writerow(["stage", "complexity", "raster", "run", "strandMs", "frameMs", "wallS", "threadLoad"])
         for (stage, complexity, raster), results in rows.items():
-            for run, (strand, frame, wall, load) in enumerate(results):
+            for run, (strand, frame, wall, load) in enumerate(r for r in results if r is not None):
                 writer.writerow([stage, complexity, raster, run + 1, f"{strand:.2f}", f"{frame:.2f}", f"{wall:.2f}",
                                  ";".join(f"{name}={share:.3f}" for name, share in load)])
     for stage in stages:
         for complexity in complexities:
             hardware, compute = (stage, complexity, "hardware"), (stage, complexity, "compute")
+            if any(result is None for result in rows[hardware] + rows[compute]):
+                lines.append(f"| {stage} | {complexity} | opaque path (every strand opaque and at least "
+                             "minPixelWidth wide): no compute rasteriser | | | | | | |")
+                continue
             lines.append(f"| {stage} | {complexity} | {median(hardware, 0):.0f} ms | {median(compute, 0):.0f} ms | "
                          f"{median(compute, 0) / median(hardware, 0):.2f}x | {median(hardware, 1):.0f} ms | "
                          f"{median(compute, 1):.0f} ms | {load_text(hardware)} | {load_text(compute)} |")

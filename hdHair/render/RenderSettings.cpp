@@ -86,9 +86,10 @@ const std::vector<SettingDescriptor>& RenderSettings::descriptors() {
          "compute (strandRaster.comp: spans cut, rasterised and shaded in compute on every core, composited "
          "from per-pixel lists), or auto (compute where every strand is thinner than strandRasterMaxPixelWidth)",
          0, 0, {"hardware", "compute", "auto"}, &SettingValues::strandRaster},
-        {"strandRasterMaxPixelWidth", SettingType::Float, "4",
+        {"strandRasterMaxPixelWidth", SettingType::Float, "2.5",
          "strandRaster=auto: the compute rasteriser takes a frame only when its widest strand projects at most "
-         "this many pixels wide (wide ribbons cost it a scan over their bounding box per segment)",
+         "this many pixels wide (measured: it pays for thin strands, where spans cover few pixels each; "
+         "docs/performance.md)",
          0.0, 1000.0, {}, &SettingValues::strandRasterMaxPixelWidth},
         {"strandRasterMemoryMB", SettingType::Int, "512",
          "Memory for the compute rasteriser's fragment lists; a frame needing more warns and is drawn by the "

@@ -153,7 +153,7 @@ TEST(RenderPlan, AutoRasterisesThinBlendedStrandsInComputeAndSaysWhy) {
     EXPECT_EQ(automatic.strandRaster, StrandRaster::Compute);
     EXPECT_EQ(automatic.transparency, TransparencyPath::BinSorted);
     EXPECT_NE(strandsReason(automatic).find("compute: every strand projects at most 1.50 px wide "
-                                            "(strandRasterMaxPixelWidth 4; strandRaster=auto)"),
+                                            "(strandRasterMaxPixelWidth 2.5; strandRaster=auto)"),
               std::string::npos)
         << strandsReason(automatic);
     // Lists sorted per pixel: no bin sort, no draw order, ids from the resolve.
@@ -176,6 +176,9 @@ TEST(RenderPlan, AutoRasterisesThinBlendedStrandsInComputeAndSaysWhy) {
     EXPECT_EQ(wideAuto.strandRaster, StrandRaster::Hardware);
     EXPECT_NE(wideAuto.strandRasterReason.find("widest strand may project 6.00 px"), std::string::npos);
     EXPECT_EQ(plan({"strandRaster=auto", "strandRasterMaxPixelWidth=8"}, wide).strandRaster, StrandRaster::Compute);
+    StrandSummary justOver = thin;
+    justOver.maxProjectedWidthPixels = 2.6;
+    EXPECT_EQ(plan({"strandRaster=auto"}, justOver).strandRaster, StrandRaster::Hardware);
     StrandSummary reachesCamera = thin;
     reachesCamera.maxProjectedWidthPixels = std::numeric_limits<double>::infinity();
     EXPECT_EQ(plan({"strandRaster=auto"}, reachesCamera).strandRaster, StrandRaster::Hardware);
