@@ -203,8 +203,9 @@ void drawStrandPieces(FrameContext& context, bool ordered, gl::StrandBlending bl
 uint64_t fragmentListMB(uint64_t fragments) { return (fragments * gl::kFragmentNodeBytes + (1 << 20) - 1) >> 20; }
 
 // Warns when the lists just resolved had pixels too long to sort whole, or
-// to walk whole.
-void warnOverlongLists(FrameContext& context) {
+// to walk whole; once a frame: every light batch lists the same fragments.
+void warnOverlongLists(FrameContext& context, size_t batch) {
+    if (batch != 0) return;
     const gl::FragmentListPass& lists = context.resources.fragmentLists;
     if (lists.overlongPixels() > 0)
         context.diagnostics.warn("render", fmt::format("{} pixel(s) held more than 180 strand fragments: each was "
@@ -241,7 +242,7 @@ void drawStrands(FrameContext& context, gl::RenderTarget& target, size_t batch) 
             inputs.computeRasterCapacity, inputs.frame.maxSegmentsPerSpan, target.images().ids, features,
             gl::FragmentSource::ComputeRaster, target.depthTexture());
         context.result.stats.fragments = fragments;
-        if (fragments <= inputs.computeRasterCapacity) return warnOverlongLists(context);
+        if (fragments <= inputs.computeRasterCapacity) return warnOverlongLists(context, batch);
         context.diagnostics.warn(
             "render", fmt::format("the compute rasteriser needs {} MB for {} fragments, more than "
                                   "strandRasterMemoryMB={}; drawn by the hardware rasteriser instead",
@@ -261,7 +262,7 @@ void drawStrands(FrameContext& context, gl::RenderTarget& target, size_t batch) 
                                                             inputs.fragmentListCapacity, inputs.frame.maxSegmentsPerSpan,
                                                             target.images().ids, features);
         context.result.stats.fragments = fragments;
-        if (fragments <= inputs.fragmentListCapacity) return warnOverlongLists(context);
+        if (fragments <= inputs.fragmentListCapacity) return warnOverlongLists(context, batch);
         const std::string needed = fmt::format("exact transparency needs {} MB for {} fragments, more than "
                                                "exactMemoryMB={}",
                                                fragmentListMB(fragments), fragments, plan.exactMemoryMB);
