@@ -17,6 +17,7 @@
 #include "include/shadows.glsl"
 #include "include/srbfLighting.glsl"
 #include "include/strandShading.glsl"
+#define HDHAIR_FRAGMENT_LIST_APPEND 1
 #include "include/fragmentLists.glsl"
 
 layout(early_fragment_tests) in;
@@ -28,14 +29,9 @@ layout(location = 3) flat in ivec4 ids;  // primId, elementId, material, segment
 layout(location = 4) in float spanU;
 layout(location = 5) in vec3 strandCentre;
 
-layout(r32ui, binding = 0) uniform coherent uimage2D listHeads;
-
 void main() {
     float alpha = colorAlpha.a;
     if (alpha <= 0.0) return;
     vec3 radiance = strandRadiance(worldPosition, strandCentre, worldTangent, colorAlpha.rgb, ids.z, ids.w, spanU);
-    uint index = atomicAdd(fragmentCount, 1u);
-    if (index >= capacity) return;  // over budget: the CPU sees the count and falls back
-    uint previous = imageAtomicExchange(listHeads, ivec2(gl_FragCoord.xy), index);
-    nodes[index] = FragmentNode(vec4(radiance * alpha, alpha), gl_FragCoord.z, previous, ids.w);
+    appendFragmentNode(ivec2(gl_FragCoord.xy), vec4(radiance * alpha, alpha), gl_FragCoord.z, ids.w);
 }

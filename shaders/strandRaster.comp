@@ -38,11 +38,11 @@
 #include "include/strandShading.glsl"
 #include "include/strandTessellationLevel.glsl"
 #include "include/strandRibbonPoint.glsl"
+#define HDHAIR_FRAGMENT_LIST_APPEND 1
 #include "include/fragmentLists.glsl"
 
 layout(local_size_x = 32) in;
 
-layout(r32ui, binding = 0) uniform coherent uimage2D listHeads;
 // The frame's depth buffer: what opaque geometry drawn before left.
 layout(binding = 9) uniform sampler2D frameDepth;
 layout(location = 0) uniform uint rangeFirst;
@@ -105,10 +105,7 @@ void appendFragment(ivec2 pixel, float depth, RasterVertex a, RasterVertex b, Ra
             perspective.x * a.transmittance[i] + perspective.y * b.transmittance[i] + perspective.z * c.transmittance[i];
 #endif
     vec3 radiance = strandRadiance(world, centre, tangent, colorAlpha.rgb, ids.z, ids.w, spanU);
-    uint index = atomicAdd(fragmentCount, 1u);
-    if (index >= capacity) return;  // over budget: the CPU sees the count and falls back
-    uint previous = imageAtomicExchange(listHeads, pixel, index);
-    nodes[index] = FragmentNode(vec4(radiance * alpha, alpha), depth, previous, ids.w);
+    appendFragmentNode(pixel, vec4(radiance * alpha, alpha), depth, ids.w);
 }
 
 // Scan-converts a triangle wholly in front of the near plane.

@@ -11,6 +11,13 @@ namespace hdhair::gl {
 namespace {
 
 constexpr GLint kResolveIds = 0;  // uniform location in shaders/fragmentListResolve.frag
+constexpr GLint kResolveImageSize = 1;  // shaders/fragmentListTile.vert
+constexpr GLint kTilesInImage = 0;  // shaders/fragmentListTiles.comp
+constexpr GLuint kTileWorkgroup = 64;
+// The counter's four words before its tile marks (FragmentCounter in
+// shaders/include/fragmentLists.glsl), and the indirect draw's before its
+// tiles (shaders/include/resolvedTiles.glsl).
+constexpr size_t kCounterHeaderBytes = 4 * sizeof(uint32_t), kTileDrawHeaderBytes = 4 * sizeof(uint32_t);
 // shaders/strandRaster.comp's workgroup size, uniform locations and depth texture unit.
 constexpr GLuint kRasterWorkgroup = 32;
 constexpr GLint kRasterRangeFirst = 0, kRasterRangeCount = 1;
@@ -37,9 +44,9 @@ std::vector<SegmentRange> joinedRanges(const std::vector<SegmentRange>& ranges) 
 FragmentListPass::FragmentListPass()
     : listPrograms_({"strand.vert", "strand.tesc", "strand.tese", "strand.geom", "strandFragmentList.frag"}),
       computePrograms_({"strandRaster.comp"}),
-      resolveProgram_(createProgram({"fullscreen.vert", "fragmentListResolve.frag"})),
+      resolveProgram_(createProgram({"fragmentListTile.vert", "fragmentListResolve.frag"})),
+      tileProgram_(createProgram({"fragmentListTiles.comp"})),
       emptyVertexArray_(createVertexArray()),
-      counter_(createBuffer(nullptr, 4 * sizeof(uint32_t), GL_DYNAMIC_STORAGE_BIT | GL_MAP_READ_BIT, "fragmentLists")),
       order_(createBuffer(nullptr, sizeof(uint32_t), 0, "fragmentLists")) {
     checkGlError("setting up exact transparency");
 }
@@ -60,6 +67,38 @@ void FragmentListPass::rasterizeInCompute(const std::vector<SegmentRange>& range
     glBindTextureUnit(kRasterFrameDepthUnit, 0);
 }
 
+void FragmentListPass::ensureImage(int width, int height) {
+    if (width == headsWidth_ && height == headsHeight_) return;
+    GLuint name = 0;
+    glCreateTextures(GL_TEXTURE_2D, 1, &name);
+    heads_ = Texture(name);
+    glTextureStorage2D(heads_.get(), 1, GL_R32UI, width, height);
+    recordTextureStorage(heads_.get(), GL_R32UI, width, height, 1, 0, "fragmentLists");
+    headsWidth_ = width;
+    headsHeight_ = height;
+    const size_t tiles = size_t((width + kFragmentListTile - 1) / kFragmentListTile) *
+                         size_t((height + kFragmentListTile - 1) / kFragmentListTile);
+    tilesInImage_ = tiles;
+    // The marks start clear; fragmentListTiles.comp clears them after each frame.
+    counter_ = createBuffer(nullptr, kCounterHeaderBytes + tiles * sizeof(uint32_t),
+                            GL_DYNAMIC_STORAGE_BIT | GL_MAP_READ_BIT, "fragmentLists");
+    const uint32_t zero = 0;
+    glClearNamedBufferData(counter_.get(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+    tileDraw_ = createBuffer(nullptr, kTileDrawHeaderBytes + tiles * sizeof(uint32_t),
+                             GL_DYNAMIC_STORAGE_BIT | GL_MAP_READ_BIT, "fragmentLists");
+}
+
+void FragmentListPass::gatherTiles() {
+    const uint32_t command[4] = {6, 0, 0, 0};  // six vertices an instance, no instances yet
+    glNamedBufferSubData(tileDraw_.get(), 0, sizeof command, command);
+    glUseProgram(tileProgram_.get());
+    glProgramUniform1ui(tileProgram_.get(), kTilesInImage, GLuint(tilesInImage_));
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 6, counter_.get());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 9, tileDraw_.get());
+    glDispatchCompute(GLuint((tilesInImage_ + kTileWorkgroup - 1) / kTileWorkgroup), 1, 1);
+    glMemoryBarrier(GL_COMMAND_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+}
+
 void FragmentListPass::ensureNodes(size_t nodes) {
     if (nodes <= nodeCapacity_ && nodes_) return;
     nodes_ = createBuffer(nullptr, std::max<size_t>(nodes, 1) * kFragmentNodeBytes, 0, "fragmentLists");
@@ -72,7 +111,7 @@ uint64_t FragmentListPass::fillLists(const StrandGeometry& geometry, const std::
     const GLuint listEnd = 0xffffffffu;
     glClearTexImage(heads_.get(), 0, GL_RED_INTEGER, GL_UNSIGNED_INT, &listEnd);
     const uint32_t counter[4] = {0, uint32_t(std::min<size_t>(nodeCapacity_, 0xffffffffu)), 0, 0};
-    glNamedBufferSubData(counter_.get(), 0, sizeof counter, counter);
+    glNamedBufferSubData(counter_.get(), 0, sizeof counter, counter);  // the tile marks stay
 
     geometry.bind();
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, order_.get());  // declared, unread (no ordering needed)
@@ -107,15 +146,7 @@ uint64_t FragmentListPass::fillLists(const StrandGeometry& geometry, const std::
 uint64_t FragmentListPass::render(const StrandGeometry& geometry, const std::vector<SegmentRange>& ranges, int width,
                                   int height, size_t capacity, float maxSegmentsPerSpan, bool writeIds,
                                   ShadingFeatures features, FragmentSource source, GLuint frameDepth) {
-    if (width != headsWidth_ || height != headsHeight_) {
-        GLuint name = 0;
-        glCreateTextures(GL_TEXTURE_2D, 1, &name);
-        heads_ = Texture(name);
-        glTextureStorage2D(heads_.get(), 1, GL_R32UI, width, height);
-        recordTextureStorage(heads_.get(), GL_R32UI, width, height, 1, 0, "fragmentLists");
-        headsWidth_ = width;
-        headsHeight_ = height;
-    }
+    ensureImage(width, height);
     // The nodes take what the frame needs, not the whole budget: storage is
     // made (and, on llvmpipe, zeroed) when it is allocated, which costs
     // about as much as the list pass itself at a 512 MB budget. A first
@@ -130,21 +161,28 @@ uint64_t FragmentListPass::render(const StrandGeometry& geometry, const std::vec
         offered = fillLists(geometry, ranges, maxSegmentsPerSpan, features, source, frameDepth);
     }
 
-    // Pass 2: resolve every pixel over what the frame holds (opaque meshes,
-    // or nothing): colour composited (ONE, ONE_MINUS_SRC_ALPHA) and the
-    // nearest depth min-blended, then the ids where a listed fragment
-    // defines them (integer images cannot blend, so they take a draw of
-    // their own that discards elsewhere).
+    gatherTiles();
+
+    // Pass 2: resolve every pixel of the tiles holding fragments over what
+    // the frame holds (opaque meshes, or nothing; pixels elsewhere keep
+    // it): colour composited (ONE, ONE_MINUS_SRC_ALPHA) and the nearest
+    // depth min-blended, then the ids where a listed fragment defines them
+    // (integer images cannot blend, so they take a draw of their own that
+    // discards elsewhere).
     glUseProgram(resolveProgram_.get());
     glDisable(GL_DEPTH_TEST);
     glProgramUniform1i(resolveProgram_.get(), kResolveIds, 0);
+    glProgramUniform2i(resolveProgram_.get(), kResolveImageSize, width, height);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 6, counter_.get());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 9, tileDraw_.get());
+    glBindBuffer(GL_DRAW_INDIRECT_BUFFER, tileDraw_.get());
     for (int id = 0; id < 3; ++id) glColorMaski(GLuint(kFirstIdOutput + id), GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
     glEnablei(GL_BLEND, kColorOutput);
     glBlendEquationi(kColorOutput, GL_FUNC_ADD);
     glBlendFunci(kColorOutput, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
     glEnablei(GL_BLEND, kNearestDepthOutput);
     glBlendEquationi(kNearestDepthOutput, GL_MIN);
-    glDrawArrays(GL_TRIANGLES, 0, 3);
+    glDrawArraysIndirect(GL_TRIANGLES, nullptr);
     glDisable(GL_BLEND);
     glBlendEquation(GL_FUNC_ADD);
     glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
@@ -152,7 +190,7 @@ uint64_t FragmentListPass::render(const StrandGeometry& geometry, const std::vec
         glProgramUniform1i(resolveProgram_.get(), kResolveIds, 1);
         glColorMaski(kColorOutput, GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
         glColorMaski(kNearestDepthOutput, GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
-        glDrawArrays(GL_TRIANGLES, 0, 3);
+        glDrawArraysIndirect(GL_TRIANGLES, nullptr);
         glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     }
     glEnable(GL_DEPTH_TEST);
@@ -162,6 +200,10 @@ uint64_t FragmentListPass::render(const StrandGeometry& geometry, const std::vec
     glGetNamedBufferSubData(counter_.get(), 2 * sizeof(uint32_t), sizeof longLists, longLists);
     overlongPixels_ = longLists[0];
     unwalkedPixels_ = longLists[1];
+    uint32_t tiles = 0;
+    glGetNamedBufferSubData(tileDraw_.get(), sizeof(uint32_t), sizeof tiles, &tiles);
+    resolvedTiles_ = tiles;
+    glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
     glBindVertexArray(0);
     glUseProgram(0);
     checkGlError("rendering fragment lists");

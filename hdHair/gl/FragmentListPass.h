@@ -19,6 +19,9 @@
 namespace hdhair::gl {
 
 constexpr size_t kFragmentNodeBytes = 32;  // FragmentNode in shaders/include/fragmentLists.glsl
+// The resolve covers only the square tiles of this many pixels a side that
+// hold fragments: HDHAIR_LIST_TILE in shaders/include/fragmentLists.glsl.
+constexpr int kFragmentListTile = 16;
 
 // Who fills the lists (pass 1).
 enum class FragmentSource {
@@ -55,6 +58,10 @@ public:
     // and those of them too long to walk whole within llvmpipe's loop limit.
     uint64_t overlongPixels() const { return overlongPixels_; }
     uint64_t unwalkedPixels() const { return unwalkedPixels_; }
+    // The tiles (kFragmentListTile pixels a side) the last render() resolved:
+    // those holding fragments, of tilesInImage().
+    uint64_t resolvedTiles() const { return resolvedTiles_; }
+    uint64_t tilesInImage() const { return tilesInImage_; }
 
 private:
     // Node storage for at least `nodes` fragments (grown, never shrunk).
@@ -64,16 +71,21 @@ private:
     uint64_t fillLists(const StrandGeometry& geometry, const std::vector<SegmentRange>& ranges,
                        float maxSegmentsPerSpan, ShadingFeatures features, FragmentSource source, GLuint frameDepth);
     void rasterizeInCompute(const std::vector<SegmentRange>& ranges, ShadingFeatures features, GLuint frameDepth);
+    // The list-head image, the counter with its tile marks (cleared) and
+    // the resolved tiles' draw, for a width x height image.
+    void ensureImage(int width, int height);
+    // Gathers the marked tiles into the resolve's indirect draw and clears the marks.
+    void gatherTiles();
 
     ShadingPrograms listPrograms_;
     ShadingPrograms computePrograms_;
-    Program resolveProgram_;
+    Program resolveProgram_, tileProgram_;
     VertexArray emptyVertexArray_;
     Texture heads_;
     int headsWidth_ = 0, headsHeight_ = 0;
-    Buffer nodes_, counter_, order_;
+    Buffer nodes_, counter_, order_, tileDraw_;
     size_t nodeCapacity_ = 0;
-    uint64_t overlongPixels_ = 0, unwalkedPixels_ = 0;
+    uint64_t overlongPixels_ = 0, unwalkedPixels_ = 0, resolvedTiles_ = 0, tilesInImage_ = 0;
 };
 
 }  // namespace hdhair::gl

@@ -202,11 +202,16 @@ void drawStrandPieces(FrameContext& context, bool ordered, gl::StrandBlending bl
 // MB for `fragments` list nodes, rounded up.
 uint64_t fragmentListMB(uint64_t fragments) { return (fragments * gl::kFragmentNodeBytes + (1 << 20) - 1) >> 20; }
 
-// Warns when the lists just resolved had pixels too long to sort whole, or
-// to walk whole; once a frame: every light batch lists the same fragments.
-void warnOverlongLists(FrameContext& context, size_t batch) {
-    if (batch != 0) return;
+// Reports the lists just resolved: their fragments and tiles, and a warning
+// when some pixel's list was too long to sort whole, or to walk whole; once a
+// frame: every light batch lists the same fragments.
+void reportLists(FrameContext& context, uint64_t fragments, size_t batch) {
     const gl::FragmentListPass& lists = context.resources.fragmentLists;
+    RenderStats& stats = context.result.stats;
+    stats.fragments = fragments;
+    stats.resolvedListTiles = lists.resolvedTiles();
+    stats.listTiles = lists.tilesInImage();
+    if (batch != 0) return;
     if (lists.overlongPixels() > 0)
         context.diagnostics.warn("render", fmt::format("{} pixel(s) held more than 180 strand fragments: each was "
                                                        "composited in depth order for its nearest 64 and as one "
@@ -241,8 +246,8 @@ void drawStrands(FrameContext& context, gl::RenderTarget& target, size_t batch) 
             resources.strands, inputs.uploads.drawRanges, camera.imageWidth, camera.imageHeight,
             inputs.computeRasterCapacity, inputs.frame.maxSegmentsPerSpan, target.images().ids, features,
             gl::FragmentSource::ComputeRaster, target.depthTexture());
+        if (fragments <= inputs.computeRasterCapacity) return reportLists(context, fragments, batch);
         context.result.stats.fragments = fragments;
-        if (fragments <= inputs.computeRasterCapacity) return warnOverlongLists(context, batch);
         context.diagnostics.warn(
             "render", fmt::format("the compute rasteriser needs {} MB for {} fragments, more than "
                                   "strandRasterMemoryMB={}; drawn by the hardware rasteriser instead",
@@ -261,8 +266,8 @@ void drawStrands(FrameContext& context, gl::RenderTarget& target, size_t batch) 
                                                             camera.imageWidth, camera.imageHeight,
                                                             inputs.fragmentListCapacity, inputs.frame.maxSegmentsPerSpan,
                                                             target.images().ids, features);
+        if (fragments <= inputs.fragmentListCapacity) return reportLists(context, fragments, batch);
         context.result.stats.fragments = fragments;
-        if (fragments <= inputs.fragmentListCapacity) return warnOverlongLists(context, batch);
         const std::string needed = fmt::format("exact transparency needs {} MB for {} fragments, more than "
                                                "exactMemoryMB={}",
                                                fragmentListMB(fragments), fragments, plan.exactMemoryMB);

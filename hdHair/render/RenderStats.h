@@ -45,6 +45,9 @@ struct RenderStats {
     std::string transparency;     // the path taken: opaque, binSorted, exact or unsorted
     std::string strandRaster;     // who rasterised the camera's strands: hardware or compute
     uint64_t fragments = 0;       // strand fragments, when known (exact transparency and the compute rasteriser count them)
+    // With fragment lists: the 16-pixel tiles of the image that held
+    // fragments (the resolve covers only those), of all the image's tiles.
+    uint64_t resolvedListTiles = 0, listTiles = 0;
     std::string fallback;         // what replaced the requested path, and why ("" when nothing did)
     size_t lightPasses = 1;       // passes over the strands, one per batch of at most lightsPerPass lights
     size_t preparedPrims = 0;     // curves prims prepared for this frame (only new and changed ones)

@@ -492,6 +492,33 @@ TEST(Transparency, ComputeRasterCoversAPixelOnASharedEdgeOnce) {
     }
 }
 
+TEST(Transparency, ListsResolveEveryPixelOfTheTilesASpanEndsOnOrStraddles) {
+    // The resolve covers only the 16-pixel tiles that hold fragments. A
+    // strand a pixel wide along the boundary between tile rows (y = 32 of
+    // 64) from the tile edge x = 16 to x = 48, in two segments meeting on
+    // the tile edge x = 32: every column it covers holds exactly one
+    // fragment (alpha 0.5), whichever tile row takes it, none beyond its
+    // ends, and only its tiles are resolved, on both list paths.
+    const int pixels = 64;
+    const float pixel = 2.4f / float(pixels);
+    Scene scene;
+    CurvesPrim strand = sheet("/strand", 0.0f, {1, 1, 1}, 0.5f, pixel);
+    strand.points = {{-1.2f + 16 * pixel, 0.0f, 0.0f}, {0.0f, 0.0f, 0.0f}, {-1.2f + 48 * pixel, 0.0f, 0.0f}};
+    strand.curveVertexCounts = {3};
+    scene.setCurves(strand);
+    for (const char* path : {"strandRaster=compute", "transparency=exact"}) {
+        RenderResult result = render(scene, orthographicCamera(pixels), {path});
+        for (int x = 0; x < pixels; ++x) {
+            double alpha = 0.0;
+            for (int y = 0; y < pixels; ++y) alpha += result.color.at(x, y, 3);
+            EXPECT_NEAR(alpha, x >= 16 && x < 48 ? 0.5 : 0.0, 1e-6) << path << ", column " << x;
+        }
+        EXPECT_EQ(result.stats.fragments, 32u) << path;
+        EXPECT_EQ(result.stats.resolvedListTiles, 2u) << path;
+        EXPECT_EQ(result.stats.listTiles, 16u) << path;
+    }
+}
+
 TEST(Transparency, ComputeRasterDrawsStrandsCrossingTheNearPlaneAsTheHardwareDoes) {
     // Strands from far in front of the camera to behind it: clipped at the
     // near plane, finite everywhere, the same picture as the hardware's exact lists.
