@@ -107,7 +107,7 @@ void FragmentListPass::ensureNodes(size_t nodes) {
 
 uint64_t FragmentListPass::fillLists(const StrandGeometry& geometry, const std::vector<SegmentRange>& ranges,
                                      float maxSegmentsPerSpan, ShadingFeatures features, FragmentSource source,
-                                     GLuint frameDepth) {
+                                     GLuint frameDepth, const ListFilling& filling) {
     const GLuint listEnd = 0xffffffffu;
     glClearTexImage(heads_.get(), 0, GL_RED_INTEGER, GL_UNSIGNED_INT, &listEnd);
     const uint32_t counter[4] = {0, uint32_t(std::min<size_t>(nodeCapacity_, 0xffffffffu)), 0, 0};
@@ -119,10 +119,8 @@ uint64_t FragmentListPass::fillLists(const StrandGeometry& geometry, const std::
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 6, counter_.get());
     glBindImageTexture(0, heads_.get(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
     glBindVertexArray(emptyVertexArray_.get());
-    if (source == FragmentSource::ComputeRaster) {
-        // The compute rasteriser reads the frame's depth itself.
-        rasterizeInCompute(ranges, features, frameDepth);
-    } else {
+    const bool compute = source == FragmentSource::ComputeRaster;
+    if (!compute) {
         // Opaque geometry's depth rejects hidden fragments; the strands
         // themselves write nothing to the framebuffer.
         glUseProgram(listPrograms_.get(features).get());
@@ -134,9 +132,19 @@ uint64_t FragmentListPass::fillLists(const StrandGeometry& geometry, const std::
         // Every draw buffer: the list shader has no outputs, so whatever reached
         // an unmasked attachment would be undefined.
         glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
-        geometry.drawPatches(ranges, maxSegmentsPerSpan);
-        glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     }
+    for (const std::vector<SegmentRange>& piece : piecesOf(ranges, filling.pieceSegments)) {
+        // The compute rasteriser reads the frame's depth itself.
+        if (compute) rasterizeInCompute(piece, features, frameDepth);
+        else geometry.drawPatches(piece, maxSegmentsPerSpan);
+        if (filling.pieceSegments == 0) continue;
+        glFinish();
+        if (filling.stopRequested && filling.stopRequested()) {
+            stopped_ = true;
+            break;
+        }
+    }
+    if (!compute) glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
     uint32_t offered = 0;
     glGetNamedBufferSubData(counter_.get(), 0, sizeof offered, &offered);
@@ -145,7 +153,9 @@ uint64_t FragmentListPass::fillLists(const StrandGeometry& geometry, const std::
 
 uint64_t FragmentListPass::render(const StrandGeometry& geometry, const std::vector<SegmentRange>& ranges, int width,
                                   int height, size_t capacity, float maxSegmentsPerSpan, bool writeIds,
-                                  ShadingFeatures features, FragmentSource source, GLuint frameDepth) {
+                                  ShadingFeatures features, FragmentSource source, GLuint frameDepth,
+                                  const ListFilling& filling) {
+    stopped_ = false;
     ensureImage(width, height);
     // The nodes take what the frame needs, not the whole budget: storage is
     // made (and, on llvmpipe, zeroed) when it is allocated, which costs
@@ -155,10 +165,19 @@ uint64_t FragmentListPass::render(const StrandGeometry& geometry, const std::vec
     // into storage of the size it counted (its count is exact).
     const size_t guess = std::max(nodeCapacity_, std::min(capacity, size_t(width) * size_t(height) * 2));
     ensureNodes(guess);
-    uint64_t offered = fillLists(geometry, ranges, maxSegmentsPerSpan, features, source, frameDepth);
-    if (offered > nodeCapacity_ && offered <= capacity) {
+    uint64_t offered = fillLists(geometry, ranges, maxSegmentsPerSpan, features, source, frameDepth, filling);
+    if (!stopped_ && offered > nodeCapacity_ && offered <= capacity) {
         ensureNodes(std::min<size_t>(capacity, size_t(offered + offered / 4)));
-        offered = fillLists(geometry, ranges, maxSegmentsPerSpan, features, source, frameDepth);
+        offered = fillLists(geometry, ranges, maxSegmentsPerSpan, features, source, frameDepth, filling);
+    }
+    if (stopped_) {
+        // The marks of the tiles listed so far must not reach the next frame.
+        gatherTiles();
+        glEnable(GL_DEPTH_TEST);
+        glDepthMask(GL_TRUE);
+        glBindVertexArray(0);
+        glUseProgram(0);
+        return offered;
     }
 
     gatherTiles();

@@ -9,6 +9,7 @@
 // renderer falls back.
 
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "hdHair/gl/GlObjects.h"
@@ -27,6 +28,14 @@ constexpr int kFragmentListTile = 16;
 enum class FragmentSource {
     HardwareRaster,  // the strand program's tessellation and rasteriser
     ComputeRaster    // strandRaster.comp
+};
+
+// How pass 1 runs: in pieces of `pieceSegments` segments (0: all at once),
+// each finished before `stopRequested` is asked, so that a frame can stop
+// within a fraction of the pass (llvmpipe works only when work is flushed).
+struct ListFilling {
+    size_t pieceSegments = 0;
+    std::function<bool()> stopRequested;
 };
 
 class FragmentListPass {
@@ -48,9 +57,14 @@ public:
     // program compiles, as for StrandPass::setUniforms. `frameDepth`: the
     // bound framebuffer's depth texture (single-sampled), which the compute
     // rasteriser tests against as the hardware's depth test would.
+    // `filling`: a stop it reports leaves the frame's images as they were
+    // (stopped() is then true, and the count returned is not the frame's).
     uint64_t render(const StrandGeometry& geometry, const std::vector<SegmentRange>& ranges, int width, int height,
                     size_t capacity, float maxSegmentsPerSpan, bool writeIds, ShadingFeatures features,
-                    FragmentSource source = FragmentSource::HardwareRaster, GLuint frameDepth = 0);
+                    FragmentSource source = FragmentSource::HardwareRaster, GLuint frameDepth = 0,
+                    const ListFilling& filling = {});
+    // The last render() stopped while filling its lists.
+    bool stopped() const { return stopped_; }
 
     // Pixels of the last render() whose lists were too long to sort whole
     // (more than 180 fragments, shaders/fragmentListResolve.frag): composited
@@ -68,8 +82,10 @@ private:
     void ensureNodes(size_t nodes);
     // Pass 1 into storage as it is; returns the fragments offered (also
     // those past the storage).
+    // Sets stopped_ when `filling` stops it.
     uint64_t fillLists(const StrandGeometry& geometry, const std::vector<SegmentRange>& ranges,
-                       float maxSegmentsPerSpan, ShadingFeatures features, FragmentSource source, GLuint frameDepth);
+                       float maxSegmentsPerSpan, ShadingFeatures features, FragmentSource source, GLuint frameDepth,
+                       const ListFilling& filling);
     void rasterizeInCompute(const std::vector<SegmentRange>& ranges, ShadingFeatures features, GLuint frameDepth);
     // The list-head image, the counter with its tile marks (cleared) and
     // the resolved tiles' draw, for a width x height image.
@@ -86,6 +102,7 @@ private:
     Buffer nodes_, counter_, order_, tileDraw_;
     size_t nodeCapacity_ = 0;
     uint64_t overlongPixels_ = 0, unwalkedPixels_ = 0, resolvedTiles_ = 0, tilesInImage_ = 0;
+    bool stopped_ = false;
 };
 
 }  // namespace hdhair::gl

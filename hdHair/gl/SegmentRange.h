@@ -2,7 +2,9 @@
 // Segments [first, first + count) of the strand geometry (StrandGeometry):
 // the range a prim owns, or one that a draw covers.
 
+#include <cstddef>
 #include <cstdint>
+#include <vector>
 
 namespace hdhair::gl {
 
@@ -10,5 +12,10 @@ struct SegmentRange {
     uint64_t first = 0, count = 0;
     bool operator==(const SegmentRange& other) const { return first == other.first && count == other.count; }
 };
+
+// `ranges` cut, in order, into consecutive pieces of `pieceSegments` segments
+// (the last may hold fewer); one piece holding them all when pieceSegments
+// is 0. Drawing the pieces one after the other draws what the ranges do.
+std::vector<std::vector<SegmentRange>> piecesOf(const std::vector<SegmentRange>& ranges, size_t pieceSegments);
 
 }  // namespace hdhair::gl

@@ -178,25 +178,11 @@ void drawStrandPieces(FrameContext& context, bool ordered, gl::StrandBlending bl
         }
         return;
     }
-    std::vector<gl::SegmentRange> pieceRanges;
-    size_t pieceSegments = 0;
-    auto drawPiece = [&] {
+    for (const std::vector<gl::SegmentRange>& pieceRanges : gl::piecesOf(ranges, piece)) {
+        if (stopRequested(context)) return;
         resources.strandPass.draw(resources.strands, pieceRanges, blending);
         glFinish();
-        pieceRanges.clear();
-        pieceSegments = 0;
-    };
-    for (const gl::SegmentRange& range : ranges) {
-        for (uint64_t first = range.first; first < range.first + range.count;) {
-            if (stopRequested(context)) return;
-            const uint64_t count = std::min<uint64_t>(range.first + range.count - first, piece - pieceSegments);
-            pieceRanges.push_back(gl::SegmentRange{first, count});
-            pieceSegments += count;
-            first += count;
-            if (pieceSegments == piece) drawPiece();
-        }
     }
-    if (!pieceRanges.empty() && !stopRequested(context)) drawPiece();
 }
 
 // MB for `fragments` list nodes, rounded up.
@@ -241,11 +227,19 @@ void drawStrands(FrameContext& context, gl::RenderTarget& target, size_t batch) 
         if (plan.isEnabled(PassKind::Meshes)) drawMeshes(context, target, batch);
         features = bindBatchInputs(context, target, batch);
     };
+    // A frame that can be cancelled lists its fragments in pieces, as
+    // drawStrandPieces draws.
+    gl::ListFilling filling;
+    if (context.cancellation) {
+        filling.pieceSegments = context.strandPieceSegments;
+        filling.stopRequested = [&context] { return stopRequested(context); };
+    }
     if (plan.strandRaster == StrandRaster::Compute) {
         const uint64_t fragments = resources.fragmentLists.render(
             resources.strands, inputs.uploads.drawRanges, camera.imageWidth, camera.imageHeight,
             inputs.computeRasterCapacity, inputs.frame.maxSegmentsPerSpan, target.images().ids, features,
-            gl::FragmentSource::ComputeRaster, target.depthTexture());
+            gl::FragmentSource::ComputeRaster, target.depthTexture(), filling);
+        if (resources.fragmentLists.stopped()) return;
         if (fragments <= inputs.computeRasterCapacity) return reportLists(context, fragments, batch);
         context.result.stats.fragments = fragments;
         context.diagnostics.warn(
@@ -265,7 +259,9 @@ void drawStrands(FrameContext& context, gl::RenderTarget& target, size_t batch) 
         uint64_t fragments = resources.fragmentLists.render(resources.strands, inputs.uploads.drawRanges,
                                                             camera.imageWidth, camera.imageHeight,
                                                             inputs.fragmentListCapacity, inputs.frame.maxSegmentsPerSpan,
-                                                            target.images().ids, features);
+                                                            target.images().ids, features,
+                                                            gl::FragmentSource::HardwareRaster, 0, filling);
+        if (resources.fragmentLists.stopped()) return;
         if (fragments <= inputs.fragmentListCapacity) return reportLists(context, fragments, batch);
         context.result.stats.fragments = fragments;
         const std::string needed = fmt::format("exact transparency needs {} MB for {} fragments, more than "

@@ -41,10 +41,16 @@ void expectIdentical(const RenderResult& actual, const RenderResult& expected, c
     EXPECT_EQ(actual.elementIds, expected.elementIds) << what;
 }
 
-// `path`: a transparency path, or "compute" (the compute rasteriser).
+// `path`: a transparency path drawn by the hardware rasteriser, or
+// "compute" (the compute rasteriser).
 RenderSettings tuftSettings(const std::string& path) {
     RenderSettings settings;
-    settings.set(path == "compute" ? "strandRaster" : "transparency", path);
+    if (path == "compute") {
+        settings.set("strandRaster", "compute");
+    } else {
+        settings.set("transparency", path);
+        settings.set("strandRaster", "hardware");
+    }
     settings.set("lightsPerPass", "2");  // three light batches, each drawing the strands again
     return settings;
 }
@@ -65,13 +71,10 @@ TEST(FrameCancellation, StrandPiecesGiveTheSingleDrawsImageOnEveryPath) {
         pieces.strandPieceSegments = 7;
         const RenderResult pieced = renderer.render(scene, camera, settings, diagnostics, RenderOutputs{true}, pieces);
         // Asked before every piece of every strand draw (three light batches,
-        // and the ids pass where it runs); exact transparency and the
-        // compute rasteriser fill their fragment lists at once and are asked
-        // between passes only.
+        // and the ids pass where it runs), or after every piece of the
+        // fragment lists (exact transparency, the compute rasteriser).
         ASSERT_EQ(whole.stats.segments, 360u);  // 120 curves of 3 spans
-        if (std::string(path) != "exact" && std::string(path) != "compute") {
-            EXPECT_GE(never.polls(), 3 * (360 + 6) / 7) << path;
-        }
+        EXPECT_GE(never.polls(), 3 * (360 + 6) / 7) << path;
         expectIdentical(pieced, whole, path);
     }
     EXPECT_TRUE(diagnostics.warnings().empty());
@@ -90,7 +93,7 @@ TEST(FrameCancellation, AFrameStoppedAtAnyPointLeavesTheRendererAsIfItNeverRan) 
         control.strandPieceSegments = 64;
         return control;
     };
-    for (const char* path : {"binSorted", "compute"}) {
+    for (const char* path : {"binSorted", "exact", "compute"}) {
         const RenderSettings settings = tuftSettings(path);
         Diagnostics diagnostics;
         const RenderResult expected = synchronousSecondFrame(before, a, after, b, settings, diagnostics);
@@ -101,9 +104,9 @@ TEST(FrameCancellation, AFrameStoppedAtAnyPointLeavesTheRendererAsIfItNeverRan) 
         expectIdentical(renderer.render(after, b, settings, diagnostics, RenderOutputs{true}, stoppable(never)),
                         expected, std::string(path) + ", not stopped");
         const int polls = never.polls();
-        // binSorted: every pass, and every piece of 64 of the 270 segments in
-        // three batches and ids; compute: every pass.
-        ASSERT_GT(polls, std::string(path) == "compute" ? 8 : 20) << path;
+        // Every pass, and every piece of 64 of the 270 segments in three
+        // batches (and ids for binSorted), drawn or listed.
+        ASSERT_GT(polls, 20) << path;
 
         for (int stopAt = 1; stopAt <= polls; ++stopAt) {
             renderer.render(before, a, settings, diagnostics, RenderOutputs{true});
