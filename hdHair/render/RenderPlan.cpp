@@ -298,6 +298,21 @@ void buildFrameGraph(RenderPlan& plan, const Scene& scene, const StrandSummary& 
     graph.compile();
 }
 
+// The explicit setting that asks for bin-sorted or unsorted transparency by
+// name, as "NAME=VALUE", or empty. Only values other than the defaults
+// count: a Hydra host echoes a default back as if it were set
+// (HdHairRenderDelegate::GetEngineSettings drops those), so an explicit
+// transparency=binSorted or sortBins=256 cannot be told from no choice on
+// every path, and counts on none.
+std::string binSortingAskedFor(const RenderSettings& settings) {
+    const SettingValues& values = settings.values();
+    if (settings.isExplicitlySet("transparency") && values.transparency == "unsorted") return "transparency=unsorted";
+    const std::string bins = std::to_string(values.sortBins);
+    if (settings.isExplicitlySet("sortBins") && bins != RenderSettings::find("sortBins")->defaultValue)
+        return "sortBins=" + bins;
+    return "";
+}
+
 }  // namespace
 
 void RenderPlan::setShadowMap(size_t shadow, int slot, bool rebuild, const std::string& reason) {
@@ -377,7 +392,7 @@ RenderPlan makeRenderPlan(const Scene& scene, const RenderSettings& settings, co
     planLights(plan, scene, settings, camera, strands, meshes, domes);
     planShadows(plan, settings, strands, meshes.meshes > 0);
     planTransparency(plan, settings.values(), strands);
-    planStrandRaster(plan, settings.values(), strands);
+    planStrandRaster(plan, settings.values(), strands, binSortingAskedFor(settings));
     plan.specializeShaders = settings.values().specializeShaders;
     buildFrameGraph(plan, scene, strands, meshes, idsRequested, displayOnGpu, size_t(settings.values().lightsPerPass));
     return plan;

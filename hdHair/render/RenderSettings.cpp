@@ -81,12 +81,13 @@ const std::vector<SettingDescriptor>& RenderSettings::descriptors() {
          "When exact transparency's fragments do not fit exactMemoryMB: fallBack (warn and render binSorted with "
          "1024 bins) or fail (the frame fails with the memory it needed: a reference must never be approximate)",
          0, 0, {"fallBack", "fail"}, &SettingValues::exactOverflow},
-        {"strandRaster", SettingType::Token, "hardware",
+        {"strandRaster", SettingType::Token, "auto",
          "Who rasterises the camera's strands when they are blended: hardware (GL's tessellator and rasteriser), "
          "compute (strandRaster.comp: spans cut, rasterised and shaded in compute on every core, composited "
-         "from per-pixel lists), or auto (compute where every strand is thinner than strandRasterMaxPixelWidth)",
+         "exactly from per-pixel lists), or auto (compute where every strand is thinner than "
+         "strandRasterMaxPixelWidth, unless transparency=binSorted or unsorted is set explicitly)",
          0, 0, {"hardware", "compute", "auto"}, &SettingValues::strandRaster},
-        {"strandRasterMaxPixelWidth", SettingType::Float, "2.5",
+        {"strandRasterMaxPixelWidth", SettingType::Float, "4",
          "strandRaster=auto: the compute rasteriser takes a frame only when its widest strand projects at most "
          "this many pixels wide (measured: it pays for thin strands, where spans cover few pixels each; "
          "docs/performance.md)",

@@ -11,7 +11,8 @@ namespace hdhair {
 
 const char* toString(StrandRaster raster) { return raster == StrandRaster::Compute ? "compute" : "hardware"; }
 
-void planStrandRaster(FrameRecipe& recipe, const SettingValues& settings, const StrandSummary& strands) {
+void planStrandRaster(FrameRecipe& recipe, const SettingValues& settings, const StrandSummary& strands,
+                      const std::string& approximationAskedFor) {
     const std::string& requested = settings.strandRaster;
     const double widest = strands.maxProjectedWidthPixels;
     const double threshold = settings.strandRasterMaxPixelWidth;
@@ -25,6 +26,10 @@ void planStrandRaster(FrameRecipe& recipe, const SettingValues& settings, const 
     } else if (requested == "compute") {
         recipe.strandRaster = StrandRaster::Compute;
         why = "compute: strandRaster=compute";
+    } else if (!approximationAskedFor.empty() && recipe.transparency != TransparencyPath::Exact) {
+        why = fmt::format("hardware: {} is set, and the compute rasteriser composites exactly, without bins "
+                          "(strandRaster=auto)",
+                          approximationAskedFor);
     } else if (!std::isfinite(widest)) {
         why = "hardware: the strands' bounds reach the camera, so no width bounds them (strandRaster=auto)";
     } else if (widest > threshold) {

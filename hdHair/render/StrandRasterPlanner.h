@@ -4,8 +4,9 @@
 // rasteriser (shaders/strandRaster.comp), which cuts, rasterises and shades
 // spans in compute workgroups, on every core under llvmpipe, and composites
 // them from per-pixel lists (so exactly, whatever transparency asked for).
-// It pays for thin strands: its cost per segment grows with the pixels its
-// bounding box covers, where the hardware's grows with the pixels covered.
+// It pays for thin strands: its cost grows with the fragments it lists,
+// each dearer than a hardware fragment, while the hardware's is dominated
+// by the geometry work per span, which llvmpipe does on one thread.
 
 #include <string>
 
@@ -20,6 +21,12 @@ const char* toString(StrandRaster raster);
 
 // Sets the recipe's strandRaster, strandRasterReason and
 // strandRasterMemoryMB; after planTransparency, whose path it reads.
-void planStrandRaster(FrameRecipe& recipe, const SettingValues& settings, const StrandSummary& strands);
+// `approximationAskedFor`: the explicit setting (--setting, a Hydra render
+// setting; not a default or a preset) that asks for an unsorted or
+// bin-sorted frame by a value other than the default, "transparency=unsorted"
+// or "sortBins=16", or empty. auto keeps such a frame on the hardware, since
+// the compute rasteriser's lists composite exactly and have no bins.
+void planStrandRaster(FrameRecipe& recipe, const SettingValues& settings, const StrandSummary& strands,
+                      const std::string& approximationAskedFor);
 
 }  // namespace hdhair

@@ -70,7 +70,8 @@ TEST(FrameGpuMemory, StrandAndOrderBytesFollowTheSegmentCount) {
     for (int curves : {10, 20, 40}) {
         Scene scene;
         scene.setCurves(strands("/hair", curves, 3, 0.5f));
-        const RenderStats stats = renderFresh(scene, 64);
+        // The hardware rasteriser: the bin sort's draw order is on the GPU.
+        const RenderStats stats = renderFresh(scene, 64, {}, {"strandRaster=hardware"});
         ASSERT_EQ(stats.segments, uint64_t(curves) * 3);
         ASSERT_EQ(stats.transparency, "binSorted");
         // Catmull-Rom spans share their curve's controls: 6 a curve.
@@ -89,7 +90,7 @@ TEST(FrameGpuMemory, ACatmullRomGroomTakesAtMost64BytesAnAuthoredPoint) {
     for (int points : {8, 16, 32}) {
         Scene scene;
         scene.setCurves(strands("/hair", 50, points - 3, 0.5f));
-        const RenderStats stats = renderFresh(scene, 64);
+        const RenderStats stats = renderFresh(scene, 64, {}, {"strandRaster=hardware"});
         ASSERT_EQ(stats.authoredPoints, 50u * uint64_t(points));
         const uint64_t bytes = bytesOf(stats, "strandGeometry") + bytesOf(stats, "drawOrder");
         EXPECT_EQ(bytes, 50u * (kControlPointBytes * uint64_t(points) +

@@ -71,6 +71,7 @@ TEST(RenderPlan, EnginesCameraLightShinesFromTheCamera) {
 
 TEST(RenderPlan, OnlyStagesThatNeedBlendingAreSorted) {
     RenderSettings settings;
+    settings.set("strandRaster", "hardware");  // the bin sort serves the hardware rasteriser
     RenderPlan wide = makeRenderPlan(Scene{}, settings, cameraAtPlusZ(), wideOpaqueStrands(10));
     EXPECT_EQ(wide.transparency, TransparencyPath::Opaque);
     EXPECT_FALSE(wide.isEnabled("sort"));
@@ -108,6 +109,7 @@ TEST(RenderPlan, SaysWhichPassProducesDepthAndIds) {
     auto plan = [&](const char* transparency, bool ids) {
         RenderSettings settings;
         settings.set("transparency", transparency);
+        settings.set("strandRaster", "hardware");  // compute: AutoRasterisesThinBlendedStrandsInComputeAndSaysWhy
         return makeRenderPlan(Scene{}, settings, cameraAtPlusZ(), translucent, ids);
     };
     auto strandsReason = [](const RenderPlan& p) { return p.graph.find("strands")->reason; };
@@ -149,11 +151,12 @@ TEST(RenderPlan, AutoRasterisesThinBlendedStrandsInComputeAndSaysWhy) {
     };
     auto strandsReason = [](const RenderPlan& p) { return p.graph.find("strands")->reason; };
 
-    RenderPlan automatic = plan({"strandRaster=auto"}, thin, true);
+    // auto is the default.
+    RenderPlan automatic = plan({}, thin, true);
     EXPECT_EQ(automatic.strandRaster, StrandRaster::Compute);
     EXPECT_EQ(automatic.transparency, TransparencyPath::BinSorted);
     EXPECT_NE(strandsReason(automatic).find("compute: every strand projects at most 1.50 px wide "
-                                            "(strandRasterMaxPixelWidth 2.5; strandRaster=auto)"),
+                                            "(strandRasterMaxPixelWidth 4; strandRaster=auto)"),
               std::string::npos)
         << strandsReason(automatic);
     // Lists sorted per pixel: no bin sort, no draw order, ids from the resolve.
@@ -177,8 +180,21 @@ TEST(RenderPlan, AutoRasterisesThinBlendedStrandsInComputeAndSaysWhy) {
     EXPECT_NE(wideAuto.strandRasterReason.find("widest strand may project 6.00 px"), std::string::npos);
     EXPECT_EQ(plan({"strandRaster=auto", "strandRasterMaxPixelWidth=8"}, wide).strandRaster, StrandRaster::Compute);
     StrandSummary justOver = thin;
-    justOver.maxProjectedWidthPixels = 2.6;
+    justOver.maxProjectedWidthPixels = 4.1;
     EXPECT_EQ(plan({"strandRaster=auto"}, justOver).strandRaster, StrandRaster::Hardware);
+    // An approximation asked for by a value other than the default keeps
+    // the hardware path; the defaults (which Hydra hosts echo back as if
+    // set) and exact, which the compute lists give too, do not.
+    RenderPlan unsorted = plan({"transparency=unsorted"}, thin);
+    EXPECT_EQ(unsorted.strandRaster, StrandRaster::Hardware);
+    EXPECT_NE(unsorted.strandRasterReason.find("hardware: transparency=unsorted is set"), std::string::npos)
+        << unsorted.strandRasterReason;
+    EXPECT_EQ(plan({"sortBins=16"}, thin).strandRaster, StrandRaster::Hardware);
+    EXPECT_EQ(plan({"sortBins=16", "transparency=exact"}, thin).strandRaster, StrandRaster::Compute);
+    EXPECT_EQ(plan({"transparency=binSorted"}, thin).strandRaster, StrandRaster::Compute);
+    EXPECT_EQ(plan({"sortBins=256"}, thin).strandRaster, StrandRaster::Compute);
+    EXPECT_EQ(plan({"transparency=exact"}, thin).strandRaster, StrandRaster::Compute);
+    EXPECT_EQ(plan({"transparency=unsorted", "strandRaster=compute"}, thin).strandRaster, StrandRaster::Compute);
     StrandSummary reachesCamera = thin;
     reachesCamera.maxProjectedWidthPixels = std::numeric_limits<double>::infinity();
     EXPECT_EQ(plan({"strandRaster=auto"}, reachesCamera).strandRaster, StrandRaster::Hardware);
@@ -198,6 +214,7 @@ TEST(RenderPlan, AutoRasterisesThinBlendedStrandsInComputeAndSaysWhy) {
 TEST(RenderPlan, MeshPassesRunOnlyForVisibleMeshes) {
     RenderSettings settings;
     settings.set("transparency", "binSorted");
+    settings.set("strandRaster", "hardware");  // whose light batches read the draw order
     settings.set("lightsPerPass", "1");
     Scene scene;
     for (const char* path : {"/key", "/fill"}) {

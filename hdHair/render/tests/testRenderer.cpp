@@ -196,6 +196,7 @@ TEST(Renderer, BatchedDrawsGiveTheSameImageAsOneDrawARange) {
         settings.set("tessellation", "projectedLength");
         settings.set("pixelsPerSegment", "0.25");
         settings.set("transparency", transparency);
+        settings.set("strandRaster", "hardware");  // the draws batching splits
         settings.set("drawBatching", "on");
         RenderResult batched = renderer.render(scene, camera, settings, diagnostics, RenderOutputs{true});
         settings.set("drawBatching", "off");
