@@ -14,6 +14,11 @@ constexpr GLint kResolveIds = 0;  // uniform location in shaders/fragmentListRes
 constexpr GLint kResolveImageSize = 1;  // shaders/fragmentListTile.vert
 constexpr GLint kTilesInImage = 0;  // shaders/fragmentListTiles.comp
 constexpr GLuint kTileWorkgroup = 64;
+// Thin hair lists about a fragment a span far away and about a dozen close
+// up (docs/performance.md, "Where compute pays": 1.1 on Ratboy and 11.4 on
+// the bear at 1280 px): enough for the frames strandRaster=auto takes,
+// without holding two fragments a pixel of a mostly empty frame.
+constexpr uint64_t kFirstGuessFragmentsPerSpan = 12;
 // The counter's four words before its tile marks (FragmentCounter in
 // shaders/include/fragmentLists.glsl), and the indirect draw's before its
 // tiles (shaders/include/resolvedTiles.glsl).
@@ -160,10 +165,15 @@ uint64_t FragmentListPass::render(const StrandGeometry& geometry, const std::vec
     // The nodes take what the frame needs, not the whole budget: storage is
     // made (and, on llvmpipe, zeroed) when it is allocated, which costs
     // about as much as the list pass itself at a 512 MB budget. A first
-    // guess of two fragments a pixel, then what the last frame counted and a
-    // quarter more; a frame that finds its guess too small is drawn again
-    // into storage of the size it counted (its count is exact).
-    const size_t guess = std::max(nodeCapacity_, std::min(capacity, size_t(width) * size_t(height) * 2));
+    // guess of two fragments a pixel or kFirstGuessFragmentsPerSpan a span,
+    // whichever is fewer, then what the last frame counted and a quarter
+    // more; a frame that finds its guess too small is drawn again into
+    // storage of the size it counted (its count is exact).
+    uint64_t spans = 0;
+    for (const SegmentRange& range : ranges) spans += range.count;
+    const size_t firstGuess = size_t(std::min<uint64_t>(uint64_t(width) * uint64_t(height) * 2,
+                                                         spans * kFirstGuessFragmentsPerSpan));
+    const size_t guess = std::max(nodeCapacity_, std::min(capacity, firstGuess));
     ensureNodes(guess);
     uint64_t offered = fillLists(geometry, ranges, maxSegmentsPerSpan, features, source, frameDepth, filling);
     if (!stopped_ && offered > nodeCapacity_ && offered <= capacity) {
