@@ -19,6 +19,8 @@ constexpr GLuint kTileWorkgroup = 64;
 // the bear at 1280 px): enough for the frames strandRaster=auto takes,
 // without holding two fragments a pixel of a mostly empty frame.
 constexpr uint64_t kFirstGuessFragmentsPerSpan = 12;
+// Storage is never cut below this many fragments (128 KB).
+constexpr size_t kFewestNodes = 4096;
 // The counter's four words before its tile marks (FragmentCounter in
 // shaders/include/fragmentLists.glsl), and the indirect draw's before its
 // tiles (shaders/include/resolvedTiles.glsl).
@@ -104,8 +106,7 @@ void FragmentListPass::gatherTiles() {
     glMemoryBarrier(GL_COMMAND_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
 }
 
-void FragmentListPass::ensureNodes(size_t nodes) {
-    if (nodes <= nodeCapacity_ && nodes_) return;
+void FragmentListPass::resizeNodes(size_t nodes) {
     nodes_ = createBuffer(nullptr, std::max<size_t>(nodes, 1) * kFragmentNodeBytes, 0, "fragmentLists");
     nodeCapacity_ = nodes;
 }
@@ -166,20 +167,23 @@ uint64_t FragmentListPass::render(const StrandGeometry& geometry, const std::vec
     // made (and, on llvmpipe, zeroed) when it is allocated, which costs
     // about as much as the list pass itself at a 512 MB budget. A first
     // guess of two fragments a pixel or kFirstGuessFragmentsPerSpan a span,
-    // whichever is fewer, then what the last frame counted and a quarter
-    // more; a frame that finds its guess too small is drawn again into
-    // storage of the size it counted (its count is exact).
+    // whichever is fewer; then what the last render listed and a quarter
+    // more. A render that finds its storage short is drawn again into
+    // storage of the size it counted (its count is exact); storage over four
+    // times what the last render wanted is given back.
     uint64_t spans = 0;
     for (const SegmentRange& range : ranges) spans += range.count;
     const size_t firstGuess = size_t(std::min<uint64_t>(uint64_t(width) * uint64_t(height) * 2,
                                                          spans * kFirstGuessFragmentsPerSpan));
-    const size_t guess = std::max(nodeCapacity_, std::min(capacity, firstGuess));
-    ensureNodes(guess);
+    const size_t wanted = std::max(kFewestNodes, std::min(capacity, listedLast_ ? listedLast_ + listedLast_ / 4
+                                                                                : firstGuess));
+    if (!nodes_ || nodeCapacity_ < wanted || nodeCapacity_ / 4 > wanted) resizeNodes(wanted);
     uint64_t offered = fillLists(geometry, ranges, maxSegmentsPerSpan, features, source, frameDepth, filling);
     if (!stopped_ && offered > nodeCapacity_ && offered <= capacity) {
-        ensureNodes(std::min<size_t>(capacity, size_t(offered + offered / 4)));
+        resizeNodes(std::min<size_t>(capacity, size_t(offered + offered / 4)));
         offered = fillLists(geometry, ranges, maxSegmentsPerSpan, features, source, frameDepth, filling);
     }
+    if (!stopped_) listedLast_ = size_t(std::min<uint64_t>(offered, capacity));
     if (stopped_) {
         // The marks of the tiles listed so far must not reach the next frame.
         gatherTiles();

@@ -52,7 +52,8 @@ public:
     // hdHair/render/NearestStrandRule.h.
     // Returns how many fragments the strands produced; more than
     // `capacity` (the budget) means the image is incomplete and must not be
-    // used. Storage grows with what frames need, up to `capacity`.
+    // used. Storage follows what frames need (the last render's count),
+    // up to `capacity`.
     // `ranges`: the drawn prims' segments. `features`: the shading the list
     // program compiles, as for StrandPass::setUniforms. `frameDepth`: the
     // bound framebuffer's depth texture (single-sampled), which the compute
@@ -78,8 +79,8 @@ public:
     uint64_t tilesInImage() const { return tilesInImage_; }
 
 private:
-    // Node storage for at least `nodes` fragments (grown, never shrunk).
-    void ensureNodes(size_t nodes);
+    // Node storage for `nodes` fragments, made anew.
+    void resizeNodes(size_t nodes);
     // Pass 1 into storage as it is; returns the fragments offered (also
     // those past the storage).
     // Sets stopped_ when `filling` stops it.
@@ -101,6 +102,7 @@ private:
     int headsWidth_ = 0, headsHeight_ = 0;
     Buffer nodes_, counter_, order_, tileDraw_;
     size_t nodeCapacity_ = 0;
+    size_t listedLast_ = 0;  // fragments the last render that ran to its end listed, within its budget
     uint64_t overlongPixels_ = 0, unwalkedPixels_ = 0, resolvedTiles_ = 0, tilesInImage_ = 0;
     bool stopped_ = false;
 };

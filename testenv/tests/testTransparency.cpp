@@ -280,6 +280,39 @@ RenderResult renderWithWarnings(const Scene& scene, const CameraView& camera,
 
 }  // namespace
 
+TEST(Transparency, ListStorageFollowsWhatTheLastFrameListed) {
+    // 655,360 fragments, then a single sheet's 16,384 twice: storage grows
+    // for the first frame, is kept for the second (sized by the first's
+    // count), and given back on the third; every frame is drawn whole.
+    Scene one;
+    one.setCurves(sheet("/one", 0.0f, {1, 1, 1}, 0.5f));
+    const CameraView camera = orthographicCamera(128);
+    for (const char* path : {"strandRaster=compute", "transparency=exact"}) {
+        SCOPED_TRACE(path);
+        Renderer renderer(gl::defaultGlBackend());
+        auto frame = [&](const Scene& scene) {
+            RenderSettings settings;
+            settings.set("shadingModel", "flat");
+            settings.setFromAssignment(path);
+            Diagnostics diagnostics;
+            RenderResult result = renderer.render(scene, camera, settings, diagnostics);
+            EXPECT_TRUE(diagnostics.warnings().empty());
+            return result;
+        };
+        const RenderResult dense = frame(fortyFaintSheets());
+        const RenderResult sparseAfterDense = frame(one);
+        const RenderResult sparse = frame(one);
+        EXPECT_EQ(dense.stats.fragments, 40u * 128u * 128u);
+        EXPECT_EQ(sparse.stats.fragments, 128u * 128u);
+        const uint64_t denseBytes = dense.stats.gpuBytes.at("fragmentLists");
+        EXPECT_GE(denseBytes, 40u * 128u * 128u * 32u);
+        EXPECT_EQ(sparseAfterDense.stats.gpuBytes.at("fragmentLists"), denseBytes);
+        EXPECT_LT(sparse.stats.gpuBytes.at("fragmentLists"), denseBytes / 8);
+        EXPECT_EQ(sparse.color.pixels, sparseAfterDense.color.pixels);
+        EXPECT_NEAR(sparse.color.at(64, 64, 3), 0.5, 1e-6);
+    }
+}
+
 TEST(Transparency, ExactModeOverItsMemoryBudgetFallsBackAndSaysSo) {
     Diagnostics diagnostics;
     RenderResult result = renderWithWarnings(fortyFaintSheets(), orthographicCamera(128),
