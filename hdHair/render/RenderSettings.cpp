@@ -85,7 +85,7 @@ const std::vector<SettingDescriptor>& RenderSettings::descriptors() {
          "Who rasterises the camera's strands when they are blended: hardware (GL's tessellator and rasteriser), "
          "compute (strandRaster.comp: spans cut, rasterised and shaded in compute on every core, composited "
          "exactly from per-pixel lists), or auto (compute where every strand is thinner than "
-         "strandRasterMaxPixelWidth, unless transparency=binSorted or unsorted is set explicitly)",
+         "strandRasterMaxPixelWidth, unless transparency=unsorted or a sortBins other than the default is set)",
          0, 0, {"hardware", "compute", "auto"}, &SettingValues::strandRaster},
         {"strandRasterMaxPixelWidth", SettingType::Float, "4",
          "strandRaster=auto: the compute rasteriser takes a frame only when its widest strand projects at most "
