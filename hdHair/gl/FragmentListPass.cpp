@@ -32,20 +32,6 @@ constexpr GLuint kRasterFrameDepthUnit = 9;
 // Segments a dispatch: GL guarantees 65535 workgroups in x.
 constexpr uint64_t kRasterDispatchSegments = uint64_t(65535) * kRasterWorkgroup;
 
-// The ranges with neighbours joined: the drawn prims' segments mostly lie
-// back to back, and each range costs a dispatch.
-std::vector<SegmentRange> joinedRanges(const std::vector<SegmentRange>& ranges) {
-    std::vector<SegmentRange> joined;
-    for (const SegmentRange& range : ranges) {
-        if (range.count == 0) continue;
-        if (!joined.empty() && joined.back().first + joined.back().count == range.first)
-            joined.back().count += range.count;
-        else
-            joined.push_back(range);
-    }
-    return joined;
-}
-
 }  // namespace
 
 FragmentListPass::FragmentListPass()
@@ -111,9 +97,49 @@ void FragmentListPass::resizeNodes(size_t nodes) {
     nodeCapacity_ = nodes;
 }
 
-uint64_t FragmentListPass::fillLists(const StrandGeometry& geometry, const std::vector<SegmentRange>& ranges,
-                                     float maxSegmentsPerSpan, ShadingFeatures features, FragmentSource source,
+bool FragmentListPass::stopAfterPiece(const ListFilling& filling) {
+    if (filling.pieceSegments == 0) return false;
+    glFinish();
+    stopped_ = filling.stopRequested && filling.stopRequested();
+    return stopped_;
+}
+
+bool FragmentListPass::listByHardware(const StrandGeometry& geometry, const std::vector<SegmentRange>& ranges,
+                                      float maxSegmentsPerSpan, ShadingFeatures features,
+                                      const ListFilling& filling) {
+    // Opaque geometry's depth rejects hidden fragments; the strands
+    // themselves write nothing to the framebuffer.
+    glUseProgram(listPrograms_.get(features).get());
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LEQUAL);
+    glDepthMask(GL_FALSE);
+    glDisable(GL_BLEND);
+    glDisable(GL_CULL_FACE);
+    // Every draw buffer: the list shader has no outputs, so whatever reached
+    // an unmasked attachment would be undefined.
+    glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+    bool stopped = false;
+    for (const std::vector<SegmentRange>& piece : piecesOf(ranges, filling.pieceSegments)) {
+        geometry.drawPatches(piece, maxSegmentsPerSpan);
+        if ((stopped = stopAfterPiece(filling))) break;
+    }
+    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    return !stopped;
+}
+
+bool FragmentListPass::listInCompute(const std::vector<SegmentRange>& ranges, ShadingFeatures features,
                                      GLuint frameDepth, const ListFilling& filling) {
+    // The compute rasteriser reads the frame's depth itself.
+    for (const std::vector<SegmentRange>& piece : piecesOf(ranges, filling.pieceSegments)) {
+        rasterizeInCompute(piece, features, frameDepth);
+        if (stopAfterPiece(filling)) return false;
+    }
+    return true;
+}
+
+uint64_t FragmentListPass::fillLists(const StrandGeometry& geometry, const ListedSegments& segments,
+                                     float maxSegmentsPerSpan, ShadingFeatures features, GLuint frameDepth,
+                                     const ListFilling& filling) {
     const GLuint listEnd = 0xffffffffu;
     glClearTexImage(heads_.get(), 0, GL_RED_INTEGER, GL_UNSIGNED_INT, &listEnd);
     const uint32_t counter[4] = {0, uint32_t(std::min<size_t>(nodeCapacity_, 0xffffffffu)), 0, 0};
@@ -125,42 +151,18 @@ uint64_t FragmentListPass::fillLists(const StrandGeometry& geometry, const std::
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 6, counter_.get());
     glBindImageTexture(0, heads_.get(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
     glBindVertexArray(emptyVertexArray_.get());
-    const bool compute = source == FragmentSource::ComputeRaster;
-    if (!compute) {
-        // Opaque geometry's depth rejects hidden fragments; the strands
-        // themselves write nothing to the framebuffer.
-        glUseProgram(listPrograms_.get(features).get());
-        glEnable(GL_DEPTH_TEST);
-        glDepthFunc(GL_LEQUAL);
-        glDepthMask(GL_FALSE);
-        glDisable(GL_BLEND);
-        glDisable(GL_CULL_FACE);
-        // Every draw buffer: the list shader has no outputs, so whatever reached
-        // an unmasked attachment would be undefined.
-        glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
-    }
-    for (const std::vector<SegmentRange>& piece : piecesOf(ranges, filling.pieceSegments)) {
-        // The compute rasteriser reads the frame's depth itself.
-        if (compute) rasterizeInCompute(piece, features, frameDepth);
-        else geometry.drawPatches(piece, maxSegmentsPerSpan);
-        if (filling.pieceSegments == 0) continue;
-        glFinish();
-        if (filling.stopRequested && filling.stopRequested()) {
-            stopped_ = true;
-            break;
-        }
-    }
-    if (!compute) glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    const bool hardwareListed =
+        segments.hardware.empty() || listByHardware(geometry, segments.hardware, maxSegmentsPerSpan, features, filling);
+    if (hardwareListed && !segments.compute.empty()) listInCompute(segments.compute, features, frameDepth, filling);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
     uint32_t offered = 0;
     glGetNamedBufferSubData(counter_.get(), 0, sizeof offered, &offered);
     return offered;
 }
 
-uint64_t FragmentListPass::render(const StrandGeometry& geometry, const std::vector<SegmentRange>& ranges, int width,
+uint64_t FragmentListPass::render(const StrandGeometry& geometry, const ListedSegments& segments, int width,
                                   int height, size_t capacity, float maxSegmentsPerSpan, bool writeIds,
-                                  ShadingFeatures features, FragmentSource source, GLuint frameDepth,
-                                  const ListFilling& filling) {
+                                  ShadingFeatures features, GLuint frameDepth, const ListFilling& filling) {
     stopped_ = false;
     ensureImage(width, height);
     // The nodes take what the frame needs, not the whole budget: storage is
@@ -172,16 +174,17 @@ uint64_t FragmentListPass::render(const StrandGeometry& geometry, const std::vec
     // storage of the size it counted (its count is exact); storage over four
     // times what the last render wanted is given back.
     uint64_t spans = 0;
-    for (const SegmentRange& range : ranges) spans += range.count;
+    for (const std::vector<SegmentRange>* ranges : {&segments.hardware, &segments.compute})
+        for (const SegmentRange& range : *ranges) spans += range.count;
     const size_t firstGuess = size_t(std::min<uint64_t>(uint64_t(width) * uint64_t(height) * 2,
                                                          spans * kFirstGuessFragmentsPerSpan));
     const size_t wanted = std::max(kFewestNodes, std::min(capacity, listedLast_ ? listedLast_ + listedLast_ / 4
                                                                                 : firstGuess));
     if (!nodes_ || nodeCapacity_ < wanted || nodeCapacity_ / 4 > wanted) resizeNodes(wanted);
-    uint64_t offered = fillLists(geometry, ranges, maxSegmentsPerSpan, features, source, frameDepth, filling);
+    uint64_t offered = fillLists(geometry, segments, maxSegmentsPerSpan, features, frameDepth, filling);
     if (!stopped_ && offered > nodeCapacity_ && offered <= capacity) {
         resizeNodes(std::min<size_t>(capacity, size_t(offered + offered / 4)));
-        offered = fillLists(geometry, ranges, maxSegmentsPerSpan, features, source, frameDepth, filling);
+        offered = fillLists(geometry, segments, maxSegmentsPerSpan, features, frameDepth, filling);
     }
     if (!stopped_) listedLast_ = size_t(std::min<uint64_t>(offered, capacity));
     if (stopped_) {

@@ -1,10 +1,11 @@
 #pragma once
 // Per-pixel fragment lists: every strand fragment goes into its pixel's
 // linked list in a storage buffer (pass 1), then each pixel sorts its list by
-// depth and composites it exactly (pass 2). Pass 1 is either the hardware
+// depth and composites it exactly (pass 2). Pass 1 is the hardware
 // rasteriser running strandFragmentList.frag (exact transparency: the ground
-// truth that bin sorting is measured against) or the compute rasteriser,
-// strandRaster.comp (strandRaster=compute: thin strands on every core). The
+// truth that bin sorting is measured against), the compute rasteriser,
+// strandRaster.comp (strandRaster=compute: thin strands on every core), or
+// both, each for its own prims (strandRaster=auto with wide prims). The
 // lists' memory is bounded; a frame that needs more reports how much, and the
 // renderer falls back.
 
@@ -24,10 +25,11 @@ constexpr size_t kFragmentNodeBytes = 32;  // FragmentNode in shaders/include/fr
 // hold fragments: HDHAIR_LIST_TILE in shaders/include/fragmentLists.glsl.
 constexpr int kFragmentListTile = 16;
 
-// Who fills the lists (pass 1).
-enum class FragmentSource {
-    HardwareRaster,  // the strand program's tessellation and rasteriser
-    ComputeRaster    // strandRaster.comp
+// The segments pass 1 lists, by who rasterises them; both fill the same
+// lists, which one resolve composites.
+struct ListedSegments {
+    std::vector<SegmentRange> hardware;  // the strand program's tessellation and rasteriser
+    std::vector<SegmentRange> compute;   // strandRaster.comp
 };
 
 // How pass 1 runs: in pieces of `pieceSegments` segments (0: all at once),
@@ -54,16 +56,16 @@ public:
     // `capacity` (the budget) means the image is incomplete and must not be
     // used. Storage follows what frames need (the last render's count),
     // up to `capacity`.
-    // `ranges`: the drawn prims' segments. `features`: the shading the list
-    // program compiles, as for StrandPass::setUniforms. `frameDepth`: the
-    // bound framebuffer's depth texture (single-sampled), which the compute
-    // rasteriser tests against as the hardware's depth test would.
+    // `segments`: the drawn prims' segments, by who lists them. `features`:
+    // the shading the list programs compile, as for StrandPass::setUniforms.
+    // `frameDepth`: the bound framebuffer's depth texture (single-sampled),
+    // which the compute rasteriser tests against as the hardware's depth
+    // test would.
     // `filling`: a stop it reports leaves the frame's images as they were
     // (stopped() is then true, and the count returned is not the frame's).
-    uint64_t render(const StrandGeometry& geometry, const std::vector<SegmentRange>& ranges, int width, int height,
+    uint64_t render(const StrandGeometry& geometry, const ListedSegments& segments, int width, int height,
                     size_t capacity, float maxSegmentsPerSpan, bool writeIds, ShadingFeatures features,
-                    FragmentSource source = FragmentSource::HardwareRaster, GLuint frameDepth = 0,
-                    const ListFilling& filling = {});
+                    GLuint frameDepth = 0, const ListFilling& filling = {});
     // The last render() stopped while filling its lists.
     bool stopped() const { return stopped_; }
 
@@ -81,12 +83,19 @@ public:
 private:
     // Node storage for `nodes` fragments, made anew.
     void resizeNodes(size_t nodes);
-    // Pass 1 into storage as it is; returns the fragments offered (also
-    // those past the storage).
+    // Pass 1 into storage as it is, hardware then compute; returns the
+    // fragments offered (also those past the storage).
     // Sets stopped_ when `filling` stops it.
-    uint64_t fillLists(const StrandGeometry& geometry, const std::vector<SegmentRange>& ranges,
-                       float maxSegmentsPerSpan, ShadingFeatures features, FragmentSource source, GLuint frameDepth,
+    uint64_t fillLists(const StrandGeometry& geometry, const ListedSegments& segments, float maxSegmentsPerSpan,
+                       ShadingFeatures features, GLuint frameDepth, const ListFilling& filling);
+    // Lists `ranges` by the hardware rasteriser, in pieces as `filling` says;
+    // false when it stopped.
+    bool listByHardware(const StrandGeometry& geometry, const std::vector<SegmentRange>& ranges,
+                        float maxSegmentsPerSpan, ShadingFeatures features, const ListFilling& filling);
+    bool listInCompute(const std::vector<SegmentRange>& ranges, ShadingFeatures features, GLuint frameDepth,
                        const ListFilling& filling);
+    // After a piece of `filling`: waits for it and asks whether to stop.
+    bool stopAfterPiece(const ListFilling& filling);
     void rasterizeInCompute(const std::vector<SegmentRange>& ranges, ShadingFeatures features, GLuint frameDepth);
     // The list-head image, the counter with its tile marks (cleared) and
     // the resolved tiles' draw, for a width x height image.

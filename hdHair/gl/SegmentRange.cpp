@@ -4,6 +4,18 @@
 
 namespace hdhair::gl {
 
+std::vector<SegmentRange> joinedRanges(const std::vector<SegmentRange>& ranges) {
+    std::vector<SegmentRange> joined;
+    for (const SegmentRange& range : ranges) {
+        if (range.count == 0) continue;
+        if (!joined.empty() && joined.back().first + joined.back().count == range.first)
+            joined.back().count += range.count;
+        else
+            joined.push_back(range);
+    }
+    return joined;
+}
+
 std::vector<std::vector<SegmentRange>> piecesOf(const std::vector<SegmentRange>& ranges, size_t pieceSegments) {
     std::vector<std::vector<SegmentRange>> pieces;
     if (pieceSegments == 0) {

@@ -13,6 +13,11 @@ struct SegmentRange {
     bool operator==(const SegmentRange& other) const { return first == other.first && count == other.count; }
 };
 
+// `ranges` in order, empty ones left out and each joined to the one before
+// where they lie back to back (drawn prims mostly do, and each range costs a
+// draw or a dispatch).
+std::vector<SegmentRange> joinedRanges(const std::vector<SegmentRange>& ranges);
+
 // `ranges` cut, in order, into consecutive pieces of `pieceSegments` segments
 // (the last may hold fewer); one piece holding them all when pieceSegments
 // is 0. Drawing the pieces one after the other draws what the ranges do.

@@ -210,6 +210,16 @@ void reportLists(FrameContext& context, uint64_t fragments, size_t batch) {
                                                        lists.unwalkedPixels()));
 }
 
+// The compute rasteriser's segments: every drawn prim's, but those the plan
+// has the hardware rasteriser list into the same lists.
+gl::ListedSegments listedSegments(const RenderPlan& plan, const StrandUploadPlan& uploads) {
+    if (!plan.mixesRasterisers()) return {{}, uploads.drawRanges};
+    gl::ListedSegments segments;
+    for (size_t prim = 0; prim < uploads.ranges.size(); ++prim)
+        (plan.listedByHardware.at(prim) ? segments.hardware : segments.compute).push_back(uploads.ranges[prim]);
+    return {gl::joinedRanges(segments.hardware), gl::joinedRanges(segments.compute)};
+}
+
 // Draws the strands with the lights of one batch into `target`, over what
 // it holds (the meshes of that batch, or nothing), as the plan says. The
 // compute rasteriser over its memory budget warns and falls back to the
@@ -236,9 +246,9 @@ void drawStrands(FrameContext& context, gl::RenderTarget& target, size_t batch) 
     }
     if (plan.strandRaster == StrandRaster::Compute) {
         const uint64_t fragments = resources.fragmentLists.render(
-            resources.strands, inputs.uploads.drawRanges, camera.imageWidth, camera.imageHeight,
+            resources.strands, listedSegments(plan, inputs.uploads), camera.imageWidth, camera.imageHeight,
             inputs.computeRasterCapacity, inputs.frame.maxSegmentsPerSpan, target.images().ids, features,
-            gl::FragmentSource::ComputeRaster, target.depthTexture(), filling);
+            target.depthTexture(), filling);
         if (resources.fragmentLists.stopped()) return;
         if (fragments <= inputs.computeRasterCapacity) return reportLists(context, fragments, batch);
         context.result.stats.fragments = fragments;
@@ -256,11 +266,10 @@ void drawStrands(FrameContext& context, gl::RenderTarget& target, size_t batch) 
         redraw();
     }
     if (plan.transparency == TransparencyPath::Exact) {
-        uint64_t fragments = resources.fragmentLists.render(resources.strands, inputs.uploads.drawRanges,
+        uint64_t fragments = resources.fragmentLists.render(resources.strands, {inputs.uploads.drawRanges, {}},
                                                             camera.imageWidth, camera.imageHeight,
                                                             inputs.fragmentListCapacity, inputs.frame.maxSegmentsPerSpan,
-                                                            target.images().ids, features,
-                                                            gl::FragmentSource::HardwareRaster, 0, filling);
+                                                            target.images().ids, features, 0, filling);
         if (resources.fragmentLists.stopped()) return;
         if (fragments <= inputs.fragmentListCapacity) return reportLists(context, fragments, batch);
         context.result.stats.fragments = fragments;

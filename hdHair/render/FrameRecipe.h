@@ -6,6 +6,7 @@
 // graph is built from it (RenderPlan.h), and the passes execute with what it
 // says: no pass reads a setting.
 
+#include <algorithm>
 #include <cstdint>
 #include <string>
 #include <utility>
@@ -52,6 +53,15 @@ struct FrameRecipe {
     StrandRaster strandRaster = StrandRaster::Hardware;
     std::string strandRasterReason;
     int strandRasterMemoryMB = 512;
+    // With the compute rasteriser, per drawn prim (draw order): whether the
+    // hardware rasteriser lists its fragments instead, into the same
+    // per-pixel lists (strandRaster=auto's prims too wide for compute).
+    // Empty: compute lists every prim.
+    std::vector<bool> listedByHardware;
+    bool mixesRasterisers() const {
+        return strandRaster == StrandRaster::Compute &&
+               std::find(listedByHardware.begin(), listedByHardware.end(), true) != listedByHardware.end();
+    }
 
     // ShadowPlanner
     ShadowPlan shadows;

@@ -84,11 +84,13 @@ const std::vector<SettingDescriptor>& RenderSettings::descriptors() {
         {"strandRaster", SettingType::Token, "auto",
          "Who rasterises the camera's strands when they are blended: hardware (GL's tessellator and rasteriser), "
          "compute (strandRaster.comp: spans cut, rasterised and shaded in compute on every core, composited "
-         "exactly from per-pixel lists), or auto (compute where every strand is thinner than "
-         "strandRasterMaxPixelWidth, unless transparency=unsorted or a sortBins other than the default is set)",
+         "exactly from per-pixel lists), or auto (per prim: compute for prims whose strands are at most "
+         "strandRasterMaxPixelWidth wide, the hardware listing the wider ones into the same lists when the thin "
+         "prims hold at least half the segments, else all hardware; hardware whenever transparency=unsorted or a "
+         "sortBins other than the default is set)",
          0, 0, {"hardware", "compute", "auto"}, &SettingValues::strandRaster},
         {"strandRasterMaxPixelWidth", SettingType::Float, "4",
-         "strandRaster=auto: the compute rasteriser takes a frame only when its widest strand projects at most "
+         "strandRaster=auto: the compute rasteriser takes a prim only when its widest strand projects at most "
          "this many pixels wide (measured: it pays for thin strands, where spans cover few pixels each; "
          "docs/performance.md)",
          0.0, 1000.0, {}, &SettingValues::strandRasterMaxPixelWidth},

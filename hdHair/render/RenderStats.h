@@ -43,7 +43,7 @@ struct RenderStats {
     nlohmann::json plan;
     size_t warnings = 0;
     std::string transparency;     // the path taken: opaque, binSorted, exact or unsorted
-    std::string strandRaster;     // who rasterised the camera's strands: hardware or compute
+    std::string strandRaster;     // who rasterised the camera's strands: hardware, compute, or compute+hardware (auto, per prim)
     uint64_t fragments = 0;       // strand fragments, when known (exact transparency and the compute rasteriser count them)
     // With fragment lists: the 16-pixel tiles of the image that held
     // fragments (the resolve covers only those), of all the image's tiles.

@@ -504,8 +504,9 @@ void Renderer::gatherDrawnCurves(const Scene& scene, const CameraView& camera, c
         summary.minProjectedWidthPixels =
             std::min(summary.minProjectedWidthPixels,
                      minProjectedWidthPixels(camera, *cached.prepared, cached.minSpanWidth));
-        summary.maxProjectedWidthPixels =
-            std::max(summary.maxProjectedWidthPixels, maxProjectedWidthPixels(camera, *cached.prepared, cached.maxWidth));
+        const double primWidth = maxProjectedWidthPixels(camera, *cached.prepared, cached.maxWidth);
+        summary.maxProjectedWidthPixels = std::max(summary.maxProjectedWidthPixels, primWidth);
+        summary.prims.push_back({primWidth, cached.prepared->segmentCount()});
         // Every drawn strand casts shadows.
         CasterBounds& casters = summary.casters;
         const glm::dvec3 low(cached.prepared->boundsMin), high(cached.prepared->boundsMax);
@@ -634,7 +635,7 @@ void Renderer::reportFrame(const Scene& scene, const CameraView& camera, const R
     stats.segments = frame.strands.segments;
     stats.meshTriangles = frame.meshes.triangles;
     stats.transparency = toString(plan.transparency);
-    stats.strandRaster = toString(plan.strandRaster);
+    stats.strandRaster = plan.mixesRasterisers() ? "compute+hardware" : toString(plan.strandRaster);
     stats.glRenderer = glDescription();
     stats.glDevice = glDevice();
     stats.settings = settings.toJson();

@@ -25,6 +25,13 @@ struct StrandSummary {
     // (conservative); infinity when the bounds reach the camera, 0 when
     // there are no strands.
     double maxProjectedWidthPixels = 0.0;
+    // Per drawn prim, in draw order (FrameInputs::drawn): its widest
+    // projected width, as maxProjectedWidthPixels, and its segments.
+    struct PrimRaster {
+        double maxProjectedWidthPixels = 0.0;
+        uint64_t segments = 0;
+    };
+    std::vector<PrimRaster> prims;
     bool anyLit = true;          // some prim's material is lit (not flat)
     std::string shadingModels;   // the models in use, e.g. "kajiyaKay+marschner"
     size_t perPointPrims = 0;    // prims whose hair parameters vary per curve or vertex

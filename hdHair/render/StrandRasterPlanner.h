@@ -19,8 +19,9 @@ struct StrandSummary;
 enum class StrandRaster { Hardware, Compute };
 const char* toString(StrandRaster raster);
 
-// Sets the recipe's strandRaster, strandRasterReason and
-// strandRasterMemoryMB; after planTransparency, whose path it reads.
+// Sets the recipe's strandRaster, strandRasterReason, strandRasterMemoryMB
+// and listedByHardware (auto: per prim, by strands.prims); after
+// planTransparency, whose path it reads.
 // `approximationAskedFor`: the explicit setting (--setting, a Hydra render
 // setting; not a default or a preset) that asks for an unsorted or
 // bin-sorted frame by a value other than the default, "transparency=unsorted"

@@ -107,13 +107,7 @@ StrandUploadPlan StrandUploads::update(const std::vector<DrawnPrim>& prims) {
     plan.capacityNeeded = end_;
     plan.controlCapacityNeeded = controlEnd_;
 
-    for (const gl::SegmentRange& range : plan.ranges) {
-        if (range.count == 0) continue;
-        if (!plan.drawRanges.empty() && plan.drawRanges.back().first + plan.drawRanges.back().count == range.first)
-            plan.drawRanges.back().count += range.count;
-        else
-            plan.drawRanges.push_back(range);
-    }
+    plan.drawRanges = gl::joinedRanges(plan.ranges);
     return plan;
 }
 

@@ -482,6 +482,48 @@ TEST(Transparency, ComputeRasterMatchesExactOnAThinClumpAndCatchesMutations) {
     EXPECT_FALSE(compareImages(reversed, exact, tolerance).passed) << "depth order reversed";
 }
 
+// strandRaster=auto decides per prim: a sheet too wide for the compute
+// rasteriser through a clump of thin strands is listed by the hardware into
+// the clump's lists, and one resolve interleaves them in depth, as exact
+// transparency does. Mutations the comparison must catch: the sheet left
+// out, and the sheet composited over the clump rather than within it.
+TEST(Transparency, AutoListsWidePrimsByHardwareIntoTheThinPrimsComputeLists) {
+    CameraView camera = orthographicCamera(128);
+    auto clumpAndSheet = [](float sheetDepth) {
+        Scene scene = thinClump();
+        scene.setCurves(sheet("/wide", sheetDepth, {0.2f, 0.4f, 0.9f}, 0.5f, 0.2f));  // 10.7 px wide
+        return scene;
+    };
+    const Scene scene = clumpAndSheet(0.0f);
+    RenderResult mixed = render(scene, camera, {});
+    ASSERT_EQ(mixed.stats.strandRaster, "compute+hardware");
+    Image exact = render(scene, camera, {"transparency=exact", "strandRaster=hardware"}).color;
+    CoveredPixelTolerance tolerance;
+    tolerance.threshold = 2.0 * kOneStep;
+    tolerance.allowedShareOverThreshold = 0.01;
+    tolerance.outlierLimit = 0.5;
+    tolerance.allowedOutliers = 0;
+    ImageComparison comparison = compareImages(mixed.color, exact, tolerance);
+    std::printf("compute+hardware against exact: %s\n", comparison.description.c_str());
+    EXPECT_TRUE(comparison.passed) << comparison.description;
+    // The sheet's middle, where no strand crosses: half its colour over nothing.
+    int bare = 0;
+    for (int x = 0; x < 128; ++x) {
+        if (std::abs(mixed.color.at(x, 64, 3) - 0.5f) > 1e-3f) continue;
+        ++bare;
+        expectPixel(mixed.color, x, 64, {0.1f, 0.2f, 0.45f, 0.5f}, 1e-3, "the sheet alone");
+    }
+    EXPECT_GT(bare, 0);
+
+    Image withoutSheet = render(thinClump(), camera, {}).color;
+    std::printf("sheet left out: %s\n", compareImages(withoutSheet, exact, tolerance).description.c_str());
+    EXPECT_FALSE(compareImages(withoutSheet, exact, tolerance).passed) << "sheet left out";
+    RenderResult sheetInFront = render(clumpAndSheet(2.0f), camera, {});
+    ASSERT_EQ(sheetInFront.stats.strandRaster, "compute+hardware");
+    std::printf("sheet over the clump: %s\n", compareImages(sheetInFront.color, exact, tolerance).description.c_str());
+    EXPECT_FALSE(compareImages(sheetInFront.color, exact, tolerance).passed) << "sheet over the clump";
+}
+
 TEST(Transparency, ComputeRasterOverItsMemoryBudgetFallsBackToTheHardwareAndSaysSo) {
     const Scene scene = fortyFaintSheets();
     const CameraView camera = orthographicCamera(128);

@@ -199,6 +199,37 @@ TEST(RenderPlan, AutoRasterisesThinBlendedStrandsInComputeAndSaysWhy) {
     reachesCamera.maxProjectedWidthPixels = std::numeric_limits<double>::infinity();
     EXPECT_EQ(plan({"strandRaster=auto"}, reachesCamera).strandRaster, StrandRaster::Hardware);
 
+    // Per prim: the thin ones in compute, the wide ones listed by the
+    // hardware into the same lists, while the thin hold at least half the
+    // segments; else the whole frame on the hardware.
+    StrandSummary mixed = thin;
+    mixed.maxProjectedWidthPixels = 9.0;
+    mixed.prims = {{1.5, 600}, {9.0, 100}, {0.5, 300}};
+    RenderPlan mixedAuto = plan({}, mixed, true);
+    EXPECT_EQ(mixedAuto.strandRaster, StrandRaster::Compute);
+    EXPECT_EQ(mixedAuto.listedByHardware, (std::vector<bool>{false, true, false}));
+    EXPECT_TRUE(mixedAuto.mixesRasterisers());
+    EXPECT_FALSE(mixedAuto.isEnabled("sort"));
+    EXPECT_NE(mixedAuto.strandRasterReason.find("compute for 2 of 3 prims (900 of 1000 segments), whose strands "
+                                                "project at most 1.50 px wide; the hardware rasteriser lists the 1 "
+                                                "wider prim(s), whose strands may project 9.00 px, into the same "
+                                                "lists"),
+              std::string::npos)
+        << mixedAuto.strandRasterReason;
+    mixedAuto.fallBackToHardwareRaster(true);
+    EXPECT_FALSE(mixedAuto.mixesRasterisers());
+    mixed.prims = {{1.5, 400}, {std::numeric_limits<double>::infinity(), 600}};
+    RenderPlan mostlyWide = plan({}, mixed);
+    EXPECT_EQ(mostlyWide.strandRaster, StrandRaster::Hardware);
+    EXPECT_TRUE(mostlyWide.listedByHardware.empty());
+    EXPECT_NE(mostlyWide.strandRasterReason.find("the prims within the width hold under half the segments"),
+              std::string::npos)
+        << mostlyWide.strandRasterReason;
+    mixed.prims = {{1.5, 500}, {std::numeric_limits<double>::infinity(), 500}};
+    EXPECT_EQ(plan({}, mixed).listedByHardware, (std::vector<bool>{false, true}));
+    EXPECT_FALSE(plan({"strandRaster=compute"}, mixed).mixesRasterisers());
+    EXPECT_FALSE(plan({"strandRaster=hardware"}, mixed).mixesRasterisers());
+
     // Asked for, compute takes any blended frame; never the opaque path.
     EXPECT_EQ(plan({"strandRaster=compute"}, wide).strandRaster, StrandRaster::Compute);
     EXPECT_EQ(plan({"strandRaster=hardware"}, thin).strandRaster, StrandRaster::Hardware);
