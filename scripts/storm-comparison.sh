@@ -5,7 +5,9 @@
 #   usdrecord --renderer HdHair --disableGpu   (the plugin),
 #   hdhair-record                     (its default reader),
 # at the same camera and width, each timed by /usr/bin/time (wall seconds and
-# peak RSS), with the frame's own time where the renderer reports it, --runs
+# peak RSS), with the frame's own time (through usdrecord, the
+# FrameRecorder.Record() call, timed alike for both renderers by
+# usdrecord-timed.py; hdhair-record, its passes from --stats), --runs
 # times each in turn (the three renderers one after the other, then again),
 # reporting medians. Writes results.csv (a row a run) and results.md (a
 # Markdown table with hdHair/Storm ratios per row: runs on a shared machine
@@ -111,6 +113,10 @@ run() {
   read -r seconds peakKb < <(tail -n 1 "$timing" 2>/dev/null || echo "nan nan")
 }
 
+timedUsdrecord="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)/usdrecord-timed.py"
+# recordedFrame LOG: the milliseconds usdrecord-timed.py printed for the frame.
+recordedFrame() { sed -n 's/^usdrecord-timed: frame .* took \([0-9.]*\) ms$/\1/p' "$1" | tail -n 1; }
+
 started="$(date -u '+%Y-%m-%d %H:%M UTC')"
 loadStart="$(cut -d' ' -f1-3 /proc/loadavg)"
 glRenderer=""
@@ -143,19 +149,21 @@ print(",".join(str(v) for v in (gpu.get("total", ""), gpu.get("strandGeometry", 
                                  frame.get("authoredPoints", ""))))' "$stats" 2>/dev/null || echo ",,")"
     echo "$stage,$spans,$level,hdhair-record,$seconds,$peakKb,$frame,$status,$memory,$rep" >>"$csv"
 
+    # Through usdrecord, either renderer's frame is its FrameRecorder.Record()
+    # call, timed alike by usdrecord-timed.py: sync, render, read back, write.
     log="$out/logs/$name.usdrecord-hdhair.log"
     run "$name.usdrecord-hdhair" "$log" -- \
-      env PXR_PLUGINPATH_NAME="$plugin" TF_DEBUG=HDHAIR_FRAMES "$usdrecord" --renderer HdHair --disableGpu \
-      --camera /World/main_cam --imageWidth "$width" --complexity "$level" "$assets/$stage.usda" \
+      env PXR_PLUGINPATH_NAME="$plugin" /usr/bin/python3 "$timedUsdrecord" "$usdrecord" --renderer HdHair \
+      --disableGpu --camera /World/main_cam --imageWidth "$width" --complexity "$level" "$assets/$stage.usda" \
       "$out/images/$name.usdrecord-hdhair.png"
-    frame="$(sed -n 's/^hdHair: rendered a frame: .*, \([0-9.]*\) ms$/\1/p' "$log" | tail -n 1)"
+    frame="$(recordedFrame "$log")"
     echo "$stage,$spans,$level,usdrecord-hdhair,$seconds,$peakKb,$frame,$status,,,,$rep" >>"$csv"
 
     # Storm needs an X display for its GL context: --display's, or one that
     # xvfb-run starts, with /usr/bin/time inside it timing usdrecord alone,
     # not Xvfb's start.
-    storm=("$usdrecord" --renderer GL --camera /World/main_cam --imageWidth "$width" --complexity "$level"
-           "$assets/$stage.usda" "$out/images/$name.usdrecord-storm.png")
+    storm=(/usr/bin/python3 "$timedUsdrecord" "$usdrecord" --renderer GL --camera /World/main_cam
+           --imageWidth "$width" --complexity "$level" "$assets/$stage.usda" "$out/images/$name.usdrecord-storm.png")
     if [[ -n "$display" ]]; then
       run "$name.usdrecord-storm" "$out/logs/$name.usdrecord-storm.log" -- env DISPLAY="$display" "${storm[@]}"
     else
@@ -163,7 +171,7 @@ print(",".join(str(v) for v in (gpu.get("total", ""), gpu.get("strandGeometry", 
         xvfb-run -a -s "-screen 0 1920x1080x24" /usr/bin/time -f '%e %M' -o "$out/logs/$name.storm.time" "${storm[@]}"
       [[ "$status" == ok ]] && read -r seconds peakKb < <(tail -n 1 "$out/logs/$name.storm.time")
     fi
-    echo "$stage,$spans,$level,usdrecord-storm,$seconds,$peakKb,,$status,,,,$rep" >>"$csv"
+    echo "$stage,$spans,$level,usdrecord-storm,$seconds,$peakKb,$(recordedFrame "$out/logs/$name.usdrecord-storm.log"),$status,,,,$rep" >>"$csv"
    done
   done
 done
@@ -209,8 +217,9 @@ lines = [
     + ("one run each." if runCount == "1" else f"the median of {runCount} runs each, the renderers in turn."),
     "",
     "| stage (spans) | complexity | Storm via usdrecord | HdHair via usdrecord | hdhair-record "
-    "| time HdHair/Storm (usdrecord, hdhair-record) | peak RSS HdHair/Storm (usdrecord, hdhair-record) |",
-    "|---|---|---|---|---|---|---|",
+    "| time HdHair/Storm (usdrecord, hdhair-record) | frame HdHair/Storm (usdrecord) "
+    "| peak RSS HdHair/Storm (usdrecord, hdhair-record) |",
+    "|---|---|---|---|---|---|---|---|",
 ]
 seen = []
 for r in rows:
@@ -223,8 +232,9 @@ for r in rows:
     record = runs.get(key + ("hdhair-record",))
     spans = f'{int(r["spans"]):,}' if r["spans"] else "?"
     lines.append(
-        f"| {r['stage']} ({spans}) | {r['complexity']} | {cell(storm)} | {cell(plugin, True)} | {cell(record, True)} "
-        f"| {ratio(plugin, storm, 'seconds')}, {ratio(record, storm, 'seconds')} "
+        f"| {r['stage']} ({spans}) | {r['complexity']} | {cell(storm, True)} | {cell(plugin, True)} "
+        f"| {cell(record, True)} | {ratio(plugin, storm, 'seconds')}, {ratio(record, storm, 'seconds')} "
+        f"| {ratio(plugin, storm, 'frame_ms') if plugin and storm and plugin['frame_ms'] and storm['frame_ms'] else '-'} "
         f"| {ratio(plugin, storm, 'peak_kb')}, {ratio(record, storm, 'peak_kb')} |")
 lines += [
     "",
