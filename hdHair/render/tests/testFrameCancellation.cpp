@@ -41,12 +41,16 @@ void expectIdentical(const RenderResult& actual, const RenderResult& expected, c
     EXPECT_EQ(actual.elementIds, expected.elementIds) << what;
 }
 
-// `path`: a transparency path drawn by the hardware rasteriser, or
-// "compute" (the compute rasteriser).
+// `path`: a transparency path drawn by the hardware rasteriser, "compute"
+// (the compute rasteriser), or "compute+hardware" (strandRaster=auto on
+// tuftWithAWidePrim: the hardware lists the wide prim into the compute
+// rasteriser's lists).
 RenderSettings tuftSettings(const std::string& path) {
     RenderSettings settings;
     if (path == "compute") {
         settings.set("strandRaster", "compute");
+    } else if (path == "compute+hardware") {
+        settings.set("strandRaster", "auto");
     } else {
         settings.set("transparency", path);
         settings.set("strandRaster", "hardware");
@@ -55,16 +59,34 @@ RenderSettings tuftSettings(const std::string& path) {
     return settings;
 }
 
+// The scene with /tuft/c's strands 25 times as wide (several pixels in
+// tuftCamera at 64 px and more, the others under one), for the
+// "compute+hardware" path.
+Scene tuftWithAWidePrim(const Scene& tuft) {
+    Scene scene = tuft;
+    CurvesPrim wide = *scene.curves().at("/tuft/c").prim;
+    wide.primvars["widths"].values = {0.5f};
+    scene.setCurves(wide);
+    return scene;
+}
+
+Scene sceneFor(const std::string& path, const Scene& tuft) {
+    return path == "compute+hardware" ? tuftWithAWidePrim(tuft) : tuft;
+}
+
 }  // namespace
 
 TEST(FrameCancellation, StrandPiecesGiveTheSingleDrawsImageOnEveryPath) {
-    const Scene scene = hairTuft(40);
     const CameraView camera = tuftCamera(0.0, 96);
     Renderer renderer(gl::defaultGlBackend());
     Diagnostics diagnostics;
-    for (const char* path : {"binSorted", "unsorted", "opaque", "exact", "compute"}) {
+    for (const char* path : {"binSorted", "unsorted", "opaque", "exact", "compute", "compute+hardware"}) {
+        const Scene scene = sceneFor(path, hairTuft(40));
         const RenderSettings settings = tuftSettings(path);
         const RenderResult whole = renderer.render(scene, camera, settings, diagnostics, RenderOutputs{true});
+        if (std::string(path).find("compute") == 0) {
+            EXPECT_EQ(whole.stats.strandRaster, path);
+        }
         StopAtPoll never(INT_MAX);
         FrameControl pieces;
         pieces.cancellation = &never;
@@ -83,9 +105,6 @@ TEST(FrameCancellation, StrandPiecesGiveTheSingleDrawsImageOnEveryPath) {
 TEST(FrameCancellation, AFrameStoppedAtAnyPointLeavesTheRendererAsIfItNeverRan) {
     // The stopped frame changes the hair (one prim moves: its upload and
     // every shadow map are in that frame) and turns the camera.
-    const Scene before = hairTuft(30);
-    Scene after = before;
-    after.setCurves(tuftStrands("/tuft/b", 2, 30, 1.5f));
     const CameraView a = tuftCamera(0.0, 64), b = tuftCamera(35.0, 64);
     auto stoppable = [](const FrameCancellation& cancellation) {
         FrameControl control;
@@ -93,10 +112,16 @@ TEST(FrameCancellation, AFrameStoppedAtAnyPointLeavesTheRendererAsIfItNeverRan) 
         control.strandPieceSegments = 64;
         return control;
     };
-    for (const char* path : {"binSorted", "exact", "compute"}) {
+    for (const char* path : {"binSorted", "exact", "compute", "compute+hardware"}) {
+        const Scene before = sceneFor(path, hairTuft(30));
+        Scene after = before;
+        after.setCurves(tuftStrands("/tuft/b", 2, 30, 1.5f));
         const RenderSettings settings = tuftSettings(path);
         Diagnostics diagnostics;
         const RenderResult expected = synchronousSecondFrame(before, a, after, b, settings, diagnostics);
+        if (std::string(path).find("compute") == 0) {
+            EXPECT_EQ(expected.stats.strandRaster, path);
+        }
 
         Renderer renderer(gl::defaultGlBackend());
         renderer.render(before, a, settings, diagnostics, RenderOutputs{true});
