@@ -423,6 +423,18 @@ Scene thinClump(float opacityScale = 1.0f) {
     return scene;
 }
 
+// The compute rasteriser's picture against the hardware's: a few pixels
+// along edges may differ by a sample that one rasteriser covers and the
+// other does not (llvmpipe's fixed-point positions).
+CoveredPixelTolerance betweenRasterisers() {
+    CoveredPixelTolerance tolerance;
+    tolerance.threshold = 2.0 * kOneStep;
+    tolerance.allowedShareOverThreshold = 0.01;
+    tolerance.outlierLimit = 0.5;
+    tolerance.allowedOutliers = 0;
+    return tolerance;
+}
+
 // Turned half a turn about y: every depth order reversed, the image mirrored in x.
 Scene turnedAround(const Scene& original) {
     Scene scene = original;
@@ -455,13 +467,7 @@ TEST(Transparency, ComputeRasterMatchesExactOnAThinClumpAndCatchesMutations) {
     Image exact = render(scene, camera, {"transparency=exact"}).color;
     RenderResult compute = render(scene, camera, {"strandRaster=compute"});
     ASSERT_EQ(compute.stats.strandRaster, "compute");
-    // A few pixels along edges may differ by a sample that one rasteriser
-    // covers and the other does not (llvmpipe's fixed-point positions).
-    CoveredPixelTolerance tolerance;
-    tolerance.threshold = 2.0 * kOneStep;
-    tolerance.allowedShareOverThreshold = 0.01;
-    tolerance.outlierLimit = 0.5;
-    tolerance.allowedOutliers = 0;
+    const CoveredPixelTolerance tolerance = betweenRasterisers();
     ImageComparison comparison = compareImages(compute.color, exact, tolerance);
     std::printf("compute against exact: %s\n", comparison.description.c_str());
     EXPECT_TRUE(comparison.passed) << comparison.description;
@@ -498,11 +504,7 @@ TEST(Transparency, AutoListsWidePrimsByHardwareIntoTheThinPrimsComputeLists) {
     RenderResult mixed = render(scene, camera, {});
     ASSERT_EQ(mixed.stats.strandRaster, "compute+hardware");
     Image exact = render(scene, camera, {"transparency=exact", "strandRaster=hardware"}).color;
-    CoveredPixelTolerance tolerance;
-    tolerance.threshold = 2.0 * kOneStep;
-    tolerance.allowedShareOverThreshold = 0.01;
-    tolerance.outlierLimit = 0.5;
-    tolerance.allowedOutliers = 0;
+    const CoveredPixelTolerance tolerance = betweenRasterisers();
     ImageComparison comparison = compareImages(mixed.color, exact, tolerance);
     std::printf("compute+hardware against exact: %s\n", comparison.description.c_str());
     EXPECT_TRUE(comparison.passed) << comparison.description;
