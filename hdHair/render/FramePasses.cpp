@@ -210,8 +210,8 @@ void reportLists(FrameContext& context, uint64_t fragments, size_t batch) {
                                                        lists.unwalkedPixels()));
 }
 
-// The compute rasteriser's segments: every drawn prim's, but those the plan
-// has the hardware rasteriser list into the same lists.
+// Who lists each drawn prim's segments: the compute rasteriser, but for the
+// prims the plan gives the hardware rasteriser (into the same lists).
 gl::ListedSegments listedSegments(const RenderPlan& plan, const StrandUploadPlan& uploads) {
     if (!plan.mixesRasterisers()) return {{}, uploads.drawRanges};
     gl::ListedSegments segments;
