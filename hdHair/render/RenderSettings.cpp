@@ -85,15 +85,20 @@ const std::vector<SettingDescriptor>& RenderSettings::descriptors() {
          "Who rasterises the camera's strands when they are blended: hardware (GL's tessellator and rasteriser), "
          "compute (strandRaster.comp: spans cut, rasterised and shaded in compute on every core, composited "
          "exactly from per-pixel lists), or auto (per prim: compute for prims whose strands are at most "
-         "strandRasterMaxPixelWidth wide, the hardware listing the wider ones into the same lists when the thin "
-         "prims hold at least half the segments, else all hardware; hardware whenever transparency=unsorted or a "
-         "sortBins other than the default is set)",
+         "strandRasterMaxPixelWidth wide and whose spans cover at most strandRasterMaxFragmentsPerSpan pixels, "
+         "the hardware listing the others into the same lists when those prims hold at least half the segments, "
+         "else all hardware; hardware whenever transparency=unsorted or a sortBins other than the default is set)",
          0, 0, {"hardware", "compute", "auto"}, &SettingValues::strandRaster},
         {"strandRasterMaxPixelWidth", SettingType::Float, "4",
          "strandRaster=auto: the compute rasteriser takes a prim only when its widest strand projects at most "
          "this many pixels wide (measured: it pays for thin strands, where spans cover few pixels each; "
          "docs/performance.md)",
          0.0, 1000.0, {}, &SettingValues::strandRasterMaxPixelWidth},
+        {"strandRasterMaxFragmentsPerSpan", SettingType::Float, "20",
+         "strandRaster=auto: the compute rasteriser takes a prim only when its mean span, projected at the middle "
+         "depth of the prim's bounds, covers about this many pixels or fewer (its length plus width, times its "
+         "width): the compute rasteriser's cost grows with the fragments it lists (docs/performance.md)",
+         0.0, 1.0e6, {}, &SettingValues::strandRasterMaxFragmentsPerSpan},
         {"strandRasterMemoryMB", SettingType::Int, "512",
          "Memory for the compute rasteriser's fragment lists; a frame needing more warns and is drawn by the "
          "hardware rasteriser instead",

@@ -97,6 +97,21 @@ double maxProjectedWidthPixels(const CameraView& camera, const PreparedCurves& c
     return double(maxWidth) * camera.pixelsPerUnit() / nearest;
 }
 
+// About how many fragments a span of the prim covers: a ribbon of the
+// spans' mean length and mean drawn width (at least a pixel, the coverage
+// rule), projected at the middle depth of the prim's bounds, covers about
+// (length + width) x width pixels. Infinity when the bounds reach the
+// camera's plane.
+double fragmentsPerSpanEstimate(const CameraView& camera, const PreparedCurves& curves, float meanSpanLength,
+                                float meanSpanWidth) {
+    const double nearest = boundsClipW(camera, curves, true);
+    if (nearest <= 0.0) return std::numeric_limits<double>::infinity();
+    const double pixelsPerUnit = camera.pixelsPerUnit() / (0.5 * (nearest + boundsClipW(camera, curves, false)));
+    const double length = double(meanSpanLength) * pixelsPerUnit;
+    const double width = std::max(1.0, double(meanSpanWidth) * pixelsPerUnit);
+    return (length + width) * width;
+}
+
 // The instances of an instanced prim are copies of its first instance but for
 // the transform (HdHairRenderParam::SetCurves, SetMesh), so whatever their
 // data needs repaired is the first instance's again: only the first reports
@@ -196,11 +211,18 @@ void Renderer::prepareChangedCurves(const Scene& scene, const RenderSettings& se
         }
         cached.spanLengths.clear();
         cached.spanLengths.reserve(prepared->segmentCount());
+        double lengthSum = 0.0, widthSum = 0.0;
         for (size_t s = 0; s < prepared->segmentCount(); ++s) {
             const StrandControlPoint* controls = prepared->spanControls(s);
             cached.minSpanWidth = std::min({cached.minSpanWidth, controls[1].width, controls[2].width});
             cached.spanLengths.push_back(bezierPolygonLength(controls));
+            if (std::isfinite(cached.spanLengths.back())) lengthSum += cached.spanLengths.back();
+            const double width = 0.5 * (double(controls[1].width) + double(controls[2].width));
+            if (std::isfinite(width)) widthSum += width;
         }
+        const double spans = double(std::max<size_t>(prepared->segmentCount(), 1));
+        cached.meanSpanLength = float(lengthSum / spans);
+        cached.meanSpanWidth = float(widthSum / spans);
         cached.sortHashes = segmentSortHashes(*prepared);
         cached.prepared = std::move(prepared);
         cached.material.reset();
@@ -506,7 +528,9 @@ void Renderer::gatherDrawnCurves(const Scene& scene, const CameraView& camera, c
                      minProjectedWidthPixels(camera, *cached.prepared, cached.minSpanWidth));
         const double primWidth = maxProjectedWidthPixels(camera, *cached.prepared, cached.maxWidth);
         summary.maxProjectedWidthPixels = std::max(summary.maxProjectedWidthPixels, primWidth);
-        summary.prims.push_back({primWidth, cached.prepared->segmentCount()});
+        summary.prims.push_back({primWidth, cached.prepared->segmentCount(),
+                                 fragmentsPerSpanEstimate(camera, *cached.prepared, cached.meanSpanLength,
+                                                          cached.meanSpanWidth)});
         // Every drawn strand casts shadows.
         CasterBounds& casters = summary.casters;
         const glm::dvec3 low(cached.prepared->boundsMin), high(cached.prepared->boundsMax);

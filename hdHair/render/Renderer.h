@@ -135,6 +135,9 @@ private:
         // Every span's Bezier control polygon length, which bounds the span's
         // (shadowSampling=auto).
         std::vector<float> spanLengths;
+        // The spans' mean control polygon length and mean width (at their
+        // ends), for the fragments a span lists (strandRaster=auto).
+        float meanSpanLength = 0.0f, meanSpanWidth = 0.0f;
         bool fullyOpaque = true;    // every control point's opacity is exactly 1
         // The prim's material, resolved once per version and material
         // settings (hairMaterialSettingsKey), and its per-point parameters.

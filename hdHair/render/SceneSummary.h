@@ -26,10 +26,13 @@ struct StrandSummary {
     // there are no strands.
     double maxProjectedWidthPixels = 0.0;
     // Per drawn prim, in draw order (FrameInputs::drawn): its widest
-    // projected width, as maxProjectedWidthPixels, and its segments.
+    // projected width, as maxProjectedWidthPixels, its segments, and about
+    // how many pixels a span covers (its mean span at the middle depth of
+    // its bounds; infinity when they reach the camera).
     struct PrimRaster {
         double maxProjectedWidthPixels = 0.0;
         uint64_t segments = 0;
+        double fragmentsPerSpan = 0.0;
     };
     std::vector<PrimRaster> prims;
     bool anyLit = true;          // some prim's material is lit (not flat)

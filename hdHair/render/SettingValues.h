@@ -27,6 +27,7 @@ struct SettingValues {
     std::string exactOverflow;
     std::string strandRaster;
     double strandRasterMaxPixelWidth = 0.0;
+    double strandRasterMaxFragmentsPerSpan = 0.0;
     int strandRasterMemoryMB = 0;
     int supersampling = 1;
     int lightsPerPass = 0;

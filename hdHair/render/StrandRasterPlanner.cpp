@@ -13,58 +13,70 @@ namespace hdhair {
 
 namespace {
 
+// What strandRaster=auto weighs a prim by.
+struct AutoRule {
+    double maxPixelWidth = 0.0;        // strandRasterMaxPixelWidth
+    double maxFragmentsPerSpan = 0.0;  // strandRasterMaxFragmentsPerSpan
+};
+
 // strandRaster=auto: compute for the prims whose strands project at most
-// `threshold` px wide. Prims wider than it are listed by the hardware
-// rasteriser into the same per-pixel lists, one resolve compositing both,
-// when the thin prims hold at least half the frame's segments: the compute
-// rasteriser pays per thin span, while a wide prim's fragments cost more
-// in compute than the hardware's. Otherwise the frame keeps the hardware.
-void planByPrim(FrameRecipe& recipe, const StrandSummary& strands, double threshold) {
+// rule.maxPixelWidth px wide and whose spans cover about
+// rule.maxFragmentsPerSpan pixels or fewer: the compute rasteriser's cost
+// grows with the fragments it lists, the hardware's mostly with the spans
+// (docs/performance.md, "Where compute pays"). Other prims are listed by
+// the hardware rasteriser into the same per-pixel lists, one resolve
+// compositing both, when the prims within the rule hold at least half the
+// frame's segments. Otherwise the frame keeps the hardware.
+void planByPrim(FrameRecipe& recipe, const StrandSummary& strands, const AutoRule& rule) {
     std::string& why = recipe.strandRasterReason;
     // Summaries made without per-prim figures count as one prim.
     std::vector<StrandSummary::PrimRaster> prims = strands.prims;
-    if (prims.empty()) prims.push_back({strands.maxProjectedWidthPixels, strands.segments});
-    auto thin = [threshold](const StrandSummary::PrimRaster& prim) {
-        return std::isfinite(prim.maxProjectedWidthPixels) && prim.maxProjectedWidthPixels <= threshold;
+    if (prims.empty()) prims.push_back({strands.maxProjectedWidthPixels, strands.segments, 0.0});
+    auto withinRule = [&rule](const StrandSummary::PrimRaster& prim) {
+        return std::isfinite(prim.maxProjectedWidthPixels) && prim.maxProjectedWidthPixels <= rule.maxPixelWidth &&
+               prim.fragmentsPerSpan <= rule.maxFragmentsPerSpan;
     };
-    uint64_t thinSegments = 0, wideSegments = 0;
-    size_t wideCount = 0;
-    double widestThin = 0.0, widestWide = 0.0;
+    uint64_t thinSegments = 0, otherSegments = 0;
+    size_t others = 0;
+    double widestThin = 0.0, widestOther = 0.0, coveredThin = 0.0, coveredOther = 0.0;
     for (const StrandSummary::PrimRaster& prim : prims) {
-        if (thin(prim)) {
+        if (withinRule(prim)) {
             thinSegments += prim.segments;
             widestThin = std::max(widestThin, prim.maxProjectedWidthPixels);
+            coveredThin = std::max(coveredThin, prim.fragmentsPerSpan);
         } else {
-            wideSegments += prim.segments;
-            widestWide = std::max(widestWide, prim.maxProjectedWidthPixels);
-            ++wideCount;
+            otherSegments += prim.segments;
+            widestOther = std::max(widestOther, prim.maxProjectedWidthPixels);
+            coveredOther = std::max(coveredOther, prim.fragmentsPerSpan);
+            ++others;
         }
     }
-    const std::string rule = fmt::format("strandRasterMaxPixelWidth {}; strandRaster=auto", threshold);
-    const std::string wideAs = std::isfinite(widestWide)
-                                   ? fmt::format("may project {:.2f} px", widestWide)
-                                   : std::string("reach the camera's plane, so no width bounds them");
-    if (wideCount == 0) {
+    const std::string ruleText = fmt::format("strandRasterMaxPixelWidth {}, strandRasterMaxFragmentsPerSpan {}; "
+                                             "strandRaster=auto",
+                                             rule.maxPixelWidth, rule.maxFragmentsPerSpan);
+    const std::string thinAs =
+        fmt::format("project at most {:.2f} px wide and cover about {:.1f} px a span or fewer", widestThin, coveredThin);
+    // What puts the other prims outside the rule, the first that does.
+    const std::string otherAs = !std::isfinite(widestOther) ? std::string("reach the camera's plane, so no width "
+                                                                          "bounds them")
+                                : widestOther > rule.maxPixelWidth
+                                    ? fmt::format("may project {:.2f} px wide", widestOther)
+                                    : fmt::format("cover about {:.1f} px a span", coveredOther);
+    if (others == 0) {
         recipe.strandRaster = StrandRaster::Compute;
-        why = fmt::format("compute: every strand projects at most {:.2f} px wide ({})", widestThin, rule);
-    } else if (thinSegments > 0 && thinSegments >= wideSegments) {
+        why = fmt::format("compute: the strands {} ({})", thinAs, ruleText);
+    } else if (thinSegments > 0 && thinSegments >= otherSegments) {
         recipe.strandRaster = StrandRaster::Compute;
         recipe.listedByHardware.clear();
-        for (const StrandSummary::PrimRaster& prim : prims) recipe.listedByHardware.push_back(!thin(prim));
-        why = fmt::format("compute for {} of {} prims ({} of {} segments), whose strands project at most {:.2f} px "
-                          "wide; the hardware rasteriser lists the {} wider prim(s), whose strands {}, into the "
-                          "same lists ({})",
-                          prims.size() - wideCount, prims.size(), thinSegments, thinSegments + wideSegments,
-                          widestThin, wideCount, wideAs, rule);
-    } else if (!std::isfinite(widestWide)) {
-        why = fmt::format("hardware: the strands' bounds reach the camera, so no width bounds them{} ({})",
-                          thinSegments > 0 ? "; the prims within the width hold under half the segments" : "",
-                          rule);
+        for (const StrandSummary::PrimRaster& prim : prims) recipe.listedByHardware.push_back(!withinRule(prim));
+        why = fmt::format("compute for {} of {} prims ({} of {} segments), whose strands {}; the hardware rasteriser "
+                          "lists the {} other prim(s), whose strands {}, into the same lists ({})",
+                          prims.size() - others, prims.size(), thinSegments, thinSegments + otherSegments, thinAs,
+                          others, otherAs, ruleText);
     } else {
-        why = fmt::format("hardware: the widest strand may project {:.2f} px, over strandRasterMaxPixelWidth {}{} "
-                          "(strandRaster=auto)",
-                          widestWide, threshold,
-                          thinSegments > 0 ? "; the prims within it hold under half the segments" : "");
+        why = fmt::format("hardware: the strands {}{} ({})", otherAs,
+                          thinSegments > 0 ? "; the prims within the rule hold under half the segments" : "",
+                          ruleText);
     }
 }
 
@@ -75,7 +87,6 @@ const char* toString(StrandRaster raster) { return raster == StrandRaster::Compu
 void planStrandRaster(FrameRecipe& recipe, const SettingValues& settings, const StrandSummary& strands,
                       const std::string& approximationAskedFor) {
     const std::string& requested = settings.strandRaster;
-    const double threshold = settings.strandRasterMaxPixelWidth;
     std::string& why = recipe.strandRasterReason;
     recipe.strandRaster = StrandRaster::Hardware;
     recipe.strandRasterMemoryMB = settings.strandRasterMemoryMB;
@@ -92,7 +103,7 @@ void planStrandRaster(FrameRecipe& recipe, const SettingValues& settings, const 
                           "(strandRaster=auto)",
                           approximationAskedFor);
     } else {
-        planByPrim(recipe, strands, threshold);
+        planByPrim(recipe, strands, {settings.strandRasterMaxPixelWidth, settings.strandRasterMaxFragmentsPerSpan});
     }
     if (recipe.strandRaster == StrandRaster::Compute)
         why += ", spans cut, rasterised and shaded in compute, composited from per-pixel lists sorted by depth";

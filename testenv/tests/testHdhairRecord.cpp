@@ -74,12 +74,12 @@ TEST_F(HdhairRecord, RendersAnExampleWithItsCameraAndReportsStats) {
     EXPECT_EQ(frame["segments"], 40 * 4);  // 7 catmullRom points: 4 spans each
     EXPECT_EQ(frame["camera"], "/World/main_cam");
     EXPECT_EQ(frame["settings"]["complexity"], "low");
-    // The strands' tips are thinner than a pixel: blended coverage; every
-    // strand projects under strandRasterMaxPixelWidth, so the default
-    // (strandRaster=auto) lists them from the compute rasteriser, sorted per
-    // pixel, with no bin sort.
+    // The strands' tips are thinner than a pixel: blended coverage. Their
+    // long straight spans cover about 26 pixels each, over
+    // strandRasterMaxFragmentsPerSpan, so the default (strandRaster=auto)
+    // keeps the hardware rasteriser, drawing in the bin sort's order.
     EXPECT_EQ(frame["transparency"], "binSorted");
-    EXPECT_EQ(frame["strandRaster"], "compute");
+    EXPECT_EQ(frame["strandRaster"], "hardware");
     // --stats turns pass timing on: every pass that ran has its time, in the
     // list and on the plan's graph.
     bool strandsTimed = false, shadowsTimed = false, sorted = false;
@@ -88,13 +88,14 @@ TEST_F(HdhairRecord, RendersAnExampleWithItsCameraAndReportsStats) {
         shadowsTimed = shadowsTimed || (pass["name"] == "shadowDepth /World/key_light" && pass["milliseconds"] > 0.0);
         sorted = sorted || pass["name"] == "sort";
     }
-    EXPECT_TRUE(strandsTimed && shadowsTimed && !sorted) << frame.dump(2);
+    EXPECT_TRUE(strandsTimed && shadowsTimed && sorted) << frame.dump(2);
     EXPECT_NE(frame["passTiming"], "off");
     bool graphStrands = false;
     for (const auto& pass : frame["plan"]) {
         if (pass["pass"] != "strands") continue;
         graphStrands = pass["enabled"] == true && pass["milliseconds"] > 0.0 &&
-                       pass["reads"] == nlohmann::json({"strands", "color", "depth", "deepOpacity /World/fill_light",
+                       pass["reads"] == nlohmann::json({"strands", "drawOrder", "color", "depth",
+                                                        "deepOpacity /World/fill_light",
                                                         "deepOpacity /World/key_light"}) &&
                        pass["writes"] == nlohmann::json({"color", "depth"});
     }

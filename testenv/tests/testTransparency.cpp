@@ -500,8 +500,11 @@ TEST(Transparency, AutoListsWidePrimsByHardwareIntoTheThinPrimsComputeLists) {
         scene.setCurves(sheet("/wide", sheetDepth, {0.2f, 0.4f, 0.9f}, 0.5f, 0.2f));  // 10.7 px wide
         return scene;
     };
+    // The clump's spans are long, each across much of the view: the test is
+    // of the split, so strandRasterMaxFragmentsPerSpan lets them into compute.
+    const std::string coverage = "strandRasterMaxFragmentsPerSpan=1000";
     const Scene scene = clumpAndSheet(0.0f);
-    RenderResult mixed = render(scene, camera, {});
+    RenderResult mixed = render(scene, camera, {coverage});
     ASSERT_EQ(mixed.stats.strandRaster, "compute+hardware");
     Image exact = render(scene, camera, {"transparency=exact", "strandRaster=hardware"}).color;
     const CoveredPixelTolerance tolerance = betweenRasterisers();
@@ -517,10 +520,10 @@ TEST(Transparency, AutoListsWidePrimsByHardwareIntoTheThinPrimsComputeLists) {
     }
     EXPECT_GT(bare, 0);
 
-    Image withoutSheet = render(thinClump(), camera, {}).color;
+    Image withoutSheet = render(thinClump(), camera, {coverage}).color;
     std::printf("sheet left out: %s\n", compareImages(withoutSheet, exact, tolerance).description.c_str());
     EXPECT_FALSE(compareImages(withoutSheet, exact, tolerance).passed) << "sheet left out";
-    RenderResult sheetInFront = render(clumpAndSheet(2.0f), camera, {});
+    RenderResult sheetInFront = render(clumpAndSheet(2.0f), camera, {coverage});
     ASSERT_EQ(sheetInFront.stats.strandRaster, "compute+hardware");
     std::printf("sheet over the clump: %s\n", compareImages(sheetInFront.color, exact, tolerance).description.c_str());
     EXPECT_FALSE(compareImages(sheetInFront.color, exact, tolerance).passed) << "sheet over the clump";

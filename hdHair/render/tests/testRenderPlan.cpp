@@ -155,8 +155,9 @@ TEST(RenderPlan, AutoRasterisesThinBlendedStrandsInComputeAndSaysWhy) {
     RenderPlan automatic = plan({}, thin, true);
     EXPECT_EQ(automatic.strandRaster, StrandRaster::Compute);
     EXPECT_EQ(automatic.transparency, TransparencyPath::BinSorted);
-    EXPECT_NE(strandsReason(automatic).find("compute: every strand projects at most 1.50 px wide "
-                                            "(strandRasterMaxPixelWidth 4; strandRaster=auto)"),
+    EXPECT_NE(strandsReason(automatic).find("compute: the strands project at most 1.50 px wide and cover about "
+                                            "0.0 px a span or fewer (strandRasterMaxPixelWidth 4, "
+                                            "strandRasterMaxFragmentsPerSpan 20; strandRaster=auto)"),
               std::string::npos)
         << strandsReason(automatic);
     // Lists sorted per pixel: no bin sort, no draw order, ids from the resolve.
@@ -177,7 +178,9 @@ TEST(RenderPlan, AutoRasterisesThinBlendedStrandsInComputeAndSaysWhy) {
     wide.maxProjectedWidthPixels = 6.0;
     RenderPlan wideAuto = plan({"strandRaster=auto"}, wide);
     EXPECT_EQ(wideAuto.strandRaster, StrandRaster::Hardware);
-    EXPECT_NE(wideAuto.strandRasterReason.find("widest strand may project 6.00 px"), std::string::npos);
+    EXPECT_NE(wideAuto.strandRasterReason.find("hardware: the strands may project 6.00 px wide ("),
+              std::string::npos)
+        << wideAuto.strandRasterReason;
     EXPECT_EQ(plan({"strandRaster=auto", "strandRasterMaxPixelWidth=8"}, wide).strandRaster, StrandRaster::Compute);
     StrandSummary justOver = thin;
     justOver.maxProjectedWidthPixels = 4.1;
@@ -204,31 +207,46 @@ TEST(RenderPlan, AutoRasterisesThinBlendedStrandsInComputeAndSaysWhy) {
     // segments; else the whole frame on the hardware.
     StrandSummary mixed = thin;
     mixed.maxProjectedWidthPixels = 9.0;
-    mixed.prims = {{1.5, 600}, {9.0, 100}, {0.5, 300}};
+    mixed.prims = {{1.5, 600, 4.0}, {9.0, 100, 30.0}, {0.5, 300, 2.0}};
     RenderPlan mixedAuto = plan({}, mixed, true);
     EXPECT_EQ(mixedAuto.strandRaster, StrandRaster::Compute);
     EXPECT_EQ(mixedAuto.listedByHardware, (std::vector<bool>{false, true, false}));
     EXPECT_TRUE(mixedAuto.mixesRasterisers());
     EXPECT_FALSE(mixedAuto.isEnabled("sort"));
     EXPECT_NE(mixedAuto.strandRasterReason.find("compute for 2 of 3 prims (900 of 1000 segments), whose strands "
-                                                "project at most 1.50 px wide; the hardware rasteriser lists the 1 "
-                                                "wider prim(s), whose strands may project 9.00 px, into the same "
-                                                "lists"),
+                                                "project at most 1.50 px wide and cover about 4.0 px a span or "
+                                                "fewer; the hardware rasteriser lists the 1 other prim(s), whose "
+                                                "strands may project 9.00 px wide, into the same lists"),
               std::string::npos)
         << mixedAuto.strandRasterReason;
     mixedAuto.fallBackToHardwareRaster(true);
     EXPECT_FALSE(mixedAuto.mixesRasterisers());
-    mixed.prims = {{1.5, 400}, {std::numeric_limits<double>::infinity(), 600}};
+    mixed.prims = {{1.5, 400, 4.0}, {std::numeric_limits<double>::infinity(), 600, 4.0}};
     RenderPlan mostlyWide = plan({}, mixed);
     EXPECT_EQ(mostlyWide.strandRaster, StrandRaster::Hardware);
     EXPECT_TRUE(mostlyWide.listedByHardware.empty());
-    EXPECT_NE(mostlyWide.strandRasterReason.find("the prims within the width hold under half the segments"),
+    EXPECT_NE(mostlyWide.strandRasterReason.find("hardware: the strands reach the camera's plane, so no width "
+                                                 "bounds them; the prims within the rule hold under half the "
+                                                 "segments"),
               std::string::npos)
         << mostlyWide.strandRasterReason;
-    mixed.prims = {{1.5, 500}, {std::numeric_limits<double>::infinity(), 500}};
+    mixed.prims = {{1.5, 500, 4.0}, {std::numeric_limits<double>::infinity(), 500, 4.0}};
     EXPECT_EQ(plan({}, mixed).listedByHardware, (std::vector<bool>{false, true}));
     EXPECT_FALSE(plan({"strandRaster=compute"}, mixed).mixesRasterisers());
     EXPECT_FALSE(plan({"strandRaster=hardware"}, mixed).mixesRasterisers());
+    // Thin strands whose spans cover many pixels (long spans across the
+    // frame) keep the hardware: the compute rasteriser's cost follows the
+    // fragments it lists.
+    StrandSummary longSpans = thin;
+    longSpans.prims = {{1.5, 1000, 56.6}};
+    RenderPlan coveringMany = plan({}, longSpans);
+    EXPECT_EQ(coveringMany.strandRaster, StrandRaster::Hardware);
+    EXPECT_NE(coveringMany.strandRasterReason.find("hardware: the strands cover about 56.6 px a span ("),
+              std::string::npos)
+        << coveringMany.strandRasterReason;
+    EXPECT_EQ(plan({"strandRasterMaxFragmentsPerSpan=60"}, longSpans).strandRaster, StrandRaster::Compute);
+    longSpans.prims.push_back({1.5, 1000, 3.0});
+    EXPECT_EQ(plan({}, longSpans).listedByHardware, (std::vector<bool>{true, false}));
 
     // Asked for, compute takes any blended frame; never the opaque path.
     EXPECT_EQ(plan({"strandRaster=compute"}, wide).strandRaster, StrandRaster::Compute);
