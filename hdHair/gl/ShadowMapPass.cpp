@@ -1,5 +1,7 @@
 #include "hdHair/gl/ShadowMapPass.h"
 
+#include <utility>
+
 namespace hdhair::gl {
 
 ShadowMapPass::ShadowMapPass()
@@ -14,6 +16,12 @@ ShadowMapPass::ShadowMapPass()
 void ShadowMapPass::renderDepth(ShadowMapStorage& storage, const StrandGeometry& geometry,
                                 const std::vector<SegmentRange>& ranges, const FrameUniforms& lightView,
                                 const ShadowUniforms& light, LightViewStrands strands) {
+    if (strands == LightViewStrands::ComputeLines) {
+        draw_.bindBlocks(lightView, light);
+        raster_.renderDepth(storage, geometry, ranges, light);
+        for (const SegmentRange& range : ranges) spanCounts_.compute += range.count;
+        return;
+    }
     storage.bindDepthTarget(int(light.lightMap[0].x));
     // The least depth wins, in any drawing order.
     glEnable(GL_BLEND);
@@ -28,6 +36,11 @@ void ShadowMapPass::renderDepth(ShadowMapStorage& storage, const StrandGeometry&
 void ShadowMapPass::renderOpacity(ShadowMapStorage& storage, const StrandGeometry& geometry,
                                   const std::vector<SegmentRange>& ranges, const FrameUniforms& lightView,
                                   const ShadowUniforms& light, LightViewStrands strands) {
+    if (strands == LightViewStrands::ComputeLines) {
+        draw_.bindBlocks(lightView, light);
+        raster_.renderOpacity(storage, geometry, ranges, light);
+        return;
+    }
     storage.bindOpacityTargets(int(light.lightMap[0].x));
     storage.bindForLookup();  // the nearest depths, drawn by renderDepth
     // Sums in any drawing order (thesis section 2.7.2: additive blending).
@@ -43,9 +56,7 @@ void ShadowMapPass::renderOpacity(ShadowMapStorage& storage, const StrandGeometr
     checkGlError("drawing deep opacity layers");
 }
 
-std::pair<uint64_t, uint64_t> ShadowMapPass::takeSpanCounts() {
-    return {std::exchange(straightSpans_, 0), std::exchange(tessellatedSpans_, 0)};
-}
+LightViewSpanCounts ShadowMapPass::takeSpanCounts() { return std::exchange(spanCounts_, {}); }
 
 void ShadowMapPass::drawStrands(ShadingPrograms& programs, ShadingPrograms& straightPrograms, ShadingFeatures features,
                                 const StrandGeometry& geometry, const std::vector<SegmentRange>& ranges,
@@ -59,8 +70,8 @@ void ShadowMapPass::drawStrands(ShadingPrograms& programs, ShadingPrograms& stra
     if (listAgain) {
         draw_.bindBlocks(lightView, light);
         spans_.build(geometry, ranges, lightView);
-        straightSpans_ += spans_.straight();
-        tessellatedSpans_ += spans_.tessellated();
+        spanCounts_.straight += spans_.straight();
+        spanCounts_.tessellated += spans_.tessellated();
     }
     draw_.draw(straightPrograms.get(drawn), programs.get(drawn), geometry, spans_, lightView, light);
 }

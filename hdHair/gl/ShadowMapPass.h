@@ -6,16 +6,17 @@
 // additive blending into up to 8 RGBA16F draw buffers; its program is
 // compiled for the layer count, so that it adds into only the layers there
 // are). Both passes draw the
-// strands the camera draws, through the light's view (LightViewDraw). Meshes
+// strands the camera draws, through the light's view (LightViewDraw), or
+// rasterise them as lines in compute (LightViewRaster). Meshes
 // add a third: the nearest mesh per texel (meshShadowDepth.frag), the opaque
 // occluders strands test against.
 
 #include <cstdint>
-#include <utility>
 #include <vector>
 
 #include "hdHair/gl/GlObjects.h"
 #include "hdHair/gl/LightViewDraw.h"
+#include "hdHair/gl/LightViewRaster.h"
 #include "hdHair/gl/LightViewSpans.h"
 #include "hdHair/gl/MeshGeometry.h"
 #include "hdHair/gl/MeshPass.h"
@@ -27,12 +28,22 @@
 
 namespace hdhair::gl {
 
-// How a light view draws the strands (PlannedShadow::strandLines and
-// ::straightSpans, from shadowStrandLines).
+// How a light view draws the strands (PlannedShadow::strandLines,
+// ::straightSpans and ::computeLines, from shadowStrandLines and strandRaster).
 enum class LightViewStrands {
     Ribbons,           // camera-facing ribbons, as the camera draws them
     TessellatedLines,  // one-texel lines, every span through the tessellator
     Lines,             // one-texel lines, one-segment spans without it (LightViewSpans.h)
+    ComputeLines,      // one-texel lines from the compute rasteriser (LightViewRaster.h)
+};
+
+// Spans of the light views, by how they were drawn: the LightViewStrands::Lines
+// views' one-segment spans, drawn as plain lines, and the rest, drawn through
+// the tessellator (culled spans count in neither); the spans the
+// ComputeLines views gave the compute rasteriser (culled ones included:
+// each invocation culls its own).
+struct LightViewSpanCounts {
+    uint64_t straight = 0, tessellated = 0, compute = 0;
 };
 
 class ShadowMapPass {
@@ -49,10 +60,8 @@ public:
     void renderOpacity(ShadowMapStorage& storage, const StrandGeometry& geometry,
                        const std::vector<SegmentRange>& ranges, const FrameUniforms& lightView,
                        const ShadowUniforms& light, LightViewStrands strands);
-    // The spans the LightViewStrands::Lines views listed since the last call
-    // (which resets them): one-segment spans, drawn as plain lines, and the
-    // rest, drawn through the tessellator; culled spans count in neither.
-    std::pair<uint64_t, uint64_t> takeSpanCounts();
+    // The spans the views drew since the last call (which resets them).
+    LightViewSpanCounts takeSpanCounts();
     void renderMeshDepth(ShadowMapStorage& storage, MeshPass& meshPass, const MeshGeometry& meshes,
                          const std::vector<MeshDraw>& draws, const FrameUniforms& lightView,
                          const ShadowUniforms& light);
@@ -71,7 +80,8 @@ private:
     ShadingPrograms straightDepthPrograms_, straightOpacityPrograms_;  // strandChord.vert and the same parts
     LightViewDraw draw_;
     LightViewSpans spans_;
-    uint64_t straightSpans_ = 0, tessellatedSpans_ = 0;
+    LightViewRaster raster_;
+    LightViewSpanCounts spanCounts_;
 };
 
 }  // namespace hdhair::gl

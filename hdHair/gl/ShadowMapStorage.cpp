@@ -70,6 +70,12 @@ void ShadowMapStorage::allocate() {
 
 void ShadowMapStorage::bindDepthTarget(int slot) { bindNearestDepthTarget(depths_, slot); }
 
+void ShadowMapStorage::clearHairDepth(int slot) {
+    const float none = kNoHair;
+    glClearTexSubImage(depths_.get(), 0, 0, 0, slot, resolution_, resolution_, 1, GL_RED, GL_FLOAT, &none);
+    checkGlError("clearing a shadow depth map");
+}
+
 void ShadowMapStorage::bindMeshDepthTarget(int slot) { bindNearestDepthTarget(meshDepths_, slot); }
 
 void ShadowMapStorage::bindNearestDepthTarget(const Texture& depths, int slot) {

@@ -51,6 +51,11 @@ public:
     void bindForLookup() const;
 
     int resolution() const { return resolution_; }
+    // For the compute rasteriser (LightViewRaster): clears slot `slot`'s
+    // nearest hair depth to "no hair"; the arrays themselves.
+    void clearHairDepth(int slot);
+    GLuint hairDepths() const { return depths_.get(); }
+    GLuint opacityLayers() const { return opacity_.get(); }
 
 private:
     void allocate();

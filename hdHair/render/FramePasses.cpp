@@ -327,6 +327,7 @@ void prepareShadowMaps(FrameContext& context) {
 // How light L's view draws the strands, as planned.
 gl::LightViewStrands lightViewStrands(const PlannedShadow& shadow) {
     if (!shadow.strandLines) return gl::LightViewStrands::Ribbons;
+    if (shadow.computeLines) return gl::LightViewStrands::ComputeLines;
     return shadow.straightSpans ? gl::LightViewStrands::Lines : gl::LightViewStrands::TessellatedLines;
 }
 

@@ -81,7 +81,9 @@ void addShadowPasses(FrameGraph& graph, const RenderPlan& plan, size_t index, bo
             !wanted ? ""
             : shadow.strandLines
                 ? fmt::format("; strands as one-texel lines (the widest is {:.2f} texels){}", shadow.widestTexels,
-                              shadow.straightSpans ? ", spans of one segment without the tessellator"
+                              shadow.computeLines    ? ", " + shadow.rasterReason
+                              : shadow.straightSpans ? ", spans of one segment without the tessellator, " +
+                                                           shadow.rasterReason
                                                    : ", every span through the tessellator (shadowStrandLines=tessellated)")
                 : fmt::format("; strands as ribbons ({})",
                               shadow.widestTexels > kMaxStrandLineTexels

@@ -87,7 +87,9 @@ const std::vector<SettingDescriptor>& RenderSettings::descriptors() {
          "exactly from per-pixel lists), or auto (per prim: compute for prims whose strands are at most "
          "strandRasterMaxPixelWidth wide and whose spans cover at most strandRasterMaxFragmentsPerSpan pixels, "
          "the hardware listing the others into the same lists when those prims hold at least half the segments, "
-         "else all hardware; hardware whenever transparency=unsorted or a sortBins other than the default is set)",
+         "else all hardware; hardware whenever transparency=unsorted or a sortBins other than the default is set). "
+         "With shadowStrandLines=auto it also says who rasterises the deep opacity maps' one-texel lines: "
+         "compute under auto and compute, the draws under hardware",
          0, 0, {"hardware", "compute", "auto"}, &SettingValues::strandRaster},
         {"strandRasterMaxPixelWidth", SettingType::Float, "4",
          "strandRaster=auto: the compute rasteriser takes a prim only when its widest strand projects at most "
@@ -154,13 +156,16 @@ const std::vector<SettingDescriptor>& RenderSettings::descriptors() {
          "polyline there may stray from the true curve (the lookups' bias is a texel; README, Shadows)",
          0.001, 100.0, {}, &SettingValues::shadowTessellationTolerance},
         {"shadowStrandLines", SettingType::Token, "auto",
-         "How deep opacity maps draw the strands: auto (as one-texel lines, with alpha carrying the strand's "
-         "coverage, when no strand is over 1.5 texels wide in the light's view: no geometry shader, the "
-         "light views' largest cost on llvmpipe; spans the view's tessellation leaves one segment are drawn "
-         "as plain lines, without the tessellator), tessellated (the same lines, every span through the "
-         "tessellator) or off (always camera-facing ribbons, minPixelWidth wide at least, as the camera "
-         "draws them)",
-         0, 0, {"auto", "tessellated", "off"}, &SettingValues::shadowStrandLines},
+         "How deep opacity maps draw the strands: as one-texel lines, with alpha carrying the strand's "
+         "coverage, when no strand is over 1.5 texels wide in the light's view (no geometry shader, the "
+         "light views' largest cost on llvmpipe), else as ribbons. auto (the lines rasterised in compute, "
+         "lightViewDepth.comp and lightViewOpacity.comp, on every core, unless strandRaster=hardware; then "
+         "as drawn), compute (always in compute, while the per-layer sums, shadowMapResolution^2 x "
+         "shadowLayers floats, fit in half of shadowMemoryMB), drawn (GL draws the lines; spans the view's "
+         "tessellation leaves one segment are drawn as plain lines, without the tessellator), tessellated "
+         "(drawn, every span through the tessellator) or off (always camera-facing ribbons, minPixelWidth "
+         "wide at least, as the camera draws them)",
+         0, 0, {"auto", "compute", "drawn", "tessellated", "off"}, &SettingValues::shadowStrandLines},
         {"shadowMemoryMB", SettingType::Int, "1024",
          "Memory for shadow maps; lights beyond what it holds at shadowMapResolution and shadowLayers shade "
          "unshadowed, with a warning",

@@ -19,7 +19,9 @@ nlohmann::json RenderStats::toJson() const {
     json["authoredPoints"] = authoredPoints;
     json["meshTriangles"] = meshTriangles;
     json["strandTriangles"] = strandTriangles;
-    json["lightViewSpans"] = {{"straight", lightViewStraightSpans}, {"tessellated", lightViewTessellatedSpans}};
+    json["lightViewSpans"] = {{"straight", lightViewStraightSpans},
+                              {"tessellated", lightViewTessellatedSpans},
+                              {"compute", lightViewComputeSpans}};
     nlohmann::json passList = nlohmann::json::array();
     for (const PassTiming& pass : passes) passList.push_back({{"name", pass.name}, {"milliseconds", pass.milliseconds}});
     json["passes"] = passList;

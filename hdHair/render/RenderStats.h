@@ -33,6 +33,8 @@ struct RenderStats {
     // (shadowStrandLines=auto, gl/LightViewSpans.h): drawn as plain lines,
     // one segment each, and drawn through the tessellator.
     uint64_t lightViewStraightSpans = 0, lightViewTessellatedSpans = 0;
+    // Spans the light views gave the compute rasteriser (gl/LightViewRaster.h).
+    uint64_t lightViewComputeSpans = 0;
     size_t preparedMeshes = 0;    // meshes refined and triangulated this frame (changed ones only)
     std::vector<PassTiming> passes;
     double totalMilliseconds = 0.0;

@@ -622,8 +622,10 @@ void Renderer::runFrame(FrameInputs& inputs, RenderResult& result, const RenderS
         context.strandPieceSegments = control.strandPieceSegments;
         runFrameGraph(context, timing);
         stats.strandTriangles = resources_->strandPass.takeTriangles();
-        std::tie(stats.lightViewStraightSpans, stats.lightViewTessellatedSpans) =
-            resources_->shadowMapPass.takeSpanCounts();
+        const gl::LightViewSpanCounts spans = resources_->shadowMapPass.takeSpanCounts();
+        stats.lightViewStraightSpans = spans.straight;
+        stats.lightViewTessellatedSpans = spans.tessellated;
+        stats.lightViewComputeSpans = spans.compute;
         stats.gpuBytes = gl::gpuBytesByUse();
         stats.cpuBytes["drawOrder"] = context.drawOrder.capacity() * sizeof(uint32_t);
         // A shadow that could not be built, or whose passes a stopped frame

@@ -6,6 +6,7 @@
 
 #include <fmt/format.h>
 
+#include "hdHair/gl/LightViewRaster.h"
 #include "hdHair/render/DeepOpacityLayers.h"
 #include "hdHair/render/FrameRecipe.h"
 #include "hdHair/render/RenderSettings.h"
@@ -85,16 +86,32 @@ void planShadowSampling(ShadowPlan& shadows, const std::string& sampling, const 
 // each segment. Up to kMaxStrandLineTexels (TressFX's roots are about a texel at
 // 512) that alpha may pass 1: the texels a line lights sum the ribbon's
 // opacity, in one texel where the ribbon spread it over two, a difference
-// within the texel the bilinear lookup blurs over anyway. With `auto` the
+// within the texel the bilinear lookup blurs over anyway. With `drawn` the
 // spans the view leaves one segment skip the tessellator too; `tessellated`
-// keeps every span on it, the path that check compares against.
+// keeps every span on it, the path that check compares against; `compute`
+// rasterises every span in compute (gl/LightViewRaster.h), on every core of
+// llvmpipe; `auto` is compute unless strandRaster=hardware, then drawn.
 void planStrandLines(PlannedShadow& shadow, const ShadowPlan& shadows, const std::string& setting, double maxWidth) {
     const ShadowLightView& view = shadow.view;
     if (!view.valid || shadows.mode != ShadowMode::DeepOpacity) return;
     const double texel = view.orthographic ? view.texelSize : view.texelSize * view.nearDepth;
     shadow.widestTexels = texel > 0.0 ? maxWidth / texel : std::numeric_limits<double>::infinity();
     shadow.strandLines = setting != "off" && shadows.minPixelWidth <= 1.0 && shadow.widestTexels <= kMaxStrandLineTexels;
-    shadow.straightSpans = shadow.strandLines && setting == "auto";
+    shadow.straightSpans = shadow.strandLines && setting != "tessellated";
+    if (!shadow.straightSpans) return;
+    // The compute rasteriser: asked for (compute), or with the camera's
+    // (auto, unless strandRaster=hardware); its layer sums must fit.
+    const bool asked = setting == "compute" || (setting == "auto" && shadows.rasterSetting != "hardware");
+    const double sumBytes = double(gl::LightViewRaster::layerSumBytes(shadows.resolution, shadows.layers));
+    const bool fits = sumBytes <= 0.5 * double(shadows.memoryMB) * 1024.0 * 1024.0;
+    shadow.computeLines = asked && fits;
+    shadow.rasterReason =
+        !asked ? (setting == "drawn" ? "drawn (shadowStrandLines=drawn)" : "drawn (strandRaster=hardware)")
+        : fits ? (setting == "compute" ? "rasterised in compute (shadowStrandLines=compute)"
+                                       : fmt::format("rasterised in compute (strandRaster={})", shadows.rasterSetting))
+               : fmt::format("drawn: the compute rasteriser's layer sums ({:.0f} MB) need more than half of "
+                             "shadowMemoryMB={}",
+                             sumBytes / (1024.0 * 1024.0), shadows.memoryMB);
 }
 
 }  // namespace
@@ -118,6 +135,7 @@ void planShadows(FrameRecipe& recipe, const RenderSettings& settings, const Stra
     shadows.pixelsPerSegment = values.pixelsPerSegment;
     shadows.maxSegmentsPerSpan = values.maxSegmentsPerSpan;
     shadows.strandLinesSetting = values.shadowStrandLines;
+    shadows.rasterSetting = values.strandRaster;
     shadows.memoryMB = values.shadowMemoryMB;
     shadows.meshesCast = anyMeshes && shadows.mode != ShadowMode::Off;
     shadows.maxMaps = shadowMapBudget(shadows.resolution, shadows.layers, shadows.memoryMB);

@@ -54,6 +54,12 @@ struct PlannedShadow {
     // (shadowStrandLines=auto; gl/LightViewSpans.h), not through it
     // (shadowStrandLines=tessellated).
     bool straightSpans = false;
+    // With straight spans: the view's lines come from the compute
+    // rasteriser (gl/LightViewRaster.h) rather than the draws, under
+    // strandRaster auto or compute when its per-layer sums fit in half of
+    // shadowMemoryMB; `rasterReason` says which and why, for --explain.
+    bool computeLines = false;
+    std::string rasterReason;
 };
 
 struct ShadowPlan {
@@ -78,6 +84,7 @@ struct ShadowPlan {
     double pixelsPerSegment = 8.0;
     int maxSegmentsPerSpan = 8;
     std::string strandLinesSetting;  // shadowStrandLines
+    std::string rasterSetting;       // strandRaster: which rasteriser draws the light views' lines
     int memoryMB = 1024;           // shadowMemoryMB
     int capacity = 0;              // map slots the storage holds (set by the renderer)
     std::vector<PlannedShadow> lights;
@@ -114,7 +121,7 @@ struct ShadowPlan {
     auto mapShape() const {
         return std::tie(mode, layers, boundaries, layerDepth, samplingSetting, resolution, minPixelWidth,
                         tessellationTolerance, tessellation, pixelsPerSegment, maxSegmentsPerSpan, strandLinesSetting,
-                        convolvedOpacity);
+                        rasterSetting, convolvedOpacity);
     }
     // Two plans are equal when they draw the same maps (mapShape).
     bool operator==(const ShadowPlan& other) const { return mapShape() == other.mapShape(); }

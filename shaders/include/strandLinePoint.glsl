@@ -9,18 +9,18 @@
 // area. So each pixel takes alpha opacity x width in pixels / m, and the
 // opacity the pixels sum is the ribbon's at every angle: above 1 for a
 // strand wider than the line (RenderPlan.cpp's kMaxStrandLineTexels bounds
-// how much wider). Needs frameUniforms.glsl and strandPoint.glsl.
+// how much wider). Needs frameUniforms.glsl and strandPoint.glsl. The light
+// views' compute rasteriser (HDHAIR_COMPUTE_RASTER, lightViewLines.glsl)
+// takes the same vertices from strandLineVertex.
 
-// What strand.geom hands the fragment stage, at its locations.
-layout(location = 0) out vec3 worldPosition;
-layout(location = 1) out vec3 worldTangent;
-layout(location = 2) out vec4 colorAlpha;  // displayColor, opacity x coverage
-layout(location = 3) flat out ivec4 ids;   // primId, elementId, material, segment
-layout(location = 4) out float spanU;
-layout(location = 5) out vec3 strandCentre;
+// A line's vertex: where it lies and the alpha it carries.
+struct StrandLineVertex {
+    vec4 clip;
+    vec3 world;
+    vec4 colorAlpha;  // displayColor, opacity x coverage
+};
 
-// Writes `point` (at u of its span, with `pointIds`) as a line's vertex.
-void emitStrandLinePoint(StrandPoint point, ivec4 pointIds, float u) {
+StrandLineVertex strandLineVertex(StrandPoint point) {
     vec3 position = point.positionWidth.xyz;
     vec4 clip = frame.viewProjection * vec4(position, 1.0);
     float clipW = max(abs(clip.w), 1e-12);
@@ -34,11 +34,31 @@ void emitStrandLinePoint(StrandPoint point, ivec4 pointIds, float u) {
     // Cubic interpolation can overshoot: widths, colours and opacities are clamped.
     float widthPixels = max(point.positionWidth.w, 0.0) * frame.pixelsPerUnit / clipW;
     float opacity = clamp(point.shade.a, 0.0, 1.0);
-    worldPosition = position;
-    strandCentre = position;
+    StrandLineVertex vertex;
+    vertex.clip = clip;
+    vertex.world = position;
+    vertex.colorAlpha = vec4(max(point.shade.rgb, vec3(0.0)), opacity * widthPixels / m);
+    return vertex;
+}
+
+#ifndef HDHAIR_COMPUTE_RASTER
+// What strand.geom hands the fragment stage, at its locations.
+layout(location = 0) out vec3 worldPosition;
+layout(location = 1) out vec3 worldTangent;
+layout(location = 2) out vec4 colorAlpha;  // displayColor, opacity x coverage
+layout(location = 3) flat out ivec4 ids;   // primId, elementId, material, segment
+layout(location = 4) out float spanU;
+layout(location = 5) out vec3 strandCentre;
+
+// Writes `point` (at u of its span, with `pointIds`) as a line's vertex.
+void emitStrandLinePoint(StrandPoint point, ivec4 pointIds, float u) {
+    StrandLineVertex vertex = strandLineVertex(point);
+    worldPosition = vertex.world;
+    strandCentre = vertex.world;
     worldTangent = point.tangent;
-    colorAlpha = vec4(max(point.shade.rgb, vec3(0.0)), opacity * widthPixels / m);
+    colorAlpha = vertex.colorAlpha;
     ids = pointIds;
     spanU = u;
-    gl_Position = clip;
+    gl_Position = vertex.clip;
 }
+#endif
