@@ -14,11 +14,13 @@ constexpr GLint kResolveIds = 0;  // uniform location in shaders/fragmentListRes
 constexpr GLint kResolveImageSize = 1;  // shaders/fragmentListTile.vert
 constexpr GLint kTilesInImage = 0;  // shaders/fragmentListTiles.comp
 constexpr GLuint kTileWorkgroup = 64;
-// Thin hair lists about a fragment a span far away and about a dozen close
-// up (docs/performance.md, "Where compute pays": 1.1 on Ratboy and 11.4 on
-// the bear at 1280 px): enough for the frames strandRaster=auto takes,
-// without holding two fragments a pixel of a mostly empty frame.
+// Without the plan's estimate: thin hair lists about a fragment a span far
+// away and about a dozen close up (docs/performance.md, "Where compute
+// pays": 1.1 on Ratboy and 11.4 on the bear at 1280 px), without holding two
+// fragments a pixel of a mostly empty frame.
 constexpr uint64_t kFirstGuessFragmentsPerSpan = 12;
+// With it: the TressFX bear at 1280 px lists 1.6 fragments a pixel.
+constexpr uint64_t kMostFirstGuessFragmentsPerPixel = 4;
 // Storage is never cut below this many fragments (128 KB).
 constexpr size_t kFewestNodes = 4096;
 // The counter's four words before its tile marks (FragmentCounter in
@@ -161,23 +163,30 @@ uint64_t FragmentListPass::fillLists(const StrandGeometry& geometry, const Liste
 }
 
 uint64_t FragmentListPass::render(const StrandGeometry& geometry, const ListedSegments& segments, int width,
-                                  int height, size_t capacity, float maxSegmentsPerSpan, bool writeIds,
+                                  int height, size_t capacity, uint64_t expectedFragments, float maxSegmentsPerSpan, bool writeIds,
                                   ShadingFeatures features, GLuint frameDepth, const ListFilling& filling) {
     stopped_ = false;
     ensureImage(width, height);
     // The nodes take what the frame needs, not the whole budget: storage is
     // made (and, on llvmpipe, zeroed) when it is allocated, which costs
     // about as much as the list pass itself at a 512 MB budget. A first
-    // guess of two fragments a pixel or kFirstGuessFragmentsPerSpan a span,
-    // whichever is fewer; then what the last render listed and a quarter
-    // more. A render that finds its storage short is drawn again into
-    // storage of the size it counted (its count is exact); storage over four
-    // times what the last render wanted is given back.
+    // guess of the plan's estimate and a quarter more, at most
+    // kMostFirstGuessFragmentsPerPixel a pixel (the estimate overstates
+    // wide, overlapping strands many times); without one, two fragments a
+    // pixel or kFirstGuessFragmentsPerSpan a span, whichever is fewer. Then
+    // what the last render listed and a quarter more. A render that finds
+    // its storage short is drawn again into storage of the size it counted
+    // (its count is exact), which on the TressFX bear at 1280 px (12.9
+    // fragments a span) doubled its first frame's list pass; storage over
+    // four times what the last render wanted is given back.
     uint64_t spans = 0;
     for (const std::vector<SegmentRange>* ranges : {&segments.hardware, &segments.compute})
         for (const SegmentRange& range : *ranges) spans += range.count;
-    const size_t firstGuess = size_t(std::min<uint64_t>(uint64_t(width) * uint64_t(height) * 2,
-                                                         spans * kFirstGuessFragmentsPerSpan));
+    const uint64_t pixels = uint64_t(width) * uint64_t(height);
+    const size_t firstGuess =
+        expectedFragments > 0
+            ? size_t(std::min(expectedFragments + expectedFragments / 4, pixels * kMostFirstGuessFragmentsPerPixel))
+            : size_t(std::min(pixels * 2, spans * kFirstGuessFragmentsPerSpan));
     const size_t wanted = std::max(kFewestNodes, std::min(capacity, listedLast_ ? listedLast_ + listedLast_ / 4
                                                                                 : firstGuess));
     if (!nodes_ || nodeCapacity_ < wanted || nodeCapacity_ / 4 > wanted) resizeNodes(wanted);

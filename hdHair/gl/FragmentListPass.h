@@ -55,7 +55,8 @@ public:
     // Returns how many fragments the strands produced; more than
     // `capacity` (the budget) means the image is incomplete and must not be
     // used. Storage follows what frames need (the last render's count),
-    // up to `capacity`.
+    // up to `capacity`; the first render's storage follows
+    // `expectedFragments` (the plan's estimate; 0: unknown).
     // `segments`: the drawn prims' segments, by who lists them. `features`:
     // the shading the list programs compile, as for StrandPass::setUniforms.
     // `frameDepth`: the bound framebuffer's depth texture (single-sampled),
@@ -64,8 +65,8 @@ public:
     // `filling`: a stop it reports leaves the frame's images as they were
     // (stopped() is then true, and the count returned is not the frame's).
     uint64_t render(const StrandGeometry& geometry, const ListedSegments& segments, int width, int height,
-                    size_t capacity, float maxSegmentsPerSpan, bool writeIds, ShadingFeatures features,
-                    GLuint frameDepth = 0, const ListFilling& filling = {});
+                    size_t capacity, uint64_t expectedFragments, float maxSegmentsPerSpan, bool writeIds,
+                    ShadingFeatures features, GLuint frameDepth = 0, const ListFilling& filling = {});
     // The last render() stopped while filling its lists.
     bool stopped() const { return stopped_; }
 

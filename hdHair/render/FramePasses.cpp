@@ -247,8 +247,8 @@ void drawStrands(FrameContext& context, gl::RenderTarget& target, size_t batch) 
     if (plan.strandRaster == StrandRaster::Compute) {
         const uint64_t fragments = resources.fragmentLists.render(
             resources.strands, listedSegments(plan, inputs.uploads), camera.imageWidth, camera.imageHeight,
-            inputs.computeRasterCapacity, inputs.frame.maxSegmentsPerSpan, target.images().ids, features,
-            target.depthTexture(), filling);
+            inputs.computeRasterCapacity, plan.expectedFragments, inputs.frame.maxSegmentsPerSpan,
+            target.images().ids, features, target.depthTexture(), filling);
         if (resources.fragmentLists.stopped()) return;
         if (fragments <= inputs.computeRasterCapacity) return reportLists(context, fragments, batch);
         context.result.stats.fragments = fragments;
@@ -268,7 +268,8 @@ void drawStrands(FrameContext& context, gl::RenderTarget& target, size_t batch) 
     if (plan.transparency == TransparencyPath::Exact) {
         uint64_t fragments = resources.fragmentLists.render(resources.strands, {inputs.uploads.drawRanges, {}},
                                                             camera.imageWidth, camera.imageHeight,
-                                                            inputs.fragmentListCapacity, inputs.frame.maxSegmentsPerSpan,
+                                                            inputs.fragmentListCapacity, plan.expectedFragments,
+                                                            inputs.frame.maxSegmentsPerSpan,
                                                             target.images().ids, features, 0, filling);
         if (resources.fragmentLists.stopped()) return;
         if (fragments <= inputs.fragmentListCapacity) return reportLists(context, fragments, batch);

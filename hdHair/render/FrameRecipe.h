@@ -58,6 +58,12 @@ struct FrameRecipe {
     // per-pixel lists (strandRaster=auto's prims too wide for compute).
     // Empty: compute lists every prim.
     std::vector<bool> listedByHardware;
+    // About how many fragments the frame's lists will hold (each prim's
+    // segments times the pixels StrandSummary estimates a span of it
+    // covers), so that a first frame sizes its list storage once rather
+    // than render again into storage of the size it counted; 0 when unknown
+    // (bounds reaching the camera, or no per-prim figures).
+    uint64_t expectedFragments = 0;
     bool mixesRasterisers() const {
         return strandRaster == StrandRaster::Compute &&
                std::find(listedByHardware.begin(), listedByHardware.end(), true) != listedByHardware.end();

@@ -59,6 +59,7 @@ nlohmann::json RenderStats::toJson() const {
     json["gpuMemory"] = byUse(gpuBytes);
     json["cpuMemory"] = byUse(cpuBytes);
     if (fragments > 0) json["fragments"] = fragments;
+    if (fragments > 0 && expectedFragments > 0) json["expectedFragments"] = expectedFragments;
     if (listTiles > 0) json["fragmentListTiles"] = {{"resolved", resolvedListTiles}, {"inImage", listTiles}};
     if (!fallback.empty()) json["fallback"] = fallback;
     return json;

@@ -662,6 +662,7 @@ void Renderer::reportFrame(const Scene& scene, const CameraView& camera, const R
     stats.meshTriangles = frame.meshes.triangles;
     stats.transparency = toString(plan.transparency);
     stats.strandRaster = plan.mixesRasterisers() ? "compute+hardware" : toString(plan.strandRaster);
+    stats.expectedFragments = plan.expectedFragments;
     stats.glRenderer = glDescription();
     stats.glDevice = glDevice();
     stats.settings = settings.toJson();

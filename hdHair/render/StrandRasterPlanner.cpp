@@ -80,6 +80,17 @@ void planByPrim(FrameRecipe& recipe, const StrandSummary& strands, const AutoRul
     }
 }
 
+// Each prim's segments times the pixels a span of it covers, summed; 0 when
+// a prim's estimate is unknown or unbounded.
+uint64_t expectedFragments(const StrandSummary& strands) {
+    double fragments = 0.0;
+    for (const StrandSummary::PrimRaster& prim : strands.prims) {
+        if (!std::isfinite(prim.fragmentsPerSpan) || prim.fragmentsPerSpan <= 0.0) return 0;
+        fragments += double(prim.segments) * prim.fragmentsPerSpan;
+    }
+    return fragments < 1e15 ? uint64_t(fragments) : 0;
+}
+
 }  // namespace
 
 const char* toString(StrandRaster raster) { return raster == StrandRaster::Compute ? "compute" : "hardware"; }
@@ -107,6 +118,7 @@ void planStrandRaster(FrameRecipe& recipe, const SettingValues& settings, const 
     }
     if (recipe.strandRaster == StrandRaster::Compute)
         why += ", spans cut, rasterised and shaded in compute, composited from per-pixel lists sorted by depth";
+    recipe.expectedFragments = expectedFragments(strands);
 }
 
 }  // namespace hdhair

@@ -321,8 +321,14 @@ TEST(Shadows, ComputeLinesHardCases) {
         double stackLit = 0.0, stackShadowed = 0.0, receiverLit = 0.0, receiverShadowed = 0.0;
         for (int row = 0; row < 48; ++row) {
             const double y = rowHeight(row, 48);
-            if (std::abs(y - 0.5) < 0.05) stackLit += lit[size_t(row)], stackShadowed += shadowed[size_t(row)];
-            if (std::abs(y + 0.5) < 0.05) receiverLit += lit[size_t(row)], receiverShadowed += shadowed[size_t(row)];
+            if (std::abs(y - 0.5) < 0.05) {
+                stackLit += lit[size_t(row)];
+                stackShadowed += shadowed[size_t(row)];
+            }
+            if (std::abs(y + 0.5) < 0.05) {
+                receiverLit += lit[size_t(row)];
+                receiverShadowed += shadowed[size_t(row)];
+            }
         }
         ASSERT_GT(stackLit, 0.0);
         ASSERT_GT(receiverLit, 0.0);
@@ -362,7 +368,10 @@ TEST(Shadows, ComputeLinesHardCases) {
                                       lit = rowSums(render(scene, camera, {"shadowMode=off"}).color);
             double litSum = 0.0, shadowedSum = 0.0;
             for (int row = 0; row < 48; ++row)
-                if (std::abs(rowHeight(row, 48) + 0.5) < 0.05) litSum += lit[size_t(row)], shadowedSum += shadowed[size_t(row)];
+                if (std::abs(rowHeight(row, 48) + 0.5) < 0.05) {
+                    litSum += lit[size_t(row)];
+                    shadowedSum += shadowed[size_t(row)];
+                }
             EXPECT_TRUE(allFinite(on.color));
             EXPECT_GT(litSum, 0.0);
             return shadowedSum / litSum;

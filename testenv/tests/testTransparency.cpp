@@ -11,6 +11,7 @@
 
 #include "OrthographicView.h"
 #include "StageRendering.h"
+#include "hdHair/gl/FragmentListPass.h"
 #include "hdHair/image/ImageComparison.h"
 #include "hdHair/render/CameraView.h"
 #include "hdHair/scene/Scene.h"
@@ -455,6 +456,36 @@ Image mirroredInX(const Image& image) {
 }
 
 }  // namespace
+
+// A first frame sizes its lists by the plan's estimate of the fragments
+// (each prim's segments times the pixels a span of it covers) rather than a
+// fixed dozen a span: strands whose long spans cover about 60 pixels each
+// are listed once, into storage of the estimate and a quarter, not listed
+// again into storage of the count (which the count and a quarter would show).
+TEST(Transparency, AFirstFrameSizesItsListsByThePlansEstimate) {
+    Renderer renderer(gl::defaultGlBackend());
+    const CameraView camera = orthographicCamera(128);
+    RenderSettings settings;
+    settings.set("shadingModel", "flat");
+    settings.setFromAssignment("strandRaster=compute");
+    Diagnostics diagnostics;
+    const RenderResult first = renderer.render(thinClump(), camera, settings, diagnostics);
+    EXPECT_TRUE(diagnostics.warnings().empty());
+    const uint64_t expected = first.stats.expectedFragments;
+    ASSERT_GT(expected, 0u);
+    ASSERT_GT(first.stats.fragments, 12u * first.stats.segments) << "more than the fixed guess holds";
+    EXPECT_LE(first.stats.fragments, expected + expected / 4);
+    // Besides the nodes: the heads image (4 bytes a pixel), the counter and
+    // the tile draw (16 bytes and 4 a tile of 16 x 16 pixels each), and the
+    // unread order buffer (4 bytes).
+    const uint64_t pixels = uint64_t(camera.imageWidth) * uint64_t(camera.imageHeight);
+    const uint64_t tiles = uint64_t((camera.imageWidth + 15) / 16) * uint64_t((camera.imageHeight + 15) / 16);
+    EXPECT_EQ(first.stats.gpuBytes.at("fragmentLists"),
+              (expected + expected / 4) * gl::kFragmentNodeBytes + 4 * pixels + 2 * (16 + 4 * tiles) + 4);
+    std::printf("fragments %llu, estimated %llu, segments %llu\n",
+                static_cast<unsigned long long>(first.stats.fragments), static_cast<unsigned long long>(expected),
+                static_cast<unsigned long long>(first.stats.segments));
+}
 
 // Thin strands drawn by the compute rasteriser against the hardware's exact
 // lists: the same ribbons, cut, covered and composited alike. Within a bound
