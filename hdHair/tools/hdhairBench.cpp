@@ -213,17 +213,20 @@ std::vector<Configuration> transparencyConfigurations() {
 
 // Shadows: off (the time reference); deep opacity maps over layers and
 // resolutions; around the defaults (3 layers, 1024 texels), layer depth,
-// filter and spacing; and the reference (the error yardstick, at the finest
-// resolution). Every row names all its settings, so the table does not
-// depend on the defaults.
+// filter, spacing, and how the light views rasterise strand lines (in
+// compute, or drawn by GL, shadowStrandLines); and the reference (the error
+// yardstick, at the finest resolution). Every row names all its settings,
+// so the table does not depend on the defaults.
 std::vector<Configuration> shadowConfigurations() {
     std::vector<Configuration> result = {{"off", {"shadowMode=off"}, Complexity::Low}};
-    auto add = [&](int layers, int resolution, const char* depth, const char* filter, const char* spacing) {
-        result.push_back({fmt::format("{} layers, {}, depth {}, {}{}", layers, resolution, depth, filter,
-                                      std::string(spacing) == "linear" ? "" : ", uniform spacing"),
+    auto add = [&](int layers, int resolution, const char* depth, const char* filter, const char* spacing,
+                   const char* lines = "compute") {
+        result.push_back({fmt::format("{} layers, {}, depth {}, {}{}{}", layers, resolution, depth, filter,
+                                      std::string(spacing) == "linear" ? "" : ", uniform spacing",
+                                      std::string(lines) == "compute" ? "" : fmt::format(", lines {}", lines)),
                           {fmt::format("shadowLayers={}", layers), fmt::format("shadowMapResolution={}", resolution),
                            std::string("shadowLayerDepth=") + depth, std::string("shadowFilter=") + filter,
-                           std::string("shadowLayerSpacing=") + spacing},
+                           std::string("shadowLayerSpacing=") + spacing, std::string("shadowStrandLines=") + lines},
                           Complexity::Low});
     };
     for (int resolution : {512, 1024, 2048, 4096})
@@ -231,6 +234,8 @@ std::vector<Configuration> shadowConfigurations() {
     for (const char* depth : {"0.5", "0.25", "0.1"}) add(3, 1024, depth, "bilinear", "linear");
     add(3, 1024, "1", "nearest", "linear");
     add(3, 1024, "1", "bilinear", "uniform");
+    for (int resolution : {512, 1024})
+        for (const char* lines : {"drawn", "tessellated"}) add(3, resolution, "1", "bilinear", "linear", lines);
     result.push_back({"reference, 4096", {"shadowMode=reference", "shadowMapResolution=4096"}, Complexity::Low});
     return result;
 }
