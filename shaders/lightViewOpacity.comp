@@ -3,12 +3,11 @@
 // Deep opacity maps, pass 2, in compute (lightViewLines.glsl): each texel's
 // alpha goes to the one layer it starts counting in, the first whose
 // boundary lies behind it, d = z - z0 < d_k (the last layer for anything
-// further), as float sums in LayerSums; lightViewLayers.comp then adds the
-// layers up front to back into the cumulative opacities deepOpacity.frag
-// blends into the RGBA16F layers, one atomic a texel rather than one a
-// layer. Floats have no atomic add in GLSL 4.50: a compare-and-swap loop,
-// which contends only where two spans light one texel at once. z0 comes
-// from pass 1 at this very texel. The light is entry 0 of the shadow uniforms.
+// further), as a fixed-point sum (lightViewLayerSums.glsl says why);
+// lightViewLayers.comp then adds the layers up front to back into the
+// cumulative opacities deepOpacity.frag blends into the RGBA16F layers, one
+// atomic a texel rather than one a layer. z0 comes from pass 1 at this very
+// texel. The light is entry 0 of the shadow uniforms.
 #define HDHAIR_COMPUTE_RASTER 1
 #include "include/shadingFeatures.glsl"
 #include "include/frameUniforms.glsl"
@@ -21,13 +20,10 @@
 #include "include/strandTessellationLevel.glsl"
 #include "include/strandLinePoint.glsl"
 #include "include/lightViewLines.glsl"
+#include "include/lightViewLayerSums.glsl"
 
 layout(local_size_x = 32) in;
 
-// Layer k's sums for texel (x, y) at [(k * resolution + y) * resolution + x]: float bits.
-layout(std430, binding = 11) coherent buffer LayerSums {
-    uint layerSums[];
-};
 layout(location = 0) uniform uint rangeFirst;
 layout(location = 1) uniform uint rangeCount;
 
@@ -39,14 +35,7 @@ void lightViewTexel(ivec2 texel, vec3 world, float alpha) {
     int layers = shadowLayerCount();
     int layer = 0;
     while (layer < layers - 1 && !(d < shadowLayerBoundary(layer) * scale)) ++layer;
-    int resolution = shadows.mode.w;
-    uint index = (uint(layer) * uint(resolution) + uint(texel.y)) * uint(resolution) + uint(texel.x);
-    uint expected = layerSums[index];
-    for (;;) {
-        uint seen = atomicCompSwap(layerSums[index], expected, floatBitsToUint(uintBitsToFloat(expected) + alpha));
-        if (seen == expected) break;
-        expected = seen;
-    }
+    addToLayerSum(layerSumIndex(layer, texel, shadows.mode.w), alpha);
 }
 
 void main() {

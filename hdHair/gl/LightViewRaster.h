@@ -6,10 +6,11 @@
 // line through the vertex stages, which llvmpipe runs on the one thread that
 // draws. The depth pass takes an atomic minimum into the slot's R32F layer
 // (lightViewDepth.comp). The opacity pass adds each texel's alpha into the
-// one layer it starts counting in, as floats in a buffer of
-// resolution^2 x layers (lightViewOpacity.comp), then sums them front to
-// back into the slot's RGBA16F layers (lightViewLayers.comp), which clears
-// the buffer for the next map. The shadow uniforms (binding 2) and the
+// one layer it starts counting in, as fixed-point integers in a buffer of
+// resolution^2 x layers (lightViewOpacity.comp; integer sums do not depend on
+// the order, so a map rebuilt is the same to the bit), then sums them front
+// to back into the slot's RGBA16F layers (lightViewLayers.comp), which
+// clears the buffer for the next map. The shadow uniforms (binding 2) and the
 // light view's frame uniforms (binding 0) must be bound, as for the draws.
 
 #include <cstddef>

@@ -30,7 +30,7 @@ struct RenderStats {
     // which draws its own way).
     uint64_t strandTriangles = 0;
     // Spans the light views that draw strand lines listed this frame
-    // (shadowStrandLines=auto, gl/LightViewSpans.h): drawn as plain lines,
+    // (shadowStrandLines=drawn, gl/LightViewSpans.h): drawn as plain lines,
     // one segment each, and drawn through the tessellator.
     uint64_t lightViewStraightSpans = 0, lightViewTessellatedSpans = 0;
     // Spans the light views gave the compute rasteriser (gl/LightViewRaster.h).

@@ -45,14 +45,14 @@ struct PlannedShadow {
     std::string reason;     // "rebuilt: ..." or "kept: ..." once the renderer decided
     bool overBudget = false;  // no map because shadowMemoryMB holds no more (one warning for all)
     // Deep opacity maps: the strands are drawn into this light's view as
-    // one-texel lines (shadowStrandLines=auto, no strand much wider than a
-    // texel there), not ribbons; `widestTexels` says why, for --explain.
+    // one-texel lines (shadowStrandLines other than off, no strand much
+    // wider than a texel there), not ribbons; `widestTexels` says why, for
+    // --explain.
     bool strandLines = false;
     double widestTexels = 0.0;
     // With strand lines: the spans the view's tessellation leaves one
     // segment are drawn as plain lines, without the tessellator
-    // (shadowStrandLines=auto; gl/LightViewSpans.h), not through it
-    // (shadowStrandLines=tessellated).
+    // (gl/LightViewSpans.h), not through it (shadowStrandLines=tessellated).
     bool straightSpans = false;
     // With straight spans: the view's lines come from the compute
     // rasteriser (gl/LightViewRaster.h) rather than the draws, under

@@ -17,6 +17,7 @@
 #include "StageRendering.h"
 #include "hdHair/image/ImageComparison.h"
 #include "hdHair/render/CameraView.h"
+#include "hdHair/render/Renderer.h"
 #include "hdHair/scene/Scene.h"
 #include "hdHair/scene/tests/AuthoredPrimvar.h"
 
@@ -292,6 +293,32 @@ TEST(Shadows, ComputeLinesSlabCheckCatchesMutations) {
     fromBelow.setLight(distantLightFrom({0.0, -1.0, 0.0}));
     const auto [reversedOut, reversedRows] = rowsOut(fromBelow);
     EXPECT_GT(reversedOut, reversedRows / 2) << "layers in reverse depth order";
+}
+
+// A map the compute rasteriser builds again is the same to the bit: its
+// opacity sums are integers, whose order does not matter. With float sums
+// (atomic compare-and-swap), frames differed in their last bits from one
+// build to the next, which a Hydra host rendering again after a cancelled
+// frame showed. Renderers of their own build the dense clump's maps; the
+// camera's strands are drawn by the hardware, whose blending order is
+// fixed (the compute rasteriser's overlong lists are not: transparency.md).
+TEST(Shadows, ComputeLinesRebuildTheSameMaps) {
+    StageRenderRequest request{"examples/dense_clump.usda", "/World/main_cam", 160, 0.0,
+                               {"shadowStrandLines=compute", "strandRaster=hardware", "shadowMapResolution=256",
+                                "shadowLayers=7"}};
+    Diagnostics diagnostics;
+    const Scene scene = readStage(request, diagnostics);
+    std::vector<RenderResult> results;
+    // Five builds: with float sums one build in two differed here.
+    for (int build = 0; build < 5; ++build) {
+        Renderer renderer(gl::defaultGlBackend());
+        const CameraView camera = stageCamera(scene, request, renderer, diagnostics);
+        results.push_back(renderer.render(scene, camera, stageSettings(request), diagnostics));
+        ASSERT_GE(results.back().stats.shadowMapsRebuilt, 1u);
+        EXPECT_GT(results.back().stats.lightViewComputeSpans, 0u);
+    }
+    for (size_t build = 1; build < results.size(); ++build)
+        EXPECT_EQ(results[build].color.pixels, results[0].color.pixels) << "build " << build;
 }
 
 // Hard cases for the light views' compute rasteriser: many strands through
