@@ -51,7 +51,10 @@ void rasterizeLightViewLine(StrandLineVertex a, StrandLineVertex b) {
     // segment), clamped to the viewport before conversion to int.
     float first = end > start ? ceil(start - 0.5) : floor(start - 0.5);
     float last = end > start ? ceil(end - 0.5) - 1.0 : floor(end - 0.5) + 1.0;
-    float lower = clamp(min(first, last), 0.0, majorSize), upper = clamp(max(first, last), -1.0, majorSize - 1.0);
+    // Taken in either direction, [lower, upper] is empty (lower > upper)
+    // for a segment that passes no texel centre.
+    float lower = clamp(end > start ? first : last, 0.0, majorSize);
+    float upper = clamp(end > start ? last : first, -1.0, majorSize - 1.0);
     float inverseWa = 1.0 / a.clip.w, inverseWb = 1.0 / b.clip.w;
     for (int i = int(lower); i <= int(upper); ++i) {
         float t = (float(i) + 0.5 - start) / (end - start);
