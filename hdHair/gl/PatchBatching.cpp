@@ -10,9 +10,11 @@ namespace {
 constexpr int kLlvmpipeEmittedVertices = 2048;
 }
 
-PatchBatching PatchBatching::choose(const std::string& setting, const std::string& glRenderer) {
-    if (setting == "off") return {0, "drawBatching=off"};
-    if (setting == "on") return {kLlvmpipeEmittedVertices, "drawBatching=on"};
+PatchBatching PatchBatching::forced(bool batched) {
+    return batched ? PatchBatching{kLlvmpipeEmittedVertices, "drawBatching=on"} : PatchBatching{0, "drawBatching=off"};
+}
+
+PatchBatching PatchBatching::forDriver(const std::string& glRenderer) {
     if (glRenderer.find("llvmpipe") != std::string::npos)
         return {kLlvmpipeEmittedVertices, "llvmpipe joins unrelated vertices in larger tessellated draws"};
     return {0, "the driver draws whole ranges"};

@@ -30,8 +30,10 @@ struct PatchBatching {
     static constexpr int kDrawsBetweenFences = 64;
     std::string reason;  // why, for --verbose
 
-    // `setting`: auto (by driver), on (batched on any driver) or off.
-    static PatchBatching choose(const std::string& setting, const std::string& glRenderer);
+    // Batched, or not, on any driver (drawBatching on or off).
+    static PatchBatching forced(bool batched);
+    // As the driver needs (drawBatching auto).
+    static PatchBatching forDriver(const std::string& glRenderer);
     std::string describe() const;  // "draws of at most 2048 emitted vertices (llvmpipe: ...)"
 
     // Issues the draws of `ranges` (4 control points a patch; the program,

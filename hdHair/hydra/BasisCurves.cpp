@@ -82,15 +82,15 @@ void HdHairBasisCurves::_SyncTopology(HdSceneDelegate* sceneDelegate) {
     HdBasisCurvesTopology topology = GetBasisCurvesTopology(sceneDelegate);
     // Hd's tokens are spelled as USD's; Hd-only ones (segmented wrap,
     // centripetalCatmullRom, hermite, power) fall back with a warning.
-    if (!hdhair::parseCurveType(topology.GetCurveType().GetString(), &_curves.type)) _curves.type =
+    if (!hdhair::parseToken(topology.GetCurveType().GetString(), &_curves.type)) _curves.type =
         hdhair::CurveType::Cubic;
     if (_curves.type == hdhair::CurveType::Cubic &&
-        !hdhair::parseCurveBasis(topology.GetCurveBasis().GetString(), &_curves.basis)) {
+        !hdhair::parseToken(topology.GetCurveBasis().GetString(), &_curves.basis)) {
         TF_WARN("hdHair: %s: curve basis '%s' is not supported; drawn as catmullRom", GetId().GetText(),
                 topology.GetCurveBasis().GetText());
         _curves.basis = hdhair::CurveBasis::CatmullRom;
     }
-    if (!hdhair::parseCurveWrap(topology.GetCurveWrap().GetString(), &_curves.wrap)) {
+    if (!hdhair::parseToken(topology.GetCurveWrap().GetString(), &_curves.wrap)) {
         TF_WARN("hdHair: %s: curve wrap '%s' is not supported; drawn as nonperiodic", GetId().GetText(),
                 topology.GetCurveWrap().GetText());
         _curves.wrap = hdhair::CurveWrap::Nonperiodic;

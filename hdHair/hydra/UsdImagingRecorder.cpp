@@ -162,10 +162,10 @@ UsdImagingRecordResult recordWithUsdImaging(const UsdImagingRecordRequest& reque
             high = glm::dvec3(range.GetMax()[0], range.GetMax()[1], range.GetMax()[2]);
         }
         CameraView view = frameBounds(low, high, up, width,
-                                      request.framing == "usdrecord" ? FramingStyle::UsdRecord : FramingStyle::FitAll);
+                                      request.framing);
         height = view.imageHeight;
         engine.SetCameraState(toGf(view.view), toGf(view.projection));
-        result.camera = "framing camera (" + request.framing + ")";
+        result.camera = std::string("framing camera (") + toString(request.framing) + ")";
     }
     // Before the engine allocates its render buffers: colour (RGBA, 16
     // bytes a pixel at most) and depth (4), and the copy read back here (16).

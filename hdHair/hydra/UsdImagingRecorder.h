@@ -22,7 +22,7 @@ struct UsdImagingRecordRequest {
     Complexity complexity = Complexity::Low;
     std::vector<std::string> settings;  // NAME=VALUE, as for --setting
     bool renderPurpose = false, proxyPurpose = true, guidePurpose = false;
-    std::string framing = "fitAll";
+    FramingStyle framing = FramingStyle::FitAll;
     std::string pluginPath;      // folder holding the plugin's plugInfo.json
     // Each warning, one line ("<where>: <what>"), as it comes: the stage
     // checks', OpenUSD's and the plugin's, none held back past the stage's

@@ -239,13 +239,13 @@ void warnAboutCurveTokens(const UsdStageRefPtr& stage, const std::string& stageP
         CurveBasis basis;
         CurveWrap wrap;
         if (curves.GetTypeAttr().HasAuthoredValue() && curves.GetTypeAttr().Get(&value) &&
-            !parseCurveType(value.GetString(), &type))
+            !parseToken(value.GetString(), &type))
             warn(stagePath, path + ".type: " + unknownTokenRepair("curve type", value.GetString(), "cubic"));
         if (curves.GetBasisAttr().HasAuthoredValue() && curves.GetBasisAttr().Get(&value) &&
-            !parseCurveBasis(value.GetString(), &basis))
+            !parseToken(value.GetString(), &basis))
             warn(stagePath, path + ".basis: " + unknownTokenRepair("curve basis", value.GetString(), "bezier"));
         if (curves.GetWrapAttr().HasAuthoredValue() && curves.GetWrapAttr().Get(&value) &&
-            !parseCurveWrap(value.GetString(), &wrap))
+            !parseToken(value.GetString(), &wrap))
             warn(stagePath, path + ".wrap: " + unknownTokenRepair("curve wrap", value.GetString(), "nonperiodic"));
         // Primvars default to constant interpolation, the widths and
         // normals attributes to vertex (as the embedded reader reads them).
@@ -259,7 +259,7 @@ void warnAboutCurveTokens(const UsdStageRefPtr& stage, const std::string& stageP
             TfToken interpolation;
             Interpolation parsed;
             if (attribute.GetMetadata(UsdGeomTokens->interpolation, &interpolation) &&
-                !parseInterpolation(interpolation.GetString(), &parsed))
+                !parseToken(interpolation.GetString(), &parsed))
                 warn(stagePath, where + unknownTokenRepair("interpolation", interpolation.GetString(), fallback));
             VtValue elementSize;
             if (attribute.GetMetadata(UsdGeomTokens->elementSize, &elementSize)) {

@@ -2,17 +2,6 @@
 
 namespace hdhair {
 
-bool parseRenderingSpace(const std::string& name, RenderingSpace* out) {
-    if (name == kLinearRec709) *out = RenderingSpace::LinearRec709;
-    else if (name == kAcesCg) *out = RenderingSpace::AcesCg;
-    else return false;
-    return true;
-}
-
-const char* toString(RenderingSpace space) {
-    return space == RenderingSpace::AcesCg ? kAcesCg : kLinearRec709;
-}
-
 glm::mat3 rec709To(RenderingSpace space) {
     if (space == RenderingSpace::LinearRec709) return glm::mat3(1.0f);
     glm::mat3 matrix;

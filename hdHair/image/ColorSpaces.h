@@ -14,16 +14,19 @@
 #include <glm/mat3x3.hpp>
 #include <glm/vec3.hpp>
 
+#include "hdHair/base/TokenTable.h"
+
 namespace hdhair {
 
 constexpr const char* kLinearRec709 = "lin_rec709";
 constexpr const char* kAcesCg = "ACEScg";
 
 enum class RenderingSpace { LinearRec709, AcesCg };
-
-// "lin_rec709" or "ACEScg"; false for anything else.
-bool parseRenderingSpace(const std::string& name, RenderingSpace* out);
-const char* toString(RenderingSpace space);
+template <>
+struct TokenTable<RenderingSpace> {
+    static constexpr std::array<TokenName<RenderingSpace>, 2> names{
+        {{RenderingSpace::LinearRec709, kLinearRec709}, {RenderingSpace::AcesCg, kAcesCg}}};
+};
 
 using Matrix3 = std::array<std::array<double, 3>, 3>;  // rows
 

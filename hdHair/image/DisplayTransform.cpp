@@ -64,23 +64,6 @@ bool contains(const std::vector<std::string>& names, const std::string& name) {
 
 }  // namespace
 
-bool parseColorCorrectionMode(const std::string& text, ColorCorrectionMode* out) {
-    if (text == "disabled") *out = ColorCorrectionMode::Disabled;
-    else if (text == "sRGB") *out = ColorCorrectionMode::SRGB;
-    else if (text == "openColorIO") *out = ColorCorrectionMode::OpenColorIO;
-    else return false;
-    return true;
-}
-
-const char* toString(ColorCorrectionMode mode) {
-    switch (mode) {
-    case ColorCorrectionMode::Disabled: return "disabled";
-    case ColorCorrectionMode::SRGB: return "sRGB";
-    case ColorCorrectionMode::OpenColorIO: return "openColorIO";
-    }
-    return "sRGB";
-}
-
 std::string DisplayTransform::shippedConfigPath() {
     std::error_code error;
     fs::path executable = fs::read_symlink("/proc/self/exe", error);

@@ -10,20 +10,27 @@
 // applies it here, the GPU path (gl::DisplayTransformPass) runs the shader
 // OCIO writes for the same processor.
 
+#include <array>
 #include <memory>
 #include <string>
 #include <vector>
 
 #include <nlohmann/json_fwd.hpp>
 
+#include "hdHair/base/TokenTable.h"
 #include "hdHair/image/ColorSpaces.h"
 #include "hdHair/image/DisplayShader.h"
 
 namespace hdhair {
 
 enum class ColorCorrectionMode { Disabled, SRGB, OpenColorIO };
-bool parseColorCorrectionMode(const std::string& text, ColorCorrectionMode* out);
-const char* toString(ColorCorrectionMode mode);
+template <>
+struct TokenTable<ColorCorrectionMode> {
+    static constexpr std::array<TokenName<ColorCorrectionMode>, 3> names{{
+         {ColorCorrectionMode::Disabled, "disabled"},
+         {ColorCorrectionMode::SRGB, "sRGB"},
+         {ColorCorrectionMode::OpenColorIO, "openColorIO"}}};
+};
 
 struct DisplayTransformOptions {
     ColorCorrectionMode mode = ColorCorrectionMode::SRGB;

@@ -173,7 +173,7 @@ CyclesScene exportCyclesScene(const Scene& scene, const CyclesFraming& framing, 
         result.curves += result.strands.back().keysPerCurve.size();
         result.keys += result.strands.back().keyCount();
     }
-    const bool meshesLit = settings.values().shadingModel != "flat";
+    const bool meshesLit = settings.values().shadingModel != ShadingModel::Flat;
     for (const auto& [path, entry] : scene.meshes()) {
         if (!entry.prim->visible) continue;
         if (!framing.camera) framingPoints.push_back(meshFramingPoints(*entry.prim));
@@ -197,7 +197,7 @@ CyclesScene exportCyclesScene(const Scene& scene, const CyclesFraming& framing, 
     if (view) *view = camera;
     result.camera = cyclesCamera(camera);
     const bool cameraLight = usesCameraLight(settings.values().cameraLight, stageHasLight(scene), anyLit);
-    result.lighting = cyclesLighting(scene, camera, cameraLight, settings.values().cameraLightShadows == "on", space,
+    result.lighting = cyclesLighting(scene, camera, cameraLight, settings.values().cameraLightShadows == CameraLightShadows::On, space,
                                      diagnostics);
     return result;
 }

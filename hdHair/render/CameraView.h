@@ -11,6 +11,7 @@
 #include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>
 
+#include "hdHair/render/SettingTokens.h"
 #include "hdHair/scene/CameraPrim.h"
 #include "hdHair/scene/Scene.h"
 
@@ -60,19 +61,7 @@ int imageHeightFor(int imageWidth, float horizontalAperture, float verticalApert
 // pixels stay square and nothing the aperture shows is cut.
 CameraView cameraViewFromPrim(const CameraPrim& camera, int imageWidth);
 
-// How frameBounds places the camera.
-enum class FramingStyle {
-    // Exactly usdrecord's camera (UsdAppUtilsFrameRecorder,
-    // _ComputeCameraToFrameStage in pxr/usdImaging/usdAppUtils/frameRecorder.cpp):
-    // fits the half-diagonal of the bounds' face across the view to HALF THE
-    // WIDTH of the default lens's field of view. Bounds taller than about
-    // 1.07 times their width are therefore cut at the top and bottom, as in
-    // usdrecord's own images.
-    UsdRecord,
-    // The same camera direction and lens, moved back just enough that all
-    // eight corners of the bounds are inside the image.
-    FitAll,
-};
+// How frameBounds places the camera: FramingStyle (SettingTokens.h, the framing setting).
 
 // The camera for a stage rendered without a camera, as usdrecord builds it:
 //  - lens: a default GfCamera / UsdGeomCamera: 50 focal length, 20.955 x

@@ -42,12 +42,12 @@
 
 #include <vector>
 
+#include "hdHair/render/SettingTokens.h"
+
 namespace hdhair {
 
 constexpr float kShadowExtinction = 1.0f;  // k in T = exp(-k * opacity)
 constexpr int kMaxShadowLayers = 32;       // 8 RGBA16F targets: GL 4.5 guarantees 8 draw buffers
-
-enum class ShadowLayerSpacing { Linear, Uniform };
 
 // d_k / d_K for k = 1..layers (the last is 1), increasing.
 std::vector<float> deepOpacityLayerBoundaries(int layers, ShadowLayerSpacing spacing);

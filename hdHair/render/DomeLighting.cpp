@@ -26,16 +26,10 @@ float lobePower(const Srbf& srbf) {
 
 }  // namespace
 
-DomeLightingMode domeLightingMode(const RenderSettings& settings) {
-    const std::string mode = settings.values().domeLighting;
-    if (mode == "ambient") return DomeLightingMode::Ambient;
-    return mode == "sampled" ? DomeLightingMode::Sampled : DomeLightingMode::Srbf;
-}
-
 std::vector<DomeEnvironment> frameDomeEnvironments(const Scene& scene, const RenderSettings& settings,
                                                    Diagnostics& diagnostics) {
     std::vector<DomeEnvironment> domes;
-    const DomeLightingMode mode = domeLightingMode(settings);
+    const DomeLightingMode mode = settings.values().domeLighting;
     if (mode == DomeLightingMode::Ambient) return domes;
     DomeFitSettings fit;
     fit.srbf.maxLobes = settings.values().domeLights;

@@ -40,6 +40,7 @@
 #include <vector>
 
 #include "hdHair/environment/DomeEnvironment.h"
+#include "hdHair/render/SettingTokens.h"
 #include "hdHair/shading/ShadingLight.h"
 
 namespace hdhair {
@@ -48,8 +49,6 @@ class Diagnostics;
 class RenderSettings;
 class Scene;
 
-enum class DomeLightingMode { Srbf, Ambient, Sampled };
-DomeLightingMode domeLightingMode(const RenderSettings& settings);
 
 // The visible DomeLights of `scene` (path order) as world-space lighting,
 // fitted with domeLights SRBFs through the process's fit cache: a fit per

@@ -13,15 +13,6 @@
 
 namespace hdhair {
 
-const char* toString(ShadingModel model) {
-    switch (model) {
-    case ShadingModel::Flat: return "flat";
-    case ShadingModel::KajiyaKay: return "kajiyaKay";
-    case ShadingModel::Marschner: return "marschner";
-    }
-    return "kajiyaKay";
-}
-
 bool HairMaterial::sharesTablesWith(const HairMaterial& other) const {
     const MarschnerParameters &a = marschner, &b = other.marschner;
     return a.eta == b.eta && a.sigmaA == b.sigmaA && a.glintScale == b.glintScale &&
@@ -49,14 +40,6 @@ constexpr float kDefaultMelanin = 0.3f;
 constexpr float kDefaultShiftDegrees = -7.5f;  // Marschner 2003 Table 1
 constexpr float kDefaultWidthDegrees = 7.5f;
 constexpr float kDefaultEta = 1.55f;
-
-bool parseModel(const std::string& token, ShadingModel* model) {
-    if (token == "flat") *model = ShadingModel::Flat;
-    else if (token == "kajiyaKay") *model = ShadingModel::KajiyaKay;
-    else if (token == "marschner") *model = ShadingModel::Marschner;
-    else return false;
-    return true;
-}
 
 // The hair parameters at one place: the whole prim (where a primvar varies,
 // the mean of its control-point values) or one control point.
@@ -199,20 +182,20 @@ namespace {
 // multipleScattering per material: the setting, and under auto the gain
 // against kMultipleScatteringBound; the reason says which.
 void decideMultipleScattering(HairMaterial& material, const RenderSettings& settings) {
-    const std::string& mode = settings.values().multipleScattering;
+    const MultipleScattering mode = settings.values().multipleScattering;
     material.densities = {float(settings.values().multipleScatteringForwardDensity),
                           float(settings.values().multipleScatteringBackDensity)};
     if (material.model != ShadingModel::Marschner) {
         material.multipleScatteringReason = fmt::format("{} shading has no multiple scattering", toString(material.model));
         return;
     }
-    if (mode == "off") {
+    if (mode == MultipleScattering::Off) {
         material.multipleScatteringReason = "multipleScattering=off";
         return;
     }
     material.multipleScatteringGain = multipleScatteringGain(material.marschner, material.densities);
     const std::string means = material.perPoint() ? " (of its mean parameters: they vary per curve or vertex)" : "";
-    if (mode == "dualScattering") {
+    if (mode == MultipleScattering::DualScattering) {
         material.dualScattering = true;
         material.multipleScatteringReason =
             fmt::format("multipleScattering=dualScattering (gain {:.3f}{})", material.multipleScatteringGain, means);
@@ -231,11 +214,11 @@ void decideMultipleScattering(HairMaterial& material, const RenderSettings& sett
 HairMaterial hairMaterialFor(const CurvesPrim& prim, const PreparedCurves& prepared, const RenderSettings& settings,
                              Diagnostics& diagnostics) {
     HairMaterial material;
-    parseModel(settings.values().shadingModel, &material.model);
-    if (!prim.shadingModel.empty() && !parseModel(prim.shadingModel, &material.model))
+    material.model = settings.values().shadingModel;
+    if (!prim.shadingModel.empty() && !parseToken(prim.shadingModel, &material.model))
         diagnostics.warn(prim.path + ".primvars:hdHair:shadingModel",
-                         fmt::format("unknown shading model '{}' (kajiyaKay, marschner or flat); using {}",
-                                     prim.shadingModel, toString(material.model)));
+                         fmt::format("unknown shading model '{}' ({}); using {}", prim.shadingModel,
+                                     tokenChoices<ShadingModel>(), toString(material.model)));
 
     material.kajiyaKay.diffuse = float(settings.values().kajiyaKayDiffuse);
     material.kajiyaKay.specular = float(settings.values().kajiyaKaySpecular);
@@ -249,20 +232,21 @@ HairMaterial hairMaterialFor(const CurvesPrim& prim, const PreparedCurves& prepa
     const HairParameterSource wholePrim(prepared, std::nullopt);
     applyHairParameters(wholePrim, material.model, material.kajiyaKay, material.marschner);
     material.varies = variationOf(wholePrim, material.model);
-    const std::string azimuthal = settings.values().marschnerAzimuthal;
+    const MarschnerAzimuthal azimuthal = settings.values().marschnerAzimuthal;
     // Forced tables: absorption and eta stay at their means over the prim.
-    if (azimuthal == "tables") material.varies &= ~unsigned(kAbsorptionVaries | kEtaVaries);
+    if (azimuthal == MarschnerAzimuthal::Tables) material.varies &= ~unsigned(kAbsorptionVaries | kEtaVaries);
     if (material.perPoint()) material.perPointPrim = prim.path;
     material.analyticAzimuthal = material.model == ShadingModel::Marschner &&
-                                 (azimuthal == "analytic" || (material.varies & (kAbsorptionVaries | kEtaVaries)) != 0);
+                                 (azimuthal == MarschnerAzimuthal::Analytic || (material.varies & (kAbsorptionVaries | kEtaVaries)) != 0);
     decideMultipleScattering(material, settings);
     return material;
 }
 
 std::string hairMaterialSettingsKey(const RenderSettings& settings) {
     const SettingValues& values = settings.values();
-    return fmt::format("{}|{}|{}|{}|{}|{}|{}|{}", values.shadingModel, values.kajiyaKayDiffuse, values.kajiyaKaySpecular,
-                       values.kajiyaKayShininess, values.marschnerAzimuthal, values.multipleScattering,
+    return fmt::format("{}|{}|{}|{}|{}|{}|{}|{}", toString(values.shadingModel), values.kajiyaKayDiffuse,
+                       values.kajiyaKaySpecular, values.kajiyaKayShininess, toString(values.marschnerAzimuthal),
+                       toString(values.multipleScattering),
                        values.multipleScatteringForwardDensity, values.multipleScatteringBackDensity);
 }
 

@@ -16,6 +16,7 @@
 #include <glm/vec4.hpp>
 
 #include "hdHair/curves/PreparedCurves.h"
+#include "hdHair/render/SettingTokens.h"
 #include "hdHair/shading/DualScattering.h"
 #include "hdHair/shading/KajiyaKay.h"
 #include "hdHair/shading/Marschner.h"
@@ -26,9 +27,7 @@ class Diagnostics;
 class RenderSettings;
 struct CurvesPrim;
 
-enum class ShadingModel { Flat = 0, KajiyaKay = 1, Marschner = 2 };
 
-const char* toString(ShadingModel model);
 
 // Which of the model's parameters vary over the prim (bit flags).
 enum HairParameterVariation : unsigned {

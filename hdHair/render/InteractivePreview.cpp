@@ -12,17 +12,20 @@ namespace hdhair {
 
 RenderSettings previewSettings(const RenderSettings& full) {
     RenderSettings preview = full;
-    preview.set("tessellationTolerance", std::to_string(std::max(full.values().tessellationTolerance, 1.0)));
-    preview.set("pixelsPerSegment", std::to_string(std::max(full.values().pixelsPerSegment, 16.0)));
-    preview.set("maxSegmentsPerSpan", std::to_string(std::min(full.values().maxSegmentsPerSpan, 4)));
-    if (full.values().transparency == "exact") preview.set("transparency", "binSorted");
-    preview.set("sortBins", std::to_string(std::min(full.values().sortBins, 16)));
-    preview.set("shadowMode", "off");
-    preview.set("lightsPerPass", "16");
-    preview.set("msaaSamples", "0");
-    preview.set("supersampling", "1");
-    if (full.values().marschnerAzimuthal == "analytic") preview.set("marschner:azimuthal", "tables");
-    preview.set("passTimings", "false");
+    const SettingValues& values = full.values();
+    preview.setValue(&SettingValues::tessellationTolerance, std::max(values.tessellationTolerance, 1.0));
+    preview.setValue(&SettingValues::pixelsPerSegment, std::max(values.pixelsPerSegment, 16.0));
+    preview.setValue(&SettingValues::maxSegmentsPerSpan, std::min(values.maxSegmentsPerSpan, 4));
+    if (values.transparency == TransparencyPath::Exact)
+        preview.setValue(&SettingValues::transparency, TransparencyPath::BinSorted);
+    preview.setValue(&SettingValues::sortBins, std::min(values.sortBins, 16));
+    preview.setValue(&SettingValues::shadowMode, ShadowMode::Off);
+    preview.setValue(&SettingValues::lightsPerPass, 16);
+    preview.setValue(&SettingValues::msaaSamples, 0);
+    preview.setValue(&SettingValues::supersampling, 1);
+    if (values.marschnerAzimuthal == MarschnerAzimuthal::Analytic)
+        preview.setValue(&SettingValues::marschnerAzimuthal, MarschnerAzimuthal::Tables);
+    preview.setValue(&SettingValues::passTimings, false);
     return preview;
 }
 

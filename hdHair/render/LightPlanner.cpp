@@ -39,8 +39,9 @@ ShadingLight cameraLightOf(const CameraView& camera, bool castsShadow) {
     return cameraLight(glm::normalize(glm::vec3(cameraToWorld * glm::dvec4(0.0, 0.0, 1.0, 0.0))), castsShadow);
 }
 
-bool usesCameraLight(const std::string& cameraLightSetting, bool stageHasLight, bool anythingLit) {
-    return anythingLit && (cameraLightSetting == "on" || (cameraLightSetting == "auto" && !stageHasLight));
+bool usesCameraLight(CameraLightSetting setting, bool stageHasLight, bool anythingLit) {
+    return anythingLit &&
+           (setting == CameraLightSetting::On || (setting == CameraLightSetting::Auto && !stageHasLight));
 }
 
 void planLights(FrameRecipe& recipe, const Scene& scene, const RenderSettings& settings, const CameraView& camera,
@@ -49,7 +50,7 @@ void planLights(FrameRecipe& recipe, const Scene& scene, const RenderSettings& s
     // domeLighting=srbf or sampled: domes are SRBF lights and a uniform term,
     // or sampled distant lights (DomeLighting.h), not toShadingLights' flat
     // ambient.
-    const bool domesAsLights = domeLightingMode(settings) != DomeLightingMode::Ambient;
+    const bool domesAsLights = values.domeLighting != DomeLightingMode::Ambient;
     std::vector<const LightPrim*> stageLights;
     const LightPrim* hostCameraLight = nullptr;
     for (const auto& [path, entry] : scene.lights()) {
@@ -68,14 +69,16 @@ void planLights(FrameRecipe& recipe, const Scene& scene, const RenderSettings& s
         recipe.domes = addDomeLights(scene, domes, values.domeShadowLights, recipe.lights, recipe.shadows.sharedMaps);
     // Meshes are lit unless the shadingModel setting asks for flat
     // displayColor (hair prims may still choose their own model).
-    recipe.meshesLit = meshes.meshes > 0 && values.shadingModel != "flat";
+    recipe.meshesLit = meshes.meshes > 0 && values.shadingModel != ShadingModel::Flat;
     recipe.flatShading = !strands.anyLit && !recipe.meshesLit;
 
     const bool stageHasLight = !recipe.lights.lights.empty() || glm::length(recipe.lights.ambient) > 0.0f ||
                                glm::length(recipe.lights.uniformDome) > 0.0f;
     recipe.cameraLight = usesCameraLight(values.cameraLight, stageHasLight, !recipe.flatShading);
     if (recipe.cameraLight)
-        for (const ShadingLight& light : cameraLightsFor(camera, hostCameraLight, values.cameraLightShadows == "on")) recipe.lights.lights.push_back(light);
+        for (const ShadingLight& light :
+             cameraLightsFor(camera, hostCameraLight, values.cameraLightShadows == CameraLightShadows::On))
+            recipe.lights.lights.push_back(light);
     // Light colours (and colour temperatures) are linear Rec.709, as every
     // authored colour: shading happens in the rendering space.
     const glm::mat3 toRenderingSpace = rec709To(settings.renderingSpace());

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "hdHair/render/SettingTokens.h"
 #include "hdHair/shading/ShadingLight.h"
 
 namespace hdhair {
@@ -29,7 +30,7 @@ constexpr size_t kMaxLights = 1024;
 // Whether a frame adds hdHair's camera light (a distant light from the
 // eye): the cameraLight setting says on, or auto and the stage has no light
 // of its own; never when nothing is lit (flat shading only).
-bool usesCameraLight(const std::string& cameraLightSetting, bool stageHasLight, bool anythingLit);
+bool usesCameraLight(CameraLightSetting setting, bool stageHasLight, bool anythingLit);
 
 // hdHair's camera light for `camera`: a distant light from the eye.
 ShadingLight cameraLightOf(const CameraView& camera, bool castsShadow);

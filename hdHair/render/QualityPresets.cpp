@@ -2,25 +2,6 @@
 
 namespace hdhair {
 
-bool parseQuality(const std::string& name, Quality* out) {
-    if (name == "preview") *out = Quality::Preview;
-    else if (name == "default") *out = Quality::Default;
-    else if (name == "high") *out = Quality::High;
-    else if (name == "reference") *out = Quality::Reference;
-    else return false;
-    return true;
-}
-
-const char* toString(Quality quality) {
-    switch (quality) {
-    case Quality::Preview: return "preview";
-    case Quality::Default: return "default";
-    case Quality::High: return "high";
-    case Quality::Reference: return "reference";
-    }
-    return "default";
-}
-
 const std::vector<std::pair<std::string, std::string>>& presetSettings(Quality quality) {
     // preview: what the interactive previews draw (InteractivePreview.h),
     // at full size: coarse tessellation, 16 bins, no self-shadowing, every

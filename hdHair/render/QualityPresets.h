@@ -10,13 +10,9 @@
 #include <utility>
 #include <vector>
 
+#include "hdHair/render/SettingTokens.h"
+
 namespace hdhair {
-
-enum class Quality { Preview, Default, High, Reference };
-
-// "preview", "default", "high" or "reference".
-bool parseQuality(const std::string& name, Quality* out);
-const char* toString(Quality quality);
 
 // The NAME=VALUE pairs a preset sets, in a fixed order (README lists them).
 const std::vector<std::pair<std::string, std::string>>& presetSettings(Quality quality);

@@ -308,10 +308,10 @@ void buildFrameGraph(RenderPlan& plan, const Scene& scene, const StrandSummary& 
 // every path, and counts on none.
 std::string binSortingAskedFor(const RenderSettings& settings) {
     const SettingValues& values = settings.values();
-    if (settings.isExplicitlySet("transparency") && values.transparency == "unsorted") return "transparency=unsorted";
-    const std::string bins = std::to_string(values.sortBins);
-    if (settings.isExplicitlySet("sortBins") && bins != RenderSettings::find("sortBins")->defaultValue)
-        return "sortBins=" + bins;
+    if (settings.isExplicitlySet("transparency") && values.transparency == TransparencyPath::Unsorted)
+        return "transparency=unsorted";
+    if (settings.isExplicitlySet("sortBins") && values.sortBins != RenderSettings().values().sortBins)
+        return fmt::format("sortBins={}", values.sortBins);
     return "";
 }
 

@@ -14,38 +14,31 @@
 
 namespace hdhair {
 
-bool parseComplexity(const std::string& name, Complexity* out) {
-    if (name == "low") *out = Complexity::Low;
-    else if (name == "medium") *out = Complexity::Medium;
-    else if (name == "high") *out = Complexity::High;
-    else if (name == "veryhigh") *out = Complexity::VeryHigh;
-    else return false;
-    return true;
+namespace {
+
+// Token settings list their values from their enum's table
+// (SettingTokens.h), in its order.
+std::vector<SettingDescriptor> withTokenNames(std::vector<SettingDescriptor> table) {
+    for (SettingDescriptor& descriptor : table)
+        if (const TokenField* field = std::get_if<TokenField>(&descriptor.field)) descriptor.tokens = field->names();
+    return table;
 }
 
-const char* toString(Complexity complexity) {
-    switch (complexity) {
-    case Complexity::Low: return "low";
-    case Complexity::Medium: return "medium";
-    case Complexity::High: return "high";
-    case Complexity::VeryHigh: return "veryhigh";
-    }
-    return "low";
-}
+}  // namespace
 
 const std::vector<SettingDescriptor>& RenderSettings::descriptors() {
-    static const std::vector<SettingDescriptor> table = {
+    static const std::vector<SettingDescriptor> table = withTokenNames({
         {"quality", SettingType::Token, "default",
          "A named set of the settings below, from cheap to exact: preview, default (today's defaults), high or "
          "reference (the yardstick: exact transparency that fails rather than fall back, reference shadows, "
          "analytic Marschner, the tightest tessellation, 4 x 4 supersampling); settings set explicitly, and a "
          "complexity above low, win over it (docs/settings.md, Quality presets)",
-         0, 0, {"preview", "default", "high", "reference"}, &SettingValues::quality},
+         0, 0, {}, tokenField<&SettingValues::quality>()},
         {"tessellation", SettingType::Token, "screenError",
          "How finely each curve span is cut: screenError (as few segments as keep the polyline within "
          "tessellationTolerance pixels of the curve, from the span's curvature and projected size) or "
          "projectedLength (one segment every pixelsPerSegment pixels of projected length, straight or not)",
-         0, 0, {"screenError", "projectedLength"}, &SettingValues::tessellation},
+         0, 0, {}, tokenField<&SettingValues::tessellation>()},
         {"tessellationTolerance", SettingType::Float, "0.12",
          "screenError tessellation: the most, in pixels, a strand's tessellated centre line may stray from the "
          "true curve (complexity: low 0.12, medium 0.06, high 0.03, veryhigh 0.015; docs/how-it-works.md, tessellation benchmark)",
@@ -66,7 +59,7 @@ const std::vector<SettingDescriptor>& RenderSettings::descriptors() {
          "How strands are composited: binSorted (depth bins, far to near), exact (per-pixel sorted "
          "fragment lists: the slow ground truth), unsorted, or opaque; stages whose strands are all "
          "opaque and wide take the opaque path by themselves",
-         0, 0, {"binSorted", "exact", "unsorted", "opaque"}, &SettingValues::transparency},
+         0, 0, {}, tokenField<&SettingValues::transparency>()},
         {"sortBins", SettingType::Int, "256", "Depth bins for binSorted transparency", 1, 65536, {}, &SettingValues::sortBins},
         {"minPixelWidth", SettingType::Float, "1",
          "Strands projecting thinner than this many pixels are drawn this wide with alpha scaled by "
@@ -80,7 +73,7 @@ const std::vector<SettingDescriptor>& RenderSettings::descriptors() {
         {"exactOverflow", SettingType::Token, "fallBack",
          "When exact transparency's fragments do not fit exactMemoryMB: fallBack (warn and render binSorted with "
          "1024 bins) or fail (the frame fails with the memory it needed: a reference must never be approximate)",
-         0, 0, {"fallBack", "fail"}, &SettingValues::exactOverflow},
+         0, 0, {}, tokenField<&SettingValues::exactOverflow>()},
         {"strandRaster", SettingType::Token, "auto",
          "Who rasterises the camera's strands when they are blended: hardware (GL's tessellator and rasteriser), "
          "compute (strandRaster.comp: spans cut, rasterised and shaded in compute on every core, composited "
@@ -90,7 +83,7 @@ const std::vector<SettingDescriptor>& RenderSettings::descriptors() {
          "else all hardware; hardware whenever transparency=unsorted or a sortBins other than the default is set). "
          "With shadowStrandLines=auto it also says who rasterises the deep opacity maps' one-texel lines: "
          "compute under auto and compute, the draws under hardware",
-         0, 0, {"hardware", "compute", "auto"}, &SettingValues::strandRaster},
+         0, 0, {}, tokenField<&SettingValues::strandRaster>()},
         {"strandRasterMaxPixelWidth", SettingType::Float, "4",
          "strandRaster=auto: the compute rasteriser takes a prim only when its widest strand projects at most "
          "this many pixels wide (measured: it pays for thin strands, where spans cover few pixels each; "
@@ -116,7 +109,7 @@ const std::vector<SettingDescriptor>& RenderSettings::descriptors() {
         {"shadingModel", SettingType::Token, "kajiyaKay",
          "Hair shading where a prim does not choose (primvars:hdHair:shadingModel): kajiyaKay, marschner, "
          "or flat (displayColor x opacity, no lighting)",
-         0, 0, {"kajiyaKay", "marschner", "flat"}, &SettingValues::shadingModel},
+         0, 0, {}, tokenField<&SettingValues::shadingModel>()},
         {"kajiyaKay:diffuse", SettingType::Float, "1", "Kajiya-Kay diffuse weight Kd", 0.0, 100.0, {}, &SettingValues::kajiyaKayDiffuse},
         {"kajiyaKay:specular", SettingType::Float, "0.35", "Kajiya-Kay specular weight Ks", 0.0, 100.0, {}, &SettingValues::kajiyaKaySpecular},
         {"kajiyaKay:shininess", SettingType::Float, "60", "Kajiya-Kay specular exponent p", 1.0, 10000.0, {}, &SettingValues::kajiyaKayShininess},
@@ -124,13 +117,13 @@ const std::vector<SettingDescriptor>& RenderSettings::descriptors() {
          "Marschner's azimuthal terms: auto (tables per material; per fragment where absorption or eta vary "
          "per curve or vertex), tables (always; such prims use their mean absorption and eta), or analytic "
          "(always per fragment: the reference)",
-         0, 0, {"auto", "tables", "analytic"}, &SettingValues::marschnerAzimuthal},
+         0, 0, {}, tokenField<&SettingValues::marschnerAzimuthal>()},
         {"multipleScattering", SettingType::Token, "auto",
          "Light scattered through several fibres, on Marschner prims: dualScattering (Zinke et al. 2008, from the "
          "deep opacity maps' transmittance), off (single scattering only), or auto (dual scattering where the "
          "material's fibres let enough light through for it to show: not on black hair; hdHair/shading/README.md, "
          "Dual scattering)",
-         0, 0, {"auto", "dualScattering", "off"}, &SettingValues::multipleScattering},
+         0, 0, {}, tokenField<&SettingValues::multipleScattering>()},
         {"multipleScattering:forwardDensity", SettingType::Float, "0.7",
          "Dual scattering's forward density factor d_f: how densely the fibres a light path crosses are packed "
          "(0.6 to 0.8 for human hair)",
@@ -142,7 +135,7 @@ const std::vector<SettingDescriptor>& RenderSettings::descriptors() {
         {"shadowMode", SettingType::Token, "deepOpacity",
          "Hair self-shadowing from lights that cast shadows (inputs:shadow:enable): deepOpacity (deep opacity "
          "maps), reference (every light-view fragment kept and summed per lookup: slow, the yardstick), or off",
-         0, 0, {"deepOpacity", "reference", "off"}, &SettingValues::shadowMode},
+         0, 0, {}, tokenField<&SettingValues::shadowMode>()},
         {"shadowLayers", SettingType::Int, "3",
          "Opacity layers of a deep opacity map behind the nearest hair (3 as in Yuksel & Keyser; up to 32, in "
          "RGBA16F targets of 4 layers)",
@@ -165,7 +158,7 @@ const std::vector<SettingDescriptor>& RenderSettings::descriptors() {
          "tessellation leaves one segment are drawn as plain lines, without the tessellator), tessellated "
          "(drawn, every span through the tessellator) or off (always camera-facing ribbons, minPixelWidth "
          "wide at least, as the camera draws them)",
-         0, 0, {"auto", "compute", "drawn", "tessellated", "off"}, &SettingValues::shadowStrandLines},
+         0, 0, {}, tokenField<&SettingValues::shadowStrandLines>()},
         {"shadowMemoryMB", SettingType::Int, "1024",
          "Memory for shadow maps; lights beyond what it holds at shadowMapResolution and shadowLayers shade "
          "unshadowed, with a warning",
@@ -173,7 +166,7 @@ const std::vector<SettingDescriptor>& RenderSettings::descriptors() {
         {"shadowLayerSpacing", SettingType::Token, "linear",
          "Deep opacity layer spacing: linear (gaps growing linearly from the lit surface, Yuksel & Keyser's "
          "choice) or uniform",
-         0, 0, {"linear", "uniform"}, &SettingValues::shadowLayerSpacing},
+         0, 0, {}, tokenField<&SettingValues::shadowLayerSpacing>()},
         {"shadowLayerDepth", SettingType::Float, "1",
          "How deep the last opacity layer reaches behind the nearest hair, as a fraction of the hair's depth "
          "along the light; hair beyond it counts in the last layer",
@@ -181,14 +174,14 @@ const std::vector<SettingDescriptor>& RenderSettings::descriptors() {
         {"shadowFilter", SettingType::Token, "bilinear",
          "Shadow lookup: nearest (one texel, as in the thesis) or bilinear (transmittance of the four nearest "
          "texels, each against its own nearest depth, weighted bilinearly)",
-         0, 0, {"nearest", "bilinear"}, &SettingValues::shadowFilter},
+         0, 0, {}, tokenField<&SettingValues::shadowFilter>()},
         {"shadowSampling", SettingType::Token, "auto",
          "Where deep opacity maps are looked up: vertex (each light's transmittance at the tessellated points of "
          "the strand's centre line, where every lookup is taken, interpolated along each segment; spans cut to "
          "2 texels of the finest map, up to 64 segments), fragment (at every fragment), or auto (vertex when "
          "every span is within 2 texels of the finest map, as in real grooms, else fragment). Reference shadows "
          "are always looked up per fragment (docs/how-it-works.md, Shadows)",
-         0, 0, {"auto", "vertex", "fragment"}, &SettingValues::shadowSampling},
+         0, 0, {}, tokenField<&SettingValues::shadowSampling>()},
         {"domeLighting", SettingType::Token, "srbf",
          "How DomeLights light the frame: srbf (a textured dome as domeLights Gaussian SRBF lights, each "
          "convolved with the fibre model by table, Ren et al. 2010; an untextured dome as the exact integral of "
@@ -196,7 +189,7 @@ const std::vector<SettingDescriptor>& RenderSettings::descriptors() {
          "unshadowed: the old term, kept for comparison) or sampled (the reference: every dome as "
          "domeSampledLights importance-sampled distant lights, each with its own shadow map; slow, and a frame "
          "whose maps shadowMemoryMB cannot hold fails)",
-         0, 0, {"srbf", "ambient", "sampled"}, &SettingValues::domeLighting},
+         0, 0, {}, tokenField<&SettingValues::domeLighting>()},
         {"domeLights", SettingType::Int, "30",
          "SRBF lights a textured dome is fitted with (the paper's 30-60; each costs a table lookup per fragment "
          "and lightsPerPass of them a pass)",
@@ -206,7 +199,7 @@ const std::vector<SettingDescriptor>& RenderSettings::descriptors() {
          "(the paper's convolution optical depth map: the opacity layers averaged over the footprint from a mip "
          "chain, then exponentiated; a third more opacity memory; half the error of taps against the reference "
          "on the dense clump) or taps (nine lookups of the map's transmittance over the footprint, averaged)",
-         0, 0, {"taps", "mipmap"}, &SettingValues::domeShadowFilter},
+         0, 0, {}, tokenField<&SettingValues::domeShadowFilter>()},
         {"domeSampledLights", SettingType::Int, "1024",
          "Distant lights a dome becomes under domeLighting=sampled (importance-sampled from its radiance; each "
          "its own shadow map when the dome casts shadows, so lower shadowMapResolution or raise shadowMemoryMB)",
@@ -217,17 +210,16 @@ const std::vector<SettingDescriptor>& RenderSettings::descriptors() {
          "direction (0: dome lighting unshadowed)",
          0, 60, {}, &SettingValues::domeShadowLights},
         {"cameraLight", SettingType::Token, "auto",
-         "Light from the camera: auto (only when the stage has no lights), on, off", 0, 0,
-         {"auto", "on", "off"}, &SettingValues::cameraLight},
+         "Light from the camera: auto (only when the stage has no lights), on, off", 0, 0, {}, tokenField<&SettingValues::cameraLight>()},
         {"cameraLightShadows", SettingType::Token, "off",
          "Whether hdHair's camera light casts shadows: off (a light at the eye darkens only what the eye cannot "
          "see behind the hair, and hosts' camera lights, Storm's default light among them, cast none) or on (a "
          "deep opacity map from the eye, as any light's)",
-         0, 0, {"off", "on"}, &SettingValues::cameraLightShadows},
+         0, 0, {}, tokenField<&SettingValues::cameraLightShadows>()},
         {"drawBatching", SettingType::Token, "auto",
          "How strand draws are cut: auto (batches of at most 2,048 tessellated vertices on llvmpipe, which "
          "draws larger tessellated draws wrongly; whole ranges elsewhere), on (batched on any driver) or off",
-         0, 0, {"auto", "on", "off"}, &SettingValues::drawBatching},
+         0, 0, {}, tokenField<&SettingValues::drawBatching>()},
         {"specializeShaders", SettingType::Bool, "true",
          "Compile each strand program with only the shading its draw can reach (its materials' models, its "
          "lights' kinds, its shadow lookups; the ids pass with none): the image is the same, and software "
@@ -241,7 +233,7 @@ const std::vector<SettingDescriptor>& RenderSettings::descriptors() {
         {"framing", SettingType::Token, "fitAll",
          "Camera when none is given: fitAll (every corner of the stage bounds in view) or usdrecord "
          "(usdrecord's exact framing, which can cut tall stages)",
-         0, 0, {"fitAll", "usdrecord"}, &SettingValues::framing},
+         0, 0, {}, tokenField<&SettingValues::framing>()},
         {"interactiveBudgetMs", SettingType::Int, "100",
          "Hydra hosts (usdview): when a full frame takes longer than this many milliseconds, each new view is "
          "first shown as a preview made to fit it (coarse tessellation, 16 bins, no shadows, fewer pixels as "
@@ -250,8 +242,8 @@ const std::vector<SettingDescriptor>& RenderSettings::descriptors() {
         {"renderingSpace", SettingType::Token, "lin_rec709",
          "Scene-linear space the frame is shaded and written in: lin_rec709 or ACEScg; authored colours "
          "(linear Rec.709) are converted into it, EXRs are tagged with it, display transforms start from it",
-         0, 0, {"lin_rec709", "ACEScg"}, &SettingValues::renderingSpace},
-    };
+         0, 0, {}, tokenField<&SettingValues::renderingSpace>()},
+    });
     return table;
 }
 
@@ -358,7 +350,7 @@ std::string complexityValue(const std::string& name, Complexity complexity) {
 Quality RenderSettings::quality() const {
     Quality quality = Quality::Default;
     auto it = values_.find("quality");
-    if (it != values_.end()) parseQuality(it->second, &quality);
+    if (it != values_.end()) parseToken(it->second, &quality);
     return quality;
 }
 
@@ -424,20 +416,18 @@ void RenderSettings::updateValues() {
     for (const SettingDescriptor& descriptor : descriptors()) {
         std::visit(
             [&](auto field) {
-                using Value = std::remove_reference_t<decltype(typed_.*field)>;
-                if constexpr (std::is_same_v<Value, double>) typed_.*field = getFloat(descriptor.name);
-                else if constexpr (std::is_same_v<Value, int>) typed_.*field = getInt(descriptor.name);
-                else if constexpr (std::is_same_v<Value, bool>) typed_.*field = getBool(descriptor.name);
-                else typed_.*field = getToken(descriptor.name);
+                using Field = decltype(field);
+                if constexpr (std::is_same_v<Field, double SettingValues::*>) typed_.*field = getFloat(descriptor.name);
+                else if constexpr (std::is_same_v<Field, int SettingValues::*>) typed_.*field = getInt(descriptor.name);
+                else if constexpr (std::is_same_v<Field, bool SettingValues::*>) typed_.*field = getBool(descriptor.name);
+                else field.assign(typed_, getToken(descriptor.name));
             },
             descriptor.field);
     }
 }
 
-RenderingSpace RenderSettings::renderingSpace() const {
-    RenderingSpace space = RenderingSpace::LinearRec709;
-    parseRenderingSpace(typed_.renderingSpace, &space);
-    return space;
-}
+std::string RenderSettings::valueText(double value) { return fmt::format("{}", value); }
+std::string RenderSettings::valueText(int value) { return std::to_string(value); }
+std::string RenderSettings::valueText(bool value) { return value ? "true" : "false"; }
 
 }  // namespace hdhair

@@ -5,7 +5,10 @@
 // everywhere the moment it is added here.
 
 #include <map>
+#include <stdexcept>
 #include <string>
+#include <type_traits>
+#include <variant>
 #include <vector>
 
 #include <nlohmann/json_fwd.hpp>
@@ -31,8 +34,13 @@ struct SettingDescriptor {
 // usdrecord's --complexity levels; they set the tessellation density and
 // the meshes' refine level.
 enum class Complexity { Low, Medium, High, VeryHigh };
-bool parseComplexity(const std::string& name, Complexity* out);
-const char* toString(Complexity complexity);
+template <>
+struct TokenTable<Complexity> {
+    static constexpr std::array<TokenName<Complexity>, 4> names{{{Complexity::Low, "low"},
+                                                                 {Complexity::Medium, "medium"},
+                                                                 {Complexity::High, "high"},
+                                                                 {Complexity::VeryHigh, "veryhigh"}}};
+};
 
 // What chose a setting's effective value, strongest first: set explicitly
 // (--setting, a Hydra render setting), the complexity level (the settings it
@@ -88,13 +96,28 @@ public:
     int getInt(const std::string& name) const;
     bool getBool(const std::string& name) const;
     std::string getToken(const std::string& name) const;
-    // The renderingSpace setting (its table allows only the spaces there are).
-    RenderingSpace renderingSpace() const;
+    // The renderingSpace setting.
+    RenderingSpace renderingSpace() const { return typed_.renderingSpace; }
+
+    // Sets a setting by its typed field, as if set explicitly with that
+    // value: setValue(&SettingValues::shadowMode, ShadowMode::Off). What
+    // previews and tools change, with no name or value spelt as text.
+    template <typename T>
+    void setValue(T SettingValues::*member, T value) {
+        if constexpr (std::is_enum_v<T>) set(descriptorOf(member).name, tokenName(value));
+        else set(descriptorOf(member).name, valueText(value));
+    }
+    // The descriptor of a field of SettingValues.
+    template <typename T>
+    static const SettingDescriptor& descriptorOf(T SettingValues::*member);
 
     // Every setting with its effective value, for --stats and --explain.
     nlohmann::json toJson() const;
 
 private:
+    static std::string valueText(double value);  // exactly, as from_chars reads it back
+    static std::string valueText(int value);
+    static std::string valueText(bool value);
     std::string effectiveText(const std::string& name) const;
     // Fills typed_ from the descriptors, after anything that changes an
     // effective value.
@@ -103,5 +126,20 @@ private:
     Complexity complexity_ = Complexity::Low;
     SettingValues typed_;
 };
+
+template <typename T>
+const SettingDescriptor& RenderSettings::descriptorOf(T SettingValues::*member) {
+    static const SettingValues probe;
+    for (const SettingDescriptor& descriptor : descriptors()) {
+        if constexpr (std::is_enum_v<T>) {
+            const TokenField* field = std::get_if<TokenField>(&descriptor.field);
+            if (field && field->address(probe) == &(probe.*member)) return descriptor;
+        } else {
+            const auto* field = std::get_if<T SettingValues::*>(&descriptor.field);
+            if (field && *field == member) return descriptor;
+        }
+    }
+    throw std::logic_error("a SettingValues field without a descriptor");
+}
 
 }  // namespace hdhair

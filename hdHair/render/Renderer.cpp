@@ -49,7 +49,7 @@ gl::FrameUniforms frameUniforms(const CameraView& camera, const RenderSettings& 
     frame.viewportSize = glm::vec2(float(camera.imageWidth), float(camera.imageHeight));
     frame.pixelsPerSegment = float(settings.values().pixelsPerSegment);
     frame.tessellationTolerance =
-        settings.values().tessellation == "screenError" ? float(settings.values().tessellationTolerance) : 0.0f;
+        settings.values().tessellation == Tessellation::ScreenError ? float(settings.values().tessellationTolerance) : 0.0f;
     frame.maxSegmentsPerSpan = float(settings.values().maxSegmentsPerSpan);
     frame.pixelsPerUnit = float(camera.pixelsPerUnit());
     bool opaque = plan.transparency == TransparencyPath::Opaque;
@@ -322,7 +322,7 @@ void Renderer::decideShadowMaps(RenderPlan& plan, const StrandSummary& summary, 
     const bool shadowsDrawn = shadows.overBudget > 0 && !plan.flatShading && summary.segments > 0;
     // The reference must not shade lights unshadowed: it is what the SRBF
     // path's shadows are measured against (DomeLighting.h).
-    if (shadowsDrawn && domeLightingMode(settings) == DomeLightingMode::Sampled)
+    if (shadowsDrawn && settings.values().domeLighting == DomeLightingMode::Sampled)
         throw std::invalid_argument(fmt::format(
             "domeLighting=sampled: {} lights cast shadows, more than the {} maps shadowMemoryMB={} holds at "
             "shadowMapResolution={} ({} would be drawn unshadowed); lower domeSampledLights or "
@@ -602,8 +602,10 @@ Renderer::GatheredFrame Renderer::gatherFrame(const Scene& scene, const CameraVi
 void Renderer::runFrame(FrameInputs& inputs, RenderResult& result, const RenderSettings& settings,
                         Diagnostics& diagnostics, const FrameControl& control) {
     RenderStats& stats = result.stats;
-    const gl::PatchBatching batching =
-        gl::PatchBatching::choose(settings.values().drawBatching, glThread_->contextDescription());
+    const DrawBatching drawBatching = settings.values().drawBatching;
+    const gl::PatchBatching batching = drawBatching == DrawBatching::Auto
+                                           ? gl::PatchBatching::forDriver(glThread_->contextDescription())
+                                           : gl::PatchBatching::forced(drawBatching == DrawBatching::On);
     stats.drawBatching = batching.describe();
     const gl::PassTiming timing = settings.values().passTimings ? passTiming_ : gl::PassTiming::Off;
     stats.passTiming = gl::toString(timing);
@@ -679,7 +681,7 @@ RenderResult Renderer::renderSamples(const Scene& scene, const CameraView& camer
                                     "lens or clipping range)");
     checkFrameFitsMemory(camera.imageWidth, camera.imageHeight, settings, outputs.ids, outputs.depth, 0,
                          availableMemory());
-    if (control.preview && settings.values().shadowMode != "off")
+    if (control.preview && settings.values().shadowMode != ShadowMode::Off)
         throw std::invalid_argument("a preview frame must not cast shadows (shadowMode=off): it keeps the full "
                                     "frames' shadow maps as they are");
     if (control.previewCurveStride < 1 || (!control.preview && control.previewCurveStride != 1))

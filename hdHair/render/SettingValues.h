@@ -3,70 +3,100 @@
 // passes' inputs and the tools read. RenderSettings fills it once from the
 // descriptors (each descriptor names the field it fills, RenderSettings.cpp),
 // so a misspelt setting is a compile error and a setting's name exists once,
-// in its descriptor. Reading by name (RenderSettings::getToken and friends)
+// in its descriptor. Token settings are enums (SettingTokens.h): no code
+// compares a setting with text. Reading by name (RenderSettings::getToken and friends)
 // is for what is generic over the table: --stats, --explain, Hydra's
 // render-setting map, the quality presets.
 
 #include <string>
+#include <type_traits>
+#include <utility>
 #include <variant>
+#include <vector>
+
+#include "hdHair/base/TokenTable.h"
+#include "hdHair/image/ColorSpaces.h"
+#include "hdHair/render/SettingTokens.h"
 
 namespace hdhair {
 
 struct SettingValues {
-    std::string quality;
-    std::string tessellation;
+    Quality quality = Quality::Default;
+    Tessellation tessellation = Tessellation::ScreenError;
     double tessellationTolerance = 0.0;
     double pixelsPerSegment = 0.0;
     int maxSegmentsPerSpan = 0;
     int meshRefineLevel = 0;
-    std::string transparency;
+    TransparencyPath transparency = TransparencyPath::BinSorted;
     int sortBins = 0;
     double minPixelWidth = 0.0;
     int msaaSamples = 0;
     int exactMemoryMB = 0;
-    std::string exactOverflow;
-    std::string strandRaster;
+    ExactOverflow exactOverflow = ExactOverflow::FallBack;
+    StrandRasterSetting strandRaster = StrandRasterSetting::Auto;
     double strandRasterMaxPixelWidth = 0.0;
     double strandRasterMaxFragmentsPerSpan = 0.0;
     int strandRasterMemoryMB = 0;
     int supersampling = 1;
     int lightsPerPass = 0;
-    std::string shadingModel;
+    ShadingModel shadingModel = ShadingModel::KajiyaKay;
     double kajiyaKayDiffuse = 0.0;    // kajiyaKay:diffuse
     double kajiyaKaySpecular = 0.0;   // kajiyaKay:specular
     double kajiyaKayShininess = 0.0;  // kajiyaKay:shininess
-    std::string marschnerAzimuthal;   // marschner:azimuthal
-    std::string multipleScattering;
+    MarschnerAzimuthal marschnerAzimuthal = MarschnerAzimuthal::Auto;  // marschner:azimuthal
+    MultipleScattering multipleScattering = MultipleScattering::Auto;
     double multipleScatteringForwardDensity = 0.0;  // multipleScattering:forwardDensity
     double multipleScatteringBackDensity = 0.0;     // multipleScattering:backDensity
-    std::string shadowMode;
+    ShadowMode shadowMode = ShadowMode::DeepOpacity;
     int shadowLayers = 0;
     int shadowMapResolution = 0;
     double shadowTessellationTolerance = 0.0;
-    std::string shadowStrandLines;
+    ShadowStrandLines shadowStrandLines = ShadowStrandLines::Auto;
     int shadowMemoryMB = 0;
-    std::string shadowLayerSpacing;
+    ShadowLayerSpacing shadowLayerSpacing = ShadowLayerSpacing::Linear;
     double shadowLayerDepth = 0.0;
-    std::string shadowFilter;
-    std::string shadowSampling;
-    std::string domeLighting;
+    ShadowFilter shadowFilter = ShadowFilter::Bilinear;
+    ShadowSampling shadowSampling = ShadowSampling::Auto;
+    DomeLightingMode domeLighting = DomeLightingMode::Srbf;
     int domeLights = 0;
-    std::string domeShadowFilter;
+    DomeShadowFilter domeShadowFilter = DomeShadowFilter::Mipmap;
     int domeSampledLights = 0;
     int domeShadowLights = 0;
-    std::string cameraLight;
-    std::string cameraLightShadows;
-    std::string drawBatching;
+    CameraLightSetting cameraLight = CameraLightSetting::Auto;
+    CameraLightShadows cameraLightShadows = CameraLightShadows::Off;
+    DrawBatching drawBatching = DrawBatching::Auto;
     bool specializeShaders = true;
     bool passTimings = false;
-    std::string framing;
+    FramingStyle framing = FramingStyle::FitAll;
     int interactiveBudgetMs = 0;
-    std::string renderingSpace;
+    RenderingSpace renderingSpace = RenderingSpace::LinearRec709;
 };
+
+// A token setting's field, through its enum's table: how validated text is
+// stored in it, how it reads back, and every value it takes.
+struct TokenField {
+    void (*assign)(SettingValues& values, const std::string& text) = nullptr;
+    const char* (*read)(const SettingValues& values) = nullptr;
+    std::vector<std::string> (*names)() = nullptr;
+    // Whether this is the field `member` (RenderSettings::setValue finds its descriptor so).
+    const void* (*address)(const SettingValues& values) = nullptr;
+};
+
+// The TokenField of an enum member of SettingValues: tokenField<&SettingValues::shadowMode>().
+template <auto Member>
+TokenField tokenField() {
+    using Enum = std::remove_cv_t<std::remove_reference_t<decltype(std::declval<SettingValues&>().*Member)>>;
+    static_assert(HasTokenTable<Enum>::value, "a token setting's enum needs a TokenTable");
+    TokenField field;
+    field.assign = [](SettingValues& values, const std::string& text) { parseToken(text, &(values.*Member)); };
+    field.read = [](const SettingValues& values) { return tokenName(values.*Member); };
+    field.names = [] { return tokenNames<Enum>(); };
+    field.address = [](const SettingValues& values) -> const void* { return &(values.*Member); };
+    return field;
+}
 
 // The field a descriptor fills; its alternative matches the descriptor's
 // SettingType (Float, Int, Bool, Token in that order).
-using SettingField = std::variant<double SettingValues::*, int SettingValues::*, bool SettingValues::*,
-                                  std::string SettingValues::*>;
+using SettingField = std::variant<double SettingValues::*, int SettingValues::*, bool SettingValues::*, TokenField>;
 
 }  // namespace hdhair

@@ -13,15 +13,6 @@
 
 namespace hdhair {
 
-const char* toString(ShadowMode mode) {
-    switch (mode) {
-    case ShadowMode::DeepOpacity: return "deepOpacity";
-    case ShadowMode::Reference: return "reference";
-    case ShadowMode::Off: return "off";
-    }
-    return "off";
-}
-
 std::string ShadowPlan::resourceOf(const PlannedShadow& shadow) const {
     return (mode == ShadowMode::Reference ? "shadowFragments " : "deepOpacity ") + shadow.key;
 }
@@ -47,7 +38,7 @@ namespace {
 // bear's and Ratboy's spans, which the error rule cuts about as finely
 // anyway), else looks up per fragment; fragment, and reference shadows,
 // always per fragment.
-void planShadowSampling(ShadowPlan& shadows, const std::string& sampling, const StrandSummary& strands) {
+void planShadowSampling(ShadowPlan& shadows, ShadowSampling sampling, const StrandSummary& strands) {
     double finestTexel = 0.0;
     for (const PlannedShadow& shadow : shadows.lights) {
         if (!shadow.view.valid) continue;
@@ -64,13 +55,13 @@ void planShadowSampling(ShadowPlan& shadows, const std::string& sampling, const 
     const std::string counted = fmt::format("spans cut to {} texels of the finest map ({:.3g}) would average {:.2f} "
                                             "segments",
                                             kVertexShadowTexels, longest, segments);
-    if (sampling == "fragment") {
+    if (sampling == ShadowSampling::Fragment) {
         shadows.sampling = "shadows looked up per fragment (shadowSampling=fragment)";
-    } else if (sampling == "vertex" || segments <= kVertexShadowSegmentsPerSpan) {
+    } else if (sampling == ShadowSampling::Vertex || segments <= kVertexShadowSegmentsPerSpan) {
         shadows.perVertex = true;
         shadows.vertexSegmentLength = longest;
         shadows.sampling = fmt::format("shadows looked up per tessellated point: {} (shadowSampling={})", counted,
-                                       sampling);
+                                       toString(sampling));
     } else {
         shadows.sampling = fmt::format("shadows looked up per fragment: {}, over {} (shadowSampling=auto)", counted,
                                        kVertexShadowSegmentsPerSpan);
@@ -91,24 +82,27 @@ void planShadowSampling(ShadowPlan& shadows, const std::string& sampling, const 
 // keeps every span on it, the path that check compares against; `compute`
 // rasterises every span in compute (gl/LightViewRaster.h), on every core of
 // llvmpipe; `auto` is compute unless strandRaster=hardware, then drawn.
-void planStrandLines(PlannedShadow& shadow, const ShadowPlan& shadows, const std::string& setting, double maxWidth) {
+void planStrandLines(PlannedShadow& shadow, const ShadowPlan& shadows, ShadowStrandLines setting, double maxWidth) {
     const ShadowLightView& view = shadow.view;
     if (!view.valid || shadows.mode != ShadowMode::DeepOpacity) return;
     const double texel = view.orthographic ? view.texelSize : view.texelSize * view.nearDepth;
     shadow.widestTexels = texel > 0.0 ? maxWidth / texel : std::numeric_limits<double>::infinity();
-    shadow.strandLines = setting != "off" && shadows.minPixelWidth <= 1.0 && shadow.widestTexels <= kMaxStrandLineTexels;
-    shadow.straightSpans = shadow.strandLines && setting != "tessellated";
+    shadow.strandLines = setting != ShadowStrandLines::Off && shadows.minPixelWidth <= 1.0 &&
+                         shadow.widestTexels <= kMaxStrandLineTexels;
+    shadow.straightSpans = shadow.strandLines && setting != ShadowStrandLines::Tessellated;
     if (!shadow.straightSpans) return;
     // The compute rasteriser: asked for (compute), or with the camera's
     // (auto, unless strandRaster=hardware); its layer sums must fit.
-    const bool asked = setting == "compute" || (setting == "auto" && shadows.rasterSetting != "hardware");
+    const bool asked = setting == ShadowStrandLines::Compute ||
+                       (setting == ShadowStrandLines::Auto && shadows.rasterSetting != StrandRasterSetting::Hardware);
     const double sumBytes = double(gl::LightViewRaster::layerSumBytes(shadows.resolution, shadows.layers));
     const bool fits = sumBytes <= 0.5 * double(shadows.memoryMB) * 1024.0 * 1024.0;
     shadow.computeLines = asked && fits;
     shadow.rasterReason =
-        !asked ? (setting == "drawn" ? "drawn (shadowStrandLines=drawn)" : "drawn (strandRaster=hardware)")
-        : fits ? (setting == "compute" ? "rasterised in compute (shadowStrandLines=compute)"
-                                       : fmt::format("rasterised in compute (strandRaster={})", shadows.rasterSetting))
+        !asked ? (setting == ShadowStrandLines::Drawn ? "drawn (shadowStrandLines=drawn)" : "drawn (strandRaster=hardware)")
+        : fits ? (setting == ShadowStrandLines::Compute
+                      ? "rasterised in compute (shadowStrandLines=compute)"
+                      : fmt::format("rasterised in compute (strandRaster={})", toString(shadows.rasterSetting)))
                : fmt::format("drawn: the compute rasteriser's layer sums ({:.0f} MB) need more than half of "
                              "shadowMemoryMB={}",
                              sumBytes / (1024.0 * 1024.0), shadows.memoryMB);
@@ -119,14 +113,11 @@ void planStrandLines(PlannedShadow& shadow, const ShadowPlan& shadows, const std
 void planShadows(FrameRecipe& recipe, const RenderSettings& settings, const StrandSummary& strands, bool anyMeshes) {
     const SettingValues& values = settings.values();
     ShadowPlan& shadows = recipe.shadows;
-    shadows.mode = values.shadowMode == "reference" ? ShadowMode::Reference
-                   : values.shadowMode == "off"     ? ShadowMode::Off
-                                                    : ShadowMode::DeepOpacity;
+    shadows.mode = values.shadowMode;
     shadows.layers = values.shadowLayers;
-    shadows.boundaries = deepOpacityLayerBoundaries(
-        shadows.layers, values.shadowLayerSpacing == "uniform" ? ShadowLayerSpacing::Uniform : ShadowLayerSpacing::Linear);
+    shadows.boundaries = deepOpacityLayerBoundaries(shadows.layers, values.shadowLayerSpacing);
     shadows.layerDepth = values.shadowLayerDepth;
-    shadows.bilinear = values.shadowFilter == "bilinear";
+    shadows.bilinear = values.shadowFilter == ShadowFilter::Bilinear;
     shadows.samplingSetting = values.shadowSampling;
     shadows.resolution = values.shadowMapResolution;
     shadows.minPixelWidth = values.minPixelWidth;
@@ -162,7 +153,7 @@ void planShadows(FrameRecipe& recipe, const RenderSettings& settings, const Stra
         shadows.lights.push_back(std::move(shadow));
     }
     planShadowSampling(shadows, shadows.samplingSetting, strands);
-    if (shadows.mode == ShadowMode::DeepOpacity && values.domeShadowFilter == "mipmap")
+    if (shadows.mode == ShadowMode::DeepOpacity && values.domeShadowFilter == DomeShadowFilter::Mipmap)
         for (size_t i = 0; i < recipe.lights.lights.size() && !shadows.convolvedOpacity; ++i)
             shadows.convolvedOpacity = recipe.lights.lights[i].isSrbf() && shadows.shadowOf(i) >= 0;
 }

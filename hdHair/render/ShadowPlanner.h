@@ -13,6 +13,7 @@
 #include <tuple>
 #include <vector>
 
+#include "hdHair/render/SettingTokens.h"
 #include "hdHair/render/ShadowLightView.h"
 
 namespace hdhair {
@@ -20,10 +21,6 @@ namespace hdhair {
 struct FrameRecipe;
 class RenderSettings;
 struct StrandSummary;
-
-// How lights shadow the hair (the shadowMode setting).
-enum class ShadowMode { DeepOpacity, Reference, Off };
-const char* toString(ShadowMode mode);
 
 // shadowSampling: vertex shadows' points at most this many texels of the
 // finest map apart, and the most segments a span that cut may average for
@@ -71,7 +68,7 @@ struct ShadowPlan {
     // Deep opacity lookups at the tessellated points (shadowSampling), and
     // the longest a segment may be for them (world units; 0: the error
     // rule's cut): planShadows decides both.
-    std::string samplingSetting;   // shadowSampling
+    ShadowSampling samplingSetting = ShadowSampling::Auto;
     bool perVertex = false;
     double vertexSegmentLength = 0.0;
     std::string sampling;  // which, and why, for --explain; empty without deep opacity maps
@@ -80,11 +77,11 @@ struct ShadowPlan {
     double tessellationTolerance = 0.5;  // shadowTessellationTolerance: texels (screenError only)
     // How the light views tessellate, as the camera does: tessellation,
     // pixelsPerSegment (projectedLength) and maxSegmentsPerSpan.
-    std::string tessellation;
+    Tessellation tessellation = Tessellation::ScreenError;
     double pixelsPerSegment = 8.0;
     int maxSegmentsPerSpan = 8;
-    std::string strandLinesSetting;  // shadowStrandLines
-    std::string rasterSetting;       // strandRaster: which rasteriser draws the light views' lines
+    ShadowStrandLines strandLinesSetting = ShadowStrandLines::Auto;
+    StrandRasterSetting rasterSetting = StrandRasterSetting::Auto;  // strandRaster: who draws the light views' lines
     int memoryMB = 1024;           // shadowMemoryMB
     int capacity = 0;              // map slots the storage holds (set by the renderer)
     std::vector<PlannedShadow> lights;

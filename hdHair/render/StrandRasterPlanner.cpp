@@ -93,20 +93,18 @@ uint64_t expectedFragments(const StrandSummary& strands) {
 
 }  // namespace
 
-const char* toString(StrandRaster raster) { return raster == StrandRaster::Compute ? "compute" : "hardware"; }
-
 void planStrandRaster(FrameRecipe& recipe, const SettingValues& settings, const StrandSummary& strands,
                       const std::string& approximationAskedFor) {
-    const std::string& requested = settings.strandRaster;
+    const StrandRasterSetting requested = settings.strandRaster;
     std::string& why = recipe.strandRasterReason;
     recipe.strandRaster = StrandRaster::Hardware;
     recipe.strandRasterMemoryMB = settings.strandRasterMemoryMB;
     recipe.listedByHardware.clear();
     if (recipe.transparency == TransparencyPath::Opaque) {
         why = "hardware: the opaque path draws depth-tested ribbons, with nothing to composite";
-    } else if (requested == "hardware") {
+    } else if (requested == StrandRasterSetting::Hardware) {
         why = "hardware: strandRaster=hardware";
-    } else if (requested == "compute") {
+    } else if (requested == StrandRasterSetting::Compute) {
         recipe.strandRaster = StrandRaster::Compute;
         why = "compute: strandRaster=compute";
     } else if (!approximationAskedFor.empty() && recipe.transparency != TransparencyPath::Exact) {

@@ -10,14 +10,22 @@
 
 #include <string>
 
+#include "hdHair/render/SettingTokens.h"
+
 namespace hdhair {
 
 struct FrameRecipe;
 struct SettingValues;
 struct StrandSummary;
 
+// Who the plan gives the blended strands (the strandRaster setting asks
+// for it: StrandRasterSetting).
 enum class StrandRaster { Hardware, Compute };
-const char* toString(StrandRaster raster);
+template <>
+struct TokenTable<StrandRaster> {
+    static constexpr std::array<TokenName<StrandRaster>, 2> names{
+        {{StrandRaster::Hardware, "hardware"}, {StrandRaster::Compute, "compute"}}};
+};
 
 // Sets the recipe's strandRaster, strandRasterReason, strandRasterMemoryMB
 // and listedByHardware (auto: per prim, by strands.prims); after

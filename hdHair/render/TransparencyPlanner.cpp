@@ -7,22 +7,12 @@
 
 namespace hdhair {
 
-const char* toString(TransparencyPath path) {
-    switch (path) {
-    case TransparencyPath::Opaque: return "opaque";
-    case TransparencyPath::BinSorted: return "binSorted";
-    case TransparencyPath::Exact: return "exact";
-    case TransparencyPath::Unsorted: return "unsorted";
-    }
-    return "opaque";
-}
-
 void planTransparency(FrameRecipe& recipe, const SettingValues& settings, const StrandSummary& strands) {
-    const std::string& requested = settings.transparency;
+    const TransparencyPath requested = settings.transparency;
     const double threshold = settings.minPixelWidth;
     const bool needsBlending = !strands.allOpaque || strands.minProjectedWidthPixels < threshold;
     std::string& why = recipe.transparencyReason;
-    if (requested == "opaque") {
+    if (requested == TransparencyPath::Opaque) {
         recipe.transparency = TransparencyPath::Opaque;
         why = "transparency=opaque: opacity and sub-pixel coverage ignored";
     } else if (!needsBlending) {
@@ -30,10 +20,10 @@ void planTransparency(FrameRecipe& recipe, const SettingValues& settings, const 
         why = fmt::format("every strand is opaque and at least {:.2f} px wide (>= minPixelWidth {}): no blending "
                           "or sorting needed",
                           strands.minProjectedWidthPixels, threshold);
-    } else if (requested == "exact") {
+    } else if (requested == TransparencyPath::Exact) {
         recipe.transparency = TransparencyPath::Exact;
         why = "per-pixel fragment lists sorted by depth (exact)";
-    } else if (requested == "unsorted") {
+    } else if (requested == TransparencyPath::Unsorted) {
         recipe.transparency = TransparencyPath::Unsorted;
         why = "pre-multiplied blending in authored order, unsorted";
     } else {
@@ -46,7 +36,7 @@ void planTransparency(FrameRecipe& recipe, const SettingValues& settings, const 
                            strands.minProjectedWidthPixels);
     if (recipe.transparency == TransparencyPath::Opaque) recipe.msaaSamples = settings.msaaSamples;
     recipe.exactMemoryMB = settings.exactMemoryMB;
-    recipe.exactOverflowFails = settings.exactOverflow == "fail";
+    recipe.exactOverflowFails = settings.exactOverflow == ExactOverflow::Fail;
 }
 
 }  // namespace hdhair

@@ -5,14 +5,13 @@
 
 #include <string>
 
+#include "hdHair/render/SettingTokens.h"
+
 namespace hdhair {
 
 struct FrameRecipe;
 struct SettingValues;
 struct StrandSummary;
-
-enum class TransparencyPath { Opaque, BinSorted, Exact, Unsorted };
-const char* toString(TransparencyPath path);
 
 // Sets the recipe's transparency, sortBins, msaaSamples, transparencyReason
 // and exact transparency's budget (exactMemoryMB, exactOverflowFails).

@@ -3,6 +3,7 @@
 // authored, plus its world transform. Nothing here is resolved or validated:
 // hdHair/curves/ does that, in one place, for every front end.
 
+#include <array>
 #include <map>
 #include <optional>
 #include <string>
@@ -12,6 +13,7 @@
 #include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>
 
+#include "hdHair/base/TokenTable.h"
 #include "hdHair/scene/Primvar.h"
 
 namespace hdhair {
@@ -20,12 +22,27 @@ enum class CurveType { Linear, Cubic };
 enum class CurveBasis { Bezier, Bspline, CatmullRom };
 enum class CurveWrap { Nonperiodic, Periodic, Pinned };
 
-const char* toString(CurveType type);
-const char* toString(CurveBasis basis);
-const char* toString(CurveWrap wrap);
-bool parseCurveType(const std::string& token, CurveType* out);
-bool parseCurveBasis(const std::string& token, CurveBasis* out);
-bool parseCurveWrap(const std::string& token, CurveWrap* out);
+// USD's tokens for them (UsdGeomTokens), parsed and printed through base/TokenTable.h.
+template <>
+struct TokenTable<CurveType> {
+    static constexpr std::array<TokenName<CurveType>, 2> names{{
+         {CurveType::Linear, "linear"},
+         {CurveType::Cubic, "cubic"}}};
+};
+template <>
+struct TokenTable<CurveBasis> {
+    static constexpr std::array<TokenName<CurveBasis>, 3> names{{
+         {CurveBasis::Bezier, "bezier"},
+         {CurveBasis::Bspline, "bspline"},
+         {CurveBasis::CatmullRom, "catmullRom"}}};
+};
+template <>
+struct TokenTable<CurveWrap> {
+    static constexpr std::array<TokenName<CurveWrap>, 3> names{{
+         {CurveWrap::Nonperiodic, "nonperiodic"},
+         {CurveWrap::Periodic, "periodic"},
+         {CurveWrap::Pinned, "pinned"}}};
+};
 
 struct CurvesPrim {
     std::string path;                       // "/World/hair"

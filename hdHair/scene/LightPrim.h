@@ -2,17 +2,29 @@
 // A UsdLux light with its inputs in USD's units. How each kind is evaluated is
 // the shading code's business; the scene only records what was authored.
 
+#include <array>
 #include <string>
 #include <tuple>
 
 #include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>
 
+#include "hdHair/base/TokenTable.h"
+
 namespace hdhair {
 
 enum class LightType { Distant, Sphere, Rect, Disk, Dome };
 
-const char* toString(LightType type);
+// The UsdLux schema names.
+template <>
+struct TokenTable<LightType> {
+    static constexpr std::array<TokenName<LightType>, 5> names{{
+         {LightType::Distant, "DistantLight"},
+         {LightType::Sphere, "SphereLight"},
+         {LightType::Rect, "RectLight"},
+         {LightType::Disk, "DiskLight"},
+         {LightType::Dome, "DomeLight"}}};
+};
 
 struct LightPrim {
     std::string path;

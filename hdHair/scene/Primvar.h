@@ -4,9 +4,12 @@
 // normal3f, int, ...) is stored as a flat float array with a tuple size, so a
 // single resolution path serves them all (hdHair/curves/PrimvarResolution.h).
 
+#include <array>
 #include <string>
 #include <tuple>
 #include <vector>
+
+#include "hdHair/base/TokenTable.h"
 
 namespace hdhair {
 
@@ -14,9 +17,15 @@ namespace hdhair {
 // and treated as varying on curves, as Storm does.
 enum class Interpolation { Constant, Uniform, Varying, Vertex, FaceVarying };
 
-const char* toString(Interpolation interpolation);
-// Returns false for an unknown token.
-bool parseInterpolation(const std::string& token, Interpolation* out);
+template <>
+struct TokenTable<Interpolation> {
+    static constexpr std::array<TokenName<Interpolation>, 5> names{{
+         {Interpolation::Constant, "constant"},
+         {Interpolation::Uniform, "uniform"},
+         {Interpolation::Varying, "varying"},
+         {Interpolation::Vertex, "vertex"},
+         {Interpolation::FaceVarying, "faceVarying"}}};
+};
 
 struct Primvar {
     std::string name;                 // without the "primvars:" prefix, e.g. "displayColor"

@@ -13,17 +13,6 @@ uint64_t nextVersion() {
 
 }  // namespace
 
-const char* toString(LightType type) {
-    switch (type) {
-    case LightType::Distant: return "DistantLight";
-    case LightType::Sphere: return "SphereLight";
-    case LightType::Rect: return "RectLight";
-    case LightType::Disk: return "DiskLight";
-    case LightType::Dome: return "DomeLight";
-    }
-    return "DistantLight";
-}
-
 template <typename Prim>
 void Scene::set(Entries<Prim>& entries, Prim prim) {
     // A path names one prim: drop any prim of another kind at the same path.

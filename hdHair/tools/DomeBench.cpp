@@ -83,7 +83,7 @@ MeasuredRow measure(Renderer& renderer, Scene& scene, const CameraView& camera, 
     Diagnostics diagnostics;
     std::fprintf(stderr, "hdhair-bench: dome: %s ...\n", what.c_str());
     MeasuredRow row;
-    if (settings.values().domeLighting == "srbf") {
+    if (settings.values().domeLighting == DomeLightingMode::Srbf) {
         RenderResult first = renderer.render(scene, camera, settings, diagnostics);
         for (const PlannedDome& dome : first.plan.domes) row.fitError = dome.fitError;
     }

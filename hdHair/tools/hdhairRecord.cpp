@@ -130,7 +130,7 @@ double millisecondsSince(Clock::time_point start) {
 DisplayTransform displayTransformFor(const Options& options, RenderingSpace renderingSpace) {
     DisplayTransformOptions display;
     display.renderingSpace = toString(renderingSpace);
-    if (!parseColorCorrectionMode(options.colorCorrectionMode, &display.mode))
+    if (!parseToken(options.colorCorrectionMode, &display.mode))
         throw std::invalid_argument("--colorCorrectionMode must be disabled, sRGB or openColorIO, not '" +
                                     options.colorCorrectionMode + "'");
     const bool anyOcio = !options.ocioConfig.empty() || !options.ocioDisplay.empty() || !options.ocioView.empty() ||
@@ -268,12 +268,11 @@ std::optional<CameraView> cameraPrimView(const Options& options, const Scene& sc
 // the framing setting says.
 CameraView framingView(const Options& options, const RenderSettings& settings, const Scene& scene,
                        const SceneBounds& bounds) {
-    FramingStyle style = settings.values().framing == "usdrecord" ? FramingStyle::UsdRecord : FramingStyle::FitAll;
-    return frameBounds(bounds.min, bounds.max, scene.info().upAxis, options.imageWidth, style);
+    return frameBounds(bounds.min, bounds.max, scene.info().upAxis, options.imageWidth, settings.values().framing);
 }
 
 std::string cameraDescription(const Options& options, const RenderSettings& settings) {
-    return options.camera.empty() ? "framing camera (" + settings.values().framing + ")" : options.camera;
+    return options.camera.empty() ? fmt::format("framing camera ({})", toString(settings.values().framing)) : options.camera;
 }
 
 // The OpenUSD path: UsdStage, UsdImagingGL and the hdHair plugin, as
@@ -286,7 +285,7 @@ int runThroughUsdImaging(const Options& options, const usda::SceneReadOptions& p
                              "OpenUSD the plugin renders in its own context); the display transform runs on the "
                              "CPU\n");
     Complexity complexity = Complexity::Low;
-    parseComplexity(options.complexity, &complexity);
+    parseToken(options.complexity, &complexity);
     nlohmann::json allStats = nlohmann::json::array();
     size_t printed = 0;
     nlohmann::json warnings = nlohmann::json::array();  // every one, for --stats
@@ -530,11 +529,10 @@ int checkInput(const Options& options, const usda::SceneReadOptions& readOptions
 
 int run(const Options& options) {
     Complexity complexity;
-    if (!parseComplexity(options.complexity, &complexity))
-        throw std::invalid_argument("--complexity must be low, medium, high or veryhigh");
-    if (Quality quality; !options.quality.empty() && !parseQuality(options.quality, &quality))
-        throw std::invalid_argument("--quality must be preview, default, high or reference, not '" + options.quality +
-                                    "'");
+    if (!parseToken(options.complexity, &complexity))
+        throw std::invalid_argument("--complexity must be " + tokenChoices<Complexity>());
+    if (Quality quality; !options.quality.empty() && !parseToken(options.quality, &quality))
+        throw std::invalid_argument("--quality must be " + tokenChoices<Quality>() + ", not '" + options.quality + "'");
     RenderSettings settings = RenderSettings::fromAssignments(complexity, settingAssignments(options));
     const RenderSettings asked = RenderSettings::fromAssignments(complexity, options.settings);
     if (asked.values().interactiveBudgetMs != 0 && asked.isExplicitlySet("interactiveBudgetMs"))

@@ -305,7 +305,7 @@ std::optional<Primvar> Reader::readPrimvar(const Prim& prim, const std::string& 
     auto interpolation = attribute.metadata.find("interpolation");
     if (interpolation != attribute.metadata.end()) {
         const std::string token = interpolation->second.stringOr();
-        if (parseInterpolation(token, &primvar.interpolation)) {
+        if (parseToken(token, &primvar.interpolation)) {
             primvar.interpolationAuthored = true;
         } else {
             warn(prim, attributeName, unknownTokenRepair("interpolation", token, toString(defaultInterpolation)));
@@ -372,15 +372,15 @@ void Reader::readCurves(const Prim& prim, const Inherited& state) {
     // An unknown token keeps the schema fallback (BasisCurves: cubic, bezier,
     // nonperiodic), as UsdImaging's basisCurvesAdapter does.
     if (auto token = readToken(prim, "type")) {
-        if (!parseCurveType(*token, &curves.type))
+        if (!parseToken(*token, &curves.type))
             warn(prim, "type", unknownTokenRepair("curve type", *token, "cubic"));
     }
     if (auto token = readToken(prim, "basis")) {
-        if (!parseCurveBasis(*token, &curves.basis))
+        if (!parseToken(*token, &curves.basis))
             warn(prim, "basis", unknownTokenRepair("curve basis", *token, "bezier"));
     }
     if (auto token = readToken(prim, "wrap")) {
-        if (!parseCurveWrap(*token, &curves.wrap))
+        if (!parseToken(*token, &curves.wrap))
             warn(prim, "wrap", unknownTokenRepair("curve wrap", *token, "nonperiodic"));
     }
     curves.curveVertexCounts = readIntArray(prim, "curveVertexCounts");

@@ -84,7 +84,7 @@ StageRenderRequest inProcessRequest(const TestCase& testCase) {
         else if (option == "-w") request.imageWidth = std::stoi(value);
         else if (option == "-s") request.settings.push_back(value);
         else if (option == "--complexity") {
-            EXPECT_TRUE(parseComplexity(value, &request.complexity)) << value;
+            EXPECT_TRUE(parseToken(value, &request.complexity)) << value;
         } else {
             ADD_FAILURE() << testCase.name << ": no in-process form of " << option;
         }
@@ -203,7 +203,7 @@ TEST(CaseReport, APerturbedRenderFailsWithStatisticsAndImages) {
         for (int x = 0; x < image.width; ++x)
             for (int c = 0; c < 3; ++c) image.pixels[4 * (size_t(y) * size_t(image.width) + size_t(x)) + size_t(c)] *= 0.8f;
     RenderingSpace space = RenderingSpace::LinearRec709;
-    ASSERT_TRUE(parseRenderingSpace(colorSpaceOf(actualExr), &space));
+    ASSERT_TRUE(parseToken(colorSpaceOf(actualExr), &space));
     writeImage(image, actualExr, {space, nullptr, nullptr});
 
     const CaseVerdict verdict =

@@ -1,6 +1,8 @@
+#include <algorithm>
 #include <set>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 #include <variant>
 
 #include <gtest/gtest.h>
@@ -12,6 +14,16 @@
 using namespace hdhair;
 
 namespace {
+
+// Where a descriptor's field lies in `values`.
+const void* fieldAddress(const SettingDescriptor& descriptor, const SettingValues& values) {
+    return std::visit(
+        [&](auto field) -> const void* {
+            if constexpr (std::is_same_v<decltype(field), TokenField>) return field.address(values);
+            else return &(values.*field);
+        },
+        descriptor.field);
+}
 
 std::string errorOf(RenderSettings& settings, const std::string& assignment) {
     try {
@@ -40,11 +52,8 @@ TEST(RenderSettings, EveryDescriptorFillsOneTypedFieldOfItsType) {
         EXPECT_EQ(descriptor.field.index(), size_t(descriptor.type)) << descriptor.name;
         // Distinct fields have distinct offsets in one SettingValues.
         SettingValues values;
-        const size_t offset = std::visit(
-            [&](auto field) {
-                return size_t(reinterpret_cast<const char*>(&(values.*field)) - reinterpret_cast<const char*>(&values));
-            },
-            descriptor.field);
+        const size_t offset = size_t(static_cast<const char*>(fieldAddress(descriptor, values)) -
+                                     reinterpret_cast<const char*>(&values));
         EXPECT_TRUE(fields.insert(offset).second) << descriptor.name << " shares a field";
     }
 }
@@ -53,7 +62,7 @@ TEST(RenderSettings, EveryDescriptorFillsOneTypedFieldOfItsType) {
 TEST(RenderSettings, TypedValuesFollowAssignmentsComplexityAndPresets) {
     RenderSettings settings;
     EXPECT_EQ(settings.values().shadowLayers, 3);
-    EXPECT_EQ(settings.values().cameraLight, "auto");
+    EXPECT_EQ(settings.values().cameraLight, CameraLightSetting::Auto);
     EXPECT_TRUE(settings.values().specializeShaders);
     settings.set("quality", "high");
     EXPECT_EQ(settings.values().shadowLayers, settings.getInt("shadowLayers"));
@@ -66,8 +75,63 @@ TEST(RenderSettings, TypedValuesFollowAssignmentsComplexityAndPresets) {
     EXPECT_TRUE(settings.values().passTimings);
     const nlohmann::json json = settings.toJson();
     for (const SettingDescriptor& descriptor : RenderSettings::descriptors())
-        std::visit([&](auto field) { EXPECT_EQ(json[descriptor.name], settings.values().*field) << descriptor.name; },
-                   descriptor.field);
+        std::visit(
+            [&](auto field) {
+                if constexpr (std::is_same_v<decltype(field), TokenField>)
+                    EXPECT_EQ(json[descriptor.name], field.read(settings.values())) << descriptor.name;
+                else
+                    EXPECT_EQ(json[descriptor.name], settings.values().*field) << descriptor.name;
+            },
+            descriptor.field);
+}
+
+// Every token setting is an enum whose table is the descriptor's list: each
+// listed value parses, reads back as itself, and the default is one of them.
+TEST(RenderSettings, TokenSettingsAreEnumsListedFromTheirTables) {
+    size_t tokenSettings = 0;
+    for (const SettingDescriptor& descriptor : RenderSettings::descriptors()) {
+        const TokenField* field = std::get_if<TokenField>(&descriptor.field);
+        ASSERT_EQ(field != nullptr, descriptor.type == SettingType::Token) << descriptor.name;
+        if (!field) continue;
+        ++tokenSettings;
+        EXPECT_EQ(descriptor.tokens, field->names()) << descriptor.name;
+        EXPECT_NE(std::find(descriptor.tokens.begin(), descriptor.tokens.end(), descriptor.defaultValue),
+                  descriptor.tokens.end())
+            << descriptor.name;
+        for (const std::string& token : descriptor.tokens) {
+            RenderSettings settings;
+            settings.set(descriptor.name, token);
+            EXPECT_STREQ(field->read(settings.values()), token.c_str()) << descriptor.name;
+            EXPECT_EQ(settings.getToken(descriptor.name), token);
+        }
+    }
+    EXPECT_EQ(tokenSettings, 20u);
+    // A misspelt value is refused by the table, whatever its case.
+    Quality quality = Quality::Default;
+    EXPECT_FALSE(parseToken("High", &quality));
+    EXPECT_EQ(quality, Quality::Default);
+    EXPECT_STREQ(toString(ShadowMode::DeepOpacity), "deepOpacity");
+    EXPECT_EQ(tokenChoices<ShadingModel>(), "kajiyaKay, marschner or flat");
+}
+
+// setValue sets a setting by its field, as if set explicitly, with the
+// value exactly (no text in between loses digits).
+TEST(RenderSettings, SetValueSetsTheFieldsSettingExplicitly) {
+    RenderSettings settings;
+    settings.setValue(&SettingValues::shadowMode, ShadowMode::Off);
+    settings.setValue(&SettingValues::pixelsPerSegment, 16.333333333333332);
+    settings.setValue(&SettingValues::lightsPerPass, 16);
+    settings.setValue(&SettingValues::passTimings, true);
+    EXPECT_EQ(settings.values().shadowMode, ShadowMode::Off);
+    EXPECT_EQ(settings.getToken("shadowMode"), "off");
+    EXPECT_TRUE(settings.isExplicitlySet("shadowMode"));
+    EXPECT_EQ(settings.values().pixelsPerSegment, 16.333333333333332);
+    EXPECT_EQ(settings.values().lightsPerPass, 16);
+    EXPECT_TRUE(settings.values().passTimings);
+    EXPECT_EQ(RenderSettings::descriptorOf(&SettingValues::marschnerAzimuthal).name, "marschner:azimuthal");
+    EXPECT_EQ(RenderSettings::descriptorOf(&SettingValues::kajiyaKayShininess).name, "kajiyaKay:shininess");
+    // Out of range is refused as from text.
+    EXPECT_THROW(settings.setValue(&SettingValues::lightsPerPass, 17), std::invalid_argument);
 }
 
 TEST(RenderSettings, ComplexityScalesTessellationUnlessSetExplicitly) {
@@ -220,8 +284,8 @@ TEST(QualityPresets, UnknownPresetsGiveOneLineReasons) {
     EXPECT_EQ(errorOf(settings, "exactOverflow=ignore"),
               "setting 'exactOverflow' expects one of fallBack, fail, got 'ignore'");
     Quality quality;
-    EXPECT_FALSE(parseQuality("Reference", &quality));
-    EXPECT_TRUE(parseQuality("reference", &quality));
+    EXPECT_FALSE(parseToken("Reference", &quality));
+    EXPECT_TRUE(parseToken("reference", &quality));
     EXPECT_EQ(quality, Quality::Reference);
 }
 

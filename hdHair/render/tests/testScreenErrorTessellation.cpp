@@ -96,7 +96,7 @@ std::vector<CapturedVertex> tessellate(const PreparedCurves& curves, const Camer
         gl::StrandGeometry geometry;
         geometry.reserve(curves.segmentCount(), curves.controlPoints.size());
         geometry.write(0, 0, curves, 0);
-        geometry.setBatching(gl::PatchBatching::choose("auto", reinterpret_cast<const char*>(glGetString(GL_RENDERER))));
+        geometry.setBatching(gl::PatchBatching::forDriver(reinterpret_cast<const char*>(glGetString(GL_RENDERER))));
         geometry.bind();
         gl::Buffer order = gl::createBuffer(nullptr, sizeof(uint32_t), GL_DYNAMIC_STORAGE_BIT);
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, order.get());
