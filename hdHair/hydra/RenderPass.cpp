@@ -232,7 +232,7 @@ void HdHairRenderPass::_TakeFinished(Layout const& current, HdRenderPassAovBindi
                  result.color.width, result.color.height, static_cast<unsigned long long>(result.stats.curves),
                  static_cast<unsigned long long>(result.stats.segments), result.stats.transparency.c_str(),
                  finished->milliseconds);
-        if (final) _renderParam->SetLastFrame(result.stats.toJson().dump(), result.plan.describe());
+        if (final) _renderParam->SetLastFrame(result.stats.toJson().dump(), result.describePlans());
         _deferredIds = nullptr;
         if (deferredIdsRequest && result.primIds.empty())
             _deferredIds = std::make_shared<DeferredIds>(_renderParam->GetRenderer(), _renderParam->GetRendererMutex(),

@@ -62,10 +62,6 @@ const FramePass* FrameGraph::find(const std::string& name) const {
     return it == passes_.end() ? nullptr : &*it;
 }
 
-FramePass* FrameGraph::find(const std::string& name) {
-    return const_cast<FramePass*>(static_cast<const FrameGraph*>(this)->find(name));
-}
-
 bool FrameGraph::isEnabled(const std::string& name) const {
     const FramePass* pass = find(name);
     return pass && pass->enabled;
@@ -75,10 +71,6 @@ const FramePass* FrameGraph::find(PassKind kind, size_t subject) const {
     auto it = std::find_if(passes_.begin(), passes_.end(),
                            [&](const FramePass& pass) { return pass.kind == kind && pass.subject == subject; });
     return it == passes_.end() ? nullptr : &*it;
-}
-
-FramePass* FrameGraph::find(PassKind kind, size_t subject) {
-    return const_cast<FramePass*>(static_cast<const FrameGraph*>(this)->find(kind, subject));
 }
 
 bool FrameGraph::isEnabled(PassKind kind, size_t subject) const {
@@ -106,12 +98,13 @@ std::string FrameGraph::describe() const {
     return text;
 }
 
-nlohmann::json FrameGraph::toJson() const {
+nlohmann::json FrameGraph::toJson(const std::vector<double>& milliseconds) const {
     nlohmann::json json = nlohmann::json::array();
-    for (const FramePass& pass : passes_) {
+    for (size_t i = 0; i < passes_.size(); ++i) {
+        const FramePass& pass = passes_[i];
         nlohmann::json entry = {{"pass", pass.name},       {"enabled", pass.enabled}, {"reason", reasonFor(pass)},
                                 {"reads", pass.reads},     {"writes", pass.writes}};
-        if (pass.enabled) entry["milliseconds"] = pass.milliseconds;
+        if (pass.enabled) entry["milliseconds"] = milliseconds.size() == passes_.size() ? milliseconds[i] : 0.0;
         json.push_back(std::move(entry));
     }
     return json;

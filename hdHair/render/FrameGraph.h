@@ -51,7 +51,6 @@ struct FramePass {
     bool wanted = false;               // the scene and settings call for it
     std::string reason;                // why it is wanted, or why not
     bool enabled = false;              // wanted, and its output is read: it runs (compile())
-    double milliseconds = 0.0;         // measured when it ran (with timing on)
     // What the pass works on: its light batch (LightBatch, from 0), or its
     // light's planned shadow (the shadow-map kinds: ShadowPlan::lights).
     size_t subject = 0;
@@ -73,21 +72,21 @@ public:
     // provides (a wiring mistake, never bad input).
     void compile();
 
+    // Once compiled, the graph is read only: a frame runs it as it is.
     const std::vector<FramePass>& passes() const { return passes_; }
-    std::vector<FramePass>& passes() { return passes_; }
     const std::vector<FrameResource>& outputs() const { return outputs_; }
     // By label (--explain's names: tests and tools).
     const FramePass* find(const std::string& name) const;
-    FramePass* find(const std::string& name);
     bool isEnabled(const std::string& name) const;
     // By kind and subject (what the renderer uses).
     const FramePass* find(PassKind kind, size_t subject = 0) const;
-    FramePass* find(PassKind kind, size_t subject = 0);
     bool isEnabled(PassKind kind, size_t subject = 0) const;
 
-    // One line per pass: on/off, reads -> writes, reason (and time).
+    // One line per pass: on/off, reads -> writes, reason.
     std::string describe() const;
-    nlohmann::json toJson() const;
+    // With each enabled pass's time when `milliseconds` has one per pass
+    // (FrameScheduler measures them; the graph does not keep them).
+    nlohmann::json toJson(const std::vector<double>& milliseconds = {}) const;
 
 private:
     // The pass's reason, and for a wanted pass that is not built, why not.

@@ -220,23 +220,24 @@ gl::ListedSegments listedSegments(const RenderPlan& plan, const StrandUploadPlan
     return {gl::joinedRanges(segments.hardware), gl::joinedRanges(segments.compute)};
 }
 
-// Draws the strands with the lights of one batch into `target`, over what
-// it holds (the meshes of that batch, or nothing), as the plan says. The
-// compute rasteriser over its memory budget warns and falls back to the
-// hardware path with the planned transparency (this batch and those after
-// it); exact transparency over its budget warns and falls back to the finest
-// bin sort. Either draws again, meshes first.
-void drawStrands(FrameContext& context, gl::RenderTarget& target, size_t batch) {
+// Stops the frame for a new plan: what this one asked of a pass cannot be done.
+void fallBack(FrameContext& context, FrameFallback::Kind kind, const std::string& reason,
+              const std::string& shadowKey = "") {
+    context.fallback = FrameFallback{kind, reason, shadowKey};
+    context.stopped = true;
+}
+
+// Lists the blended strands into per-pixel lists and resolves them
+// (compute rasteriser or exact transparency), within `capacity`
+// fragments. Over it, the frame stops for a new plan without them, or fails
+// (exactOverflow=fail: a reference that quietly became an approximation
+// would be measured against as if it were exact).
+void listStrands(FrameContext& context, gl::RenderTarget& target, size_t batch, const gl::ShadingFeatures& features,
+                 bool compute) {
     FrameInputs& inputs = context.inputs;
-    RenderPlan& plan = context.plan;
+    const RenderPlan& plan = context.plan;
     FrameResources& resources = context.resources;
-    gl::ShadingFeatures features = bindBatchInputs(context, target, batch);
     const CameraView& camera = *inputs.camera;
-    auto redraw = [&] {
-        target.bindAndClear(glm::vec4(0.0f));
-        if (plan.isEnabled(PassKind::Meshes)) drawMeshes(context, target, batch);
-        features = bindBatchInputs(context, target, batch);
-    };
     // A frame that can be cancelled lists its fragments in pieces, as
     // drawStrandPieces draws.
     gl::ListFilling filling;
@@ -244,54 +245,46 @@ void drawStrands(FrameContext& context, gl::RenderTarget& target, size_t batch) 
         filling.pieceSegments = context.strandPieceSegments;
         filling.stopRequested = [&context] { return stopRequested(context); };
     }
-    if (plan.strandRaster == StrandRaster::Compute) {
-        const uint64_t fragments = resources.fragmentLists.render(
-            resources.strands, listedSegments(plan, inputs.uploads), camera.imageWidth, camera.imageHeight,
-            inputs.computeRasterCapacity, plan.expectedFragments, inputs.frame.maxSegmentsPerSpan,
-            target.images().ids, features, target.depthTexture(), filling);
-        if (resources.fragmentLists.stopped()) return;
-        if (fragments <= inputs.computeRasterCapacity) return reportLists(context, fragments, batch);
-        context.result.stats.fragments = fragments;
+    const size_t capacity = compute ? inputs.computeRasterCapacity : inputs.fragmentListCapacity;
+    const uint64_t fragments = resources.fragmentLists.render(
+        resources.strands, compute ? listedSegments(plan, inputs.uploads) : gl::ListedSegments{inputs.uploads.drawRanges, {}},
+        camera.imageWidth, camera.imageHeight, capacity, plan.expectedFragments, inputs.frame.maxSegmentsPerSpan,
+        target.images().ids, features, compute ? target.depthTexture() : 0, filling);
+    if (resources.fragmentLists.stopped()) return;
+    if (fragments <= capacity) return reportLists(context, fragments, batch);
+    context.result.stats.fragments = fragments;
+    if (compute) {
         context.diagnostics.warn(
             "render", fmt::format("the compute rasteriser needs {} MB for {} fragments, more than "
                                   "strandRasterMemoryMB={}; drawn by the hardware rasteriser instead",
                                   fragmentListMB(fragments), fragments, plan.strandRasterMemoryMB));
-        plan.fallBackToHardwareRaster(inputs.idsRequested);
-        context.result.stats.strandRaster = toString(plan.strandRaster);
-        context.result.stats.fallback = "compute -> hardware rasteriser: fragment lists over strandRasterMemoryMB";
-        if (plan.drawsSorted()) {
-            sortAndSend(context);
-            inputs.frame.orderedDraw = 1;
-        }
-        redraw();
+        return fallBack(context, FrameFallback::Kind::ComputeListsOverBudget,
+                        "compute -> hardware rasteriser: fragment lists over strandRasterMemoryMB");
     }
-    if (plan.transparency == TransparencyPath::Exact) {
-        uint64_t fragments = resources.fragmentLists.render(resources.strands, {inputs.uploads.drawRanges, {}},
-                                                            camera.imageWidth, camera.imageHeight,
-                                                            inputs.fragmentListCapacity, plan.expectedFragments,
-                                                            inputs.frame.maxSegmentsPerSpan,
-                                                            target.images().ids, features, 0, filling);
-        if (resources.fragmentLists.stopped()) return;
-        if (fragments <= inputs.fragmentListCapacity) return reportLists(context, fragments, batch);
-        context.result.stats.fragments = fragments;
-        const std::string needed = fmt::format("exact transparency needs {} MB for {} fragments, more than "
-                                               "exactMemoryMB={}",
-                                               fragmentListMB(fragments), fragments, plan.exactMemoryMB);
-        // A reference that quietly became an approximation would be measured
-        // against as if it were exact: exactOverflow=fail stops the frame.
-        if (plan.exactOverflowFails) {
-            context.failure = needed + " (exactOverflow=fail: raise exactMemoryMB or lower supersampling)";
-            context.stopped = true;
-            return;
-        }
-        context.diagnostics.warn("render", needed + "; rendered with binSorted (1024 bins) instead");
-        plan.fallBackToBinSorted(1024, inputs.idsRequested);
-        context.result.stats.fallback = "exact -> binSorted (1024 bins): fragment lists over exactMemoryMB";
-        sortAndSend(context);
-        inputs.frame.orderedDraw = 1;
-        redraw();
+    const std::string needed = fmt::format("exact transparency needs {} MB for {} fragments, more than "
+                                           "exactMemoryMB={}",
+                                           fragmentListMB(fragments), fragments, plan.exactMemoryMB);
+    if (plan.exactOverflowFails) {
+        context.failure = needed + " (exactOverflow=fail: raise exactMemoryMB or lower supersampling)";
+        context.stopped = true;
+        return;
     }
-    drawStrandPieces(context, inputs.frame.orderedDraw != 0,
+    context.diagnostics.warn("render", fmt::format("{}; rendered with binSorted ({} bins) instead", needed,
+                                                   kFallbackSortBins));
+    fallBack(context, FrameFallback::Kind::ExactListsOverBudget,
+             fmt::format("exact -> binSorted ({} bins): fragment lists over exactMemoryMB", kFallbackSortBins));
+}
+
+// Draws the strands with the lights of one batch into `target`, over what
+// it holds (the meshes of that batch, or nothing), as the plan says: listed
+// and resolved (compute rasteriser, exact transparency), or drawn blended
+// or opaque by the hardware.
+void drawStrands(FrameContext& context, gl::RenderTarget& target, size_t batch) {
+    const RenderPlan& plan = context.plan;
+    const gl::ShadingFeatures features = bindBatchInputs(context, target, batch);
+    if (plan.strandRaster == StrandRaster::Compute) return listStrands(context, target, batch, features, true);
+    if (plan.transparency == TransparencyPath::Exact) return listStrands(context, target, batch, features, false);
+    drawStrandPieces(context, context.inputs.frame.orderedDraw != 0,
                      plan.transparency == TransparencyPath::Opaque ? gl::StrandBlending::Opaque
                                                                    : gl::StrandBlending::PremultipliedOver);
 }
@@ -373,7 +366,7 @@ void opacityMipmaps(FrameContext& context) {
 // "shadowFragments L": every fragment of light L's view (shadowMode=reference).
 void shadowFragments(FrameContext& context, size_t shadow) {
     FrameResources& resources = context.resources;
-    PlannedShadow& planned = context.plan.shadows.lights[shadow];
+    const PlannedShadow& planned = context.plan.shadows.lights[shadow];
     resources.shadowReference.ensure(context.plan.shadows.resolution, std::max(context.plan.shadows.capacity, 1));
     if (!context.shadowPoolEmptied) resources.shadowReference.reset();
     context.shadowPoolEmptied = true;
@@ -383,12 +376,13 @@ void shadowFragments(FrameContext& context, size_t shadow) {
         lightViewFrameUniforms(context.plan, shadow, context.inputs.frame), lightShadowUniforms(context.plan, shadow),
         &written);
     if (written) return;
-    context.diagnostics.warn(planned.key, fmt::format("shadowMode=reference needs {} MB of light-view fragments more "
-                                                      "than one GL storage block holds; this light is shaded without "
-                                                      "its shadows (lower shadowMapResolution)",
-                                                      (nodes * gl::kShadowNodeBytes + (1 << 20) - 1) >> 20));
-    planned.slot = -1;
+    const std::string needed = fmt::format("shadowMode=reference needs {} MB of light-view fragments, more than one "
+                                           "GL storage block holds",
+                                           (nodes * gl::kShadowNodeBytes + (1 << 20) - 1) >> 20);
+    context.diagnostics.warn(planned.key,
+                             needed + "; this light is shaded without its shadows (lower shadowMapResolution)");
     context.unbuiltShadowMaps.push_back(planned.key);
+    fallBack(context, FrameFallback::Kind::ShadowMapUnbuildable, planned.key + ": " + needed, planned.key);
 }
 
 // An image of `channels` holding `pixels` as read back: made around them, so

@@ -20,6 +20,7 @@
 #include "hdHair/render/BinSort.h"
 #include "hdHair/render/CameraView.h"
 #include "hdHair/render/FrameCancellation.h"
+#include "hdHair/render/FrameFallback.h"
 #include "hdHair/render/RenderPlan.h"
 #include "hdHair/render/SrbfMaterialTables.h"
 #include "hdHair/render/StrandUploads.h"
@@ -77,7 +78,7 @@ struct FrameInputs {
 
 struct FrameContext {
     FrameInputs& inputs;
-    RenderPlan& plan;
+    const RenderPlan& plan;
     FrameResources& resources;
     Diagnostics& diagnostics;
     RenderResult& result;
@@ -97,6 +98,11 @@ struct FrameContext {
     // memory under exactOverflow=fail); the frame stops as a cancelled one
     // does, and the renderer throws this instead of FrameCancelled.
     std::string failure = {};
+    // What a pass found that makes the plan impossible (FrameFallback.h); the
+    // frame stops as a cancelled one does, and the renderer plans it again.
+    std::optional<FrameFallback> fallback = {};
+    // Each pass's time, by index into the plan's passes (with timing on).
+    std::vector<double> passMilliseconds = {};
 };
 
 // Runs one pass of the plan. Throws std::logic_error for a pass it does not know.

@@ -5,7 +5,7 @@
 namespace hdhair {
 
 void runFrameGraph(FrameContext& context, gl::PassTiming timing) {
-    std::vector<FramePass>& passes = context.plan.graph.passes();
+    const std::vector<FramePass>& passes = context.plan.graph.passes();
     gl::PassTimer timer(timing, passes.size());
     for (size_t i = 0; i < passes.size(); ++i) {
         if (!passes[i].enabled) continue;
@@ -19,13 +19,10 @@ void runFrameGraph(FrameContext& context, gl::PassTiming timing) {
         timer.end(i);
         if (context.cancellation) glFinish();
     }
-    const std::vector<double> milliseconds = timer.collect();
+    context.passMilliseconds = timer.collect();
     RenderStats& stats = context.result.stats;
-    for (size_t i = 0; i < passes.size(); ++i) {
-        if (!passes[i].enabled) continue;
-        passes[i].milliseconds = milliseconds[i];
-        stats.passes.push_back({passes[i].name, milliseconds[i]});
-    }
+    for (size_t i = 0; i < passes.size(); ++i)
+        if (passes[i].enabled) stats.passes.push_back({passes[i].name, context.passMilliseconds[i]});
 }
 
 }  // namespace hdhair

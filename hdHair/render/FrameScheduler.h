@@ -1,10 +1,10 @@
 #pragma once
 // Runs a frame's compiled graph (RenderPlan.h) on the GL thread: every
 // enabled pass in order through runFramePass(), each timed when timing is
-// on (gl::PassTimer), its milliseconds kept on the graph. A pass may change
-// the plan as it runs (exact transparency falling back to bin sorting
-// enables the ids pass); the scheduler reads each pass's state as it comes
-// to it.
+// on (gl::PassTimer), its milliseconds kept in the context
+// (FrameContext::passMilliseconds), never on the plan, which no pass
+// changes. A pass that finds the plan impossible (FrameFallback.h) reports
+// it and stops the frame as a cancellation does; the Renderer plans again.
 //
 // A frame that can be cancelled (FrameContext::cancellation) finishes each
 // pass's GL work before the next (llvmpipe would otherwise do it all at the

@@ -1,6 +1,7 @@
 #include "hdHair/render/RenderPlan.h"
 
 #include <algorithm>
+#include <stdexcept>
 #include <utility>
 
 #include <fmt/format.h>
@@ -52,11 +53,34 @@ std::vector<FrameResource> strandReads(const FrameRecipe& plan, std::vector<Fram
     return reads;
 }
 
+// The renderer's decision for a map (ShadowMapAssignment) on a pass that
+// would build it: rebuilt says why; kept, or no map, and the pass does not run.
+void applyMapDecision(FramePass& pass, const PlannedShadow& shadow) {
+    if (!shadow.assigned || !pass.wanted) return;
+    if (shadow.slot >= 0 && shadow.rebuild) {
+        pass.reason = shadow.reason + "; " + pass.reason;
+        return;
+    }
+    pass.wanted = false;
+    pass.reason = shadow.reason;
+}
+
+// Whether the renderer gave `shadow` no map (its lookups read none).
+bool assignedNoMap(const PlannedShadow& shadow) { return shadow.assigned && shadow.slot < 0; }
+
 // The passes that build light `shadow`'s map, wanted or not with the reason.
 void addShadowPasses(FrameGraph& graph, const RenderPlan& plan, size_t index, bool anyStrands) {
     const ShadowPlan& shadows = plan.shadows;
     const PlannedShadow& shadow = shadows.lights[index];
-    auto add = [&](FramePass pass) { graph.add(std::move(pass)).subject = index; };
+    auto add = [&](FramePass pass) {
+        applyMapDecision(pass, shadow);
+        graph.add(std::move(pass)).subject = index;
+    };
+    // A map kept from an earlier frame comes into the graph from outside.
+    if (shadow.assigned && shadow.slot >= 0 && !shadow.rebuild) {
+        graph.input(shadows.resourceOf(shadow));
+        if (shadows.meshesCast) graph.input(shadows.meshResourceOf(shadow));
+    }
     bool wanted = false;
     std::string why, flat;
     if (shadows.mode == ShadowMode::Off) {
@@ -116,7 +140,9 @@ std::vector<FrameResource> batchShadowReads(const RenderPlan& plan, size_t batch
     bool srbfMapRead = false;
     for (size_t light = plan.lightBatches[batch].first; light < plan.lightBatches[batch].second; ++light) {
         int shadow = plan.shadows.shadowOf(light);
-        if (shadow < 0 || !plan.shadows.lights[size_t(shadow)].view.valid) continue;
+        if (shadow < 0 || !plan.shadows.lights[size_t(shadow)].view.valid ||
+            assignedNoMap(plan.shadows.lights[size_t(shadow)]))
+            continue;
         srbfMapRead = srbfMapRead || plan.lights.lights[light].isSrbf();
         const FrameResource map = plan.shadows.resourceOf(plan.shadows.lights[size_t(shadow)]);
         // SRBF lights share maps (ShadowPlan::sharedMaps): each read once.
@@ -168,7 +194,7 @@ void addShadowMapPasses(FrameGraph& graph, const RenderPlan& plan, bool anyStran
     FramePass mipmaps{PassKind::OpacityMipmaps, "opacityMipmaps", {}, {kConvolvedOpacity}, true, ""};
     size_t lobes = 0;
     for (const PlannedShadow& shadow : plan.shadows.lights)
-        if (shadow.view.valid) {
+        if (shadow.view.valid && !assignedNoMap(shadow)) {
             mipmaps.reads.push_back(plan.shadows.resourceOf(shadow));
             lobes += plan.lights.lights[shadow.light].isSrbf() ? 1 : 0;
         }
@@ -315,28 +341,26 @@ std::string binSortingAskedFor(const RenderSettings& settings) {
     return "";
 }
 
+// Copies the renderer's decisions into the planned shadows, before the
+// graph is built from them.
+void assignShadowMaps(ShadowPlan& shadows, const ShadowMapAssignment& assignment) {
+    if (assignment.maps.size() != shadows.lights.size())
+        throw std::logic_error("shadow map assignment: one decision per planned shadow expected");
+    shadows.capacity = assignment.capacity;
+    for (size_t i = 0; i < shadows.lights.size(); ++i) {
+        if (!assignment.maps[i]) continue;
+        PlannedShadow& shadow = shadows.lights[i];
+        shadow.assigned = true;
+        shadow.slot = assignment.maps[i]->slot;
+        shadow.rebuild = assignment.maps[i]->rebuild;
+        shadow.reason = assignment.maps[i]->reason;
+    }
+}
+
 }  // namespace
 
-void RenderPlan::setShadowMap(size_t shadow, int slot, bool rebuild, const std::string& reason) {
-    PlannedShadow& planned = shadows.lights[shadow];
-    planned.slot = slot;
-    planned.rebuild = rebuild;
-    planned.reason = reason;
-    for (PassKind kind : {PassKind::ShadowDepth, PassKind::DeepOpacity, PassKind::ShadowFragments, PassKind::MeshShadow}) {
-        FramePass* pass = graph.find(kind, shadow);
-        if (!pass || !pass->wanted) continue;
-        if (rebuild) {
-            pass->reason = reason + "; " + pass->reason;
-        } else {
-            pass->wanted = false;
-            pass->reason = reason;
-        }
-    }
-    if (!rebuild) {
-        graph.input(shadows.resourceOf(planned));
-        if (shadows.meshesCast) graph.input(shadows.meshResourceOf(planned));
-    }
-    graph.compile();
+nlohmann::json RenderPlan::toJson(const std::vector<double>& passMilliseconds) const {
+    return graph.toJson(passMilliseconds);
 }
 
 bool RenderPlan::shadowUsed(size_t shadow) const {
@@ -347,57 +371,28 @@ bool RenderPlan::shadowUsed(size_t shadow) const {
     return false;
 }
 
-void RenderPlan::fallBackToBinSorted(uint32_t bins, bool idsRequested) {
-    transparency = TransparencyPath::BinSorted;
-    sortBins = bins;
-    redrawStrandsWithHardware(fmt::format("exact fell back: segments into {} depth bins on the CPU", bins), idsRequested);
+RenderPlan makeRenderPlan(const Scene& scene, const RenderSettings& settings, const CameraView& camera,
+                          const StrandSummary& strands, const MeshSummary& meshes,
+                          const std::vector<DomeEnvironment>& domes, const PlanRequest& request) {
+    RenderPlan plan;
+    planLights(plan, scene, settings, camera, strands, meshes, domes);
+    planShadows(plan, settings, strands, meshes.meshes > 0);
+    if (request.shadowMaps) assignShadowMaps(plan.shadows, *request.shadowMaps);
+    planTransparency(plan, settings.values(), strands, request.fallbacks);
+    planStrandRaster(plan, settings.values(), strands, binSortingAskedFor(settings), request.fallbacks);
+    plan.specializeShaders = settings.values().specializeShaders;
+    buildFrameGraph(plan, scene, strands, meshes, request.idsRequested, request.displayOnGpu,
+                    size_t(settings.values().lightsPerPass));
+    return plan;
 }
-
-void RenderPlan::fallBackToHardwareRaster(bool idsRequested) {
-    strandRaster = StrandRaster::Hardware;
-    strandRasterReason = "hardware: the compute rasteriser's lists were over strandRasterMemoryMB";
-    redrawStrandsWithHardware(fmt::format("the compute rasteriser fell back: segments into {} depth bins on the CPU",
-                                          sortBins),
-                              idsRequested);
-}
-
-void RenderPlan::redrawStrandsWithHardware(const std::string& sortReason, bool idsRequested) {
-    const bool anyStrands = graph.find(PassKind::Strands)->wanted;
-    const bool anyMeshes = graph.find(PassKind::Meshes)->wanted;
-    for (FramePass& pass : graph.passes()) {
-        if (pass.kind == PassKind::Sort) {
-            pass.wanted = drawsSorted();
-            if (pass.wanted) pass.reason = sortReason;
-        } else if (pass.kind == PassKind::Ids) {
-            FramePass replacement = idsPass(*this, idsRequested, anyStrands, anyMeshes);
-            pass.wanted = replacement.wanted;
-            pass.reason = replacement.reason;
-        } else if (pass.kind == PassKind::Strands || pass.kind == PassKind::LightBatch) {
-            // The strands now read the draw order when sorted; what else they read stays.
-            auto drawsStrands = std::find(pass.reads.begin(), pass.reads.end(), "strands");
-            if (drawsStrands == pass.reads.end()) continue;
-            std::vector<FrameResource> rest;
-            for (const FrameResource& read : pass.reads)
-                if (read != "strands" && read != "drawOrder") rest.push_back(read);
-            pass.reads = strandReads(*this, rest);
-        }
-    }
-    graph.compile();
-}
-
-nlohmann::json RenderPlan::toJson() const { return graph.toJson(); }
 
 RenderPlan makeRenderPlan(const Scene& scene, const RenderSettings& settings, const CameraView& camera,
                           const StrandSummary& strands, bool idsRequested, const MeshSummary& meshes,
                           bool displayOnGpu, const std::vector<DomeEnvironment>& domes) {
-    RenderPlan plan;
-    planLights(plan, scene, settings, camera, strands, meshes, domes);
-    planShadows(plan, settings, strands, meshes.meshes > 0);
-    planTransparency(plan, settings.values(), strands);
-    planStrandRaster(plan, settings.values(), strands, binSortingAskedFor(settings));
-    plan.specializeShaders = settings.values().specializeShaders;
-    buildFrameGraph(plan, scene, strands, meshes, idsRequested, displayOnGpu, size_t(settings.values().lightsPerPass));
-    return plan;
+    PlanRequest request;
+    request.idsRequested = idsRequested;
+    request.displayOnGpu = displayOnGpu;
+    return makeRenderPlan(scene, settings, camera, strands, meshes, domes, request);
 }
 
 }  // namespace hdhair

@@ -7,11 +7,13 @@
 // --explain and kept, with each pass's time, in --stats.
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include <nlohmann/json_fwd.hpp>
 
+#include "hdHair/render/FrameFallback.h"
 #include "hdHair/render/FrameGraph.h"
 #include "hdHair/render/FrameRecipe.h"
 
@@ -39,39 +41,59 @@ struct CameraView;
 // Meshes are drawn first and write depth, so every strand path tests
 // against them (NearestStrandRule.h: how their depth and ids combine with
 // the strands').
+//
+// A plan is made whole and is not changed while its frame runs: the shadow
+// maps' slots come in with it (ShadowMapAssignment), and what a pass finds
+// the plan could not know (lists over their memory) makes the Renderer plan
+// the frame again (FrameFallback.h), never edit this one.
 struct RenderPlan : FrameRecipe {
     FrameGraph graph;
 
     bool isEnabled(PassKind kind, size_t subject = 0) const { return graph.isEnabled(kind, subject); }
     bool isEnabled(const std::string& label) const { return graph.isEnabled(label); }
-    // Exact transparency over its memory budget: the frame is redrawn
-    // binSorted with `bins` bins, which needs the ids pass when ids are asked for.
-    void fallBackToBinSorted(uint32_t bins, bool idsRequested);
-    // The compute rasteriser over its memory budget: the frame is redrawn
-    // by the hardware path with the transparency planned (binSorted needs
-    // the sort, and the ids pass when ids are asked for).
-    void fallBackToHardwareRaster(bool idsRequested);
-    // The renderer's decision for shadow `shadow` (ShadowMapCache): rebuilt
-    // by its passes, or kept, when its map becomes an input of the graph and
-    // its passes do not run.
-    void setShadowMap(size_t shadow, int slot, bool rebuild, const std::string& reason);
     // Whether an enabled pass reads shadow `shadow`'s map.
     bool shadowUsed(size_t shadow) const;
-private:
-    // The sort, ids and strand passes again for the hardware path with the
-    // recipe's transparency.
-    void redrawStrandsWithHardware(const std::string& sortReason, bool idsRequested);
 
-public:
     std::string describe() const { return graph.describe(); }  // for --explain
-    nlohmann::json toJson() const;
+    // With the time each pass took, by index (FrameScheduler), when known.
+    nlohmann::json toJson(const std::vector<double>& passMilliseconds = {}) const;
 };
 
-// idsRequested: a host asked for primId/instanceId/elementId. Depth is always
-// produced; with blending, by the strand pass (NearestStrandRule.h).
-// displayOnGpu: the frame also delivers its display image, made on the GPU.
+// The renderer's decision for each planned shadow (ShadowPlan::lights) whose
+// map an enabled pass of the provisional plan reads (ShadowMapCache): its
+// slot, and whether its passes rebuild it or it is kept from an earlier
+// frame (an input of the graph then; its passes do not run). A shadow with
+// slot -1 and a reason has no map: it shades unshadowed.
+struct ShadowMapAssignment {
+    struct Map {
+        int slot = -1;
+        bool rebuild = true;
+        std::string reason;
+    };
+    std::vector<std::optional<Map>> maps;  // per planned shadow; empty: not decided (nothing reads it)
+    int capacity = 0;                      // slots the map storage must hold
+};
+
+// What a frame asks of its plan besides the scene and the settings.
+struct PlanRequest {
+    // A host asked for primId/instanceId/elementId. Depth is always produced;
+    // with blending, by the strand pass (NearestStrandRule.h).
+    bool idsRequested = false;
+    // The frame also delivers its display image, made on the GPU.
+    bool displayOnGpu = false;
+    // What earlier attempts at this frame found (FrameFallback.h).
+    FrameFallbacks fallbacks;
+    // The shadow maps' slots; without them the plan is provisional: it says
+    // which maps are read (RenderPlan::shadowUsed), and draws none.
+    std::optional<ShadowMapAssignment> shadowMaps;
+};
+
 // domes: the visible domes as the renderer fitted them (frameDomeEnvironments);
 // a dome it does not list counts as untextured.
+RenderPlan makeRenderPlan(const Scene& scene, const RenderSettings& settings, const CameraView& camera,
+                          const StrandSummary& strands, const MeshSummary& meshes,
+                          const std::vector<DomeEnvironment>& domes, const PlanRequest& request);
+// The same, with a request of only the ids and the display image.
 RenderPlan makeRenderPlan(const Scene& scene, const RenderSettings& settings, const CameraView& camera,
                           const StrandSummary& strands, bool idsRequested = false, const MeshSummary& meshes = {},
                           bool displayOnGpu = false, const std::vector<DomeEnvironment>& domes = {});

@@ -3,6 +3,7 @@
 // statistics that say how they were made.
 
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "hdHair/image/Image.h"
@@ -10,6 +11,14 @@
 #include "hdHair/render/RenderStats.h"
 
 namespace hdhair {
+
+// A plan a frame made and gave up (FrameFallback.h): why, and the plan as it
+// ran until a pass found it impossible, with its passes' times.
+struct AbandonedPlan {
+    std::string reason;
+    RenderPlan plan;
+    std::vector<double> passMilliseconds;
+};
 
 struct RenderResult {
     Image color;  // RGBA, scene-linear, pre-multiplied
@@ -23,8 +32,18 @@ struct RenderResult {
     std::vector<int32_t> primIds, instanceIds, elementIds;
     // With RenderOutputs::gpuDisplay: RGBA display code values, rows from the top down.
     Image display;
-    RenderPlan plan;
+    RenderPlan plan;  // the plan the images come from
+    std::vector<AbandonedPlan> abandonedPlans;  // the plans made before it, in order
     RenderStats stats;
+
+    // --explain: every plan the frame made, the abandoned ones first with why.
+    std::string describePlans() const {
+        std::string text;
+        for (const AbandonedPlan& abandoned : abandonedPlans)
+            text += abandoned.plan.describe() + "  (this plan was abandoned: " + abandoned.reason +
+                    "; the frame was planned again)\n";
+        return text + plan.describe();
+    }
 };
 
 }  // namespace hdhair

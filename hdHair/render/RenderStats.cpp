@@ -31,6 +31,7 @@ nlohmann::json RenderStats::toJson() const {
     json["settings"] = settings;
     json["settingOrigins"] = settingOrigins;
     json["plan"] = plan;
+    if (!abandonedPlans.empty()) json["abandonedPlans"] = abandonedPlans;
     json["warnings"] = warnings;
     json["transparency"] = transparency;
     json["strandRaster"] = strandRaster;

@@ -43,6 +43,9 @@ struct RenderStats {
     nlohmann::json settings;
     nlohmann::json settingOrigins;  // what chose each setting (SettingOrigins.h)
     nlohmann::json plan;
+    // The plans made before `plan` and given up, each with its reason
+    // (RenderResult::abandonedPlans); empty when the first plan ran.
+    nlohmann::json abandonedPlans = nlohmann::json::array();
     size_t warnings = 0;
     std::string transparency;     // the path taken: opaque, binSorted, exact or unsorted
     std::string strandRaster;     // who rasterised the camera's strands: hardware, compute, or compute+hardware (auto, per prim)

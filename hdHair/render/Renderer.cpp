@@ -37,6 +37,24 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
+// --stats' shadowMaps: each planned shadow's map, rebuilt, kept or none, and why.
+void reportShadowMaps(const ShadowPlan& shadows, const ShadowMapAssignment& assignment, RenderStats& stats) {
+    stats.shadowMapsRebuilt = stats.shadowMapsKept = 0;
+    stats.shadowMaps = nlohmann::json::array();
+    for (size_t i = 0; i < shadows.lights.size(); ++i) {
+        const PlannedShadow& shadow = shadows.lights[i];
+        const std::optional<ShadowMapAssignment::Map>& map = assignment.maps[i];
+        const bool mapped = map && map->slot >= 0;
+        if (mapped) (map->rebuild ? stats.shadowMapsRebuilt : stats.shadowMapsKept) += 1;
+        stats.shadowMaps.push_back({{"light", shadow.key},
+                                    {"map", mapped ? (map->rebuild ? "rebuilt" : "kept") : "none"},
+                                    {"reason", map ? map->reason
+                                               : shadows.mode == ShadowMode::Off ? std::string("shadowMode=off")
+                                               : !shadow.view.valid              ? shadow.view.fallback
+                                                                                 : std::string("nothing reads it")}});
+    }
+}
+
 double millisecondsSince(Clock::time_point start) {
     return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
 }
@@ -110,6 +128,15 @@ double fragmentsPerSpanEstimate(const CameraView& camera, const PreparedCurves& 
     const double length = double(meanSpanLength) * pixelsPerUnit;
     const double width = std::max(1.0, double(meanSpanWidth) * pixelsPerUnit);
     return (length + width) * width;
+}
+
+// An abandoned attempt ran its upload passes (runsWhenStopped): the strands,
+// materials and meshes it sent are on the GPU, and the next attempt sends
+// nothing again.
+void keepUploadsOfAbandonedAttempt(FrameInputs& inputs) {
+    inputs.uploads.writes.clear();
+    inputs.materials.reset();
+    inputs.meshes.changed = false;
 }
 
 // The instances of an instanced prim are copies of its first instance but for
@@ -303,9 +330,12 @@ MeshUpload Renderer::meshUpload(const Scene& scene, MeshSummary& summary) {
     return upload;
 }
 
-void Renderer::decideShadowMaps(RenderPlan& plan, const StrandSummary& summary, const RenderSettings& settings,
-                                Diagnostics& diagnostics, RenderStats& stats) {
-    ShadowPlan& shadows = plan.shadows;
+ShadowMapAssignment Renderer::decideShadowMaps(const RenderPlan& plan, const StrandSummary& summary,
+                                               const RenderSettings& settings, const FrameFallbacks& fallbacks,
+                                               Diagnostics& diagnostics, RenderStats& stats) {
+    const ShadowPlan& shadows = plan.shadows;
+    ShadowMapAssignment assignment;
+    assignment.maps.resize(shadows.lights.size());
     std::vector<ShadowMapRequest> requests;
     std::vector<size_t> requested;  // index into shadows.lights
     for (size_t i = 0; i < shadows.lights.size(); ++i) {
@@ -316,6 +346,11 @@ void Renderer::decideShadowMaps(RenderPlan& plan, const StrandSummary& summary, 
             !shadow.overBudget)
             diagnostics.warn(shadow.key, "no shadows from this light: " + shadow.view.fallback);
         if (!plan.shadowUsed(i)) continue;
+        if (auto unbuildable = fallbacks.unbuildableShadows.find(shadow.key);
+            unbuildable != fallbacks.unbuildableShadows.end()) {
+            assignment.maps[i] = ShadowMapAssignment::Map{-1, false, "no map: " + unbuildable->second};
+            continue;
+        }
         requests.push_back({shadow.key, shadow.view, followsCamera});
         requested.push_back(i);
     }
@@ -337,21 +372,13 @@ void Renderer::decideShadowMaps(RenderPlan& plan, const StrandSummary& summary, 
                                                shadows.memoryMB, shadows.resolution,
                                                shadows.overBudget));
     const ShadowFrame frame = shadowMaps_.update(requests, shadows, castersVersion_, shadows.mode == ShadowMode::Reference);
-    shadows.capacity = frame.capacity;
+    assignment.capacity = frame.capacity;
     for (size_t r = 0; r < requests.size(); ++r) {
         const ShadowMapDecision& decision = frame.maps[r];
-        plan.setShadowMap(requested[r], decision.slot, decision.rebuild, decision.reason);
-        (decision.rebuild ? stats.shadowMapsRebuilt : stats.shadowMapsKept) += 1;
+        assignment.maps[requested[r]] = ShadowMapAssignment::Map{decision.slot, decision.rebuild, decision.reason};
     }
-    for (const PlannedShadow& shadow : shadows.lights) {
-        const bool mapped = shadow.slot >= 0;
-        stats.shadowMaps.push_back({{"light", shadow.key},
-                                    {"map", mapped ? (shadow.rebuild ? "rebuilt" : "kept") : "none"},
-                                    {"reason", mapped ? shadow.reason
-                                                      : shadows.mode == ShadowMode::Off ? std::string("shadowMode=off")
-                                                      : !shadow.view.valid ? shadow.view.fallback
-                                                                           : std::string("nothing reads it")}});
-    }
+    reportShadowMaps(shadows, assignment, stats);
+    return assignment;
 }
 
 namespace {
@@ -599,8 +626,9 @@ Renderer::GatheredFrame Renderer::gatherFrame(const Scene& scene, const CameraVi
     return frame;
 }
 
-void Renderer::runFrame(FrameInputs& inputs, RenderResult& result, const RenderSettings& settings,
-                        Diagnostics& diagnostics, const FrameControl& control) {
+std::optional<FrameFallback> Renderer::runFrame(FrameInputs& inputs, RenderResult& result,
+                                               const RenderSettings& settings, Diagnostics& diagnostics,
+                                               const FrameControl& control) {
     RenderStats& stats = result.stats;
     const DrawBatching drawBatching = settings.values().drawBatching;
     const gl::PatchBatching batching = drawBatching == DrawBatching::Auto
@@ -616,6 +644,8 @@ void Renderer::runFrame(FrameInputs& inputs, RenderResult& result, const RenderS
         stats.cpuBytes["hairParameterPoints"] += cached.parameterPoints.capacity() * sizeof(glm::vec4);
     }
     std::string failure;
+    std::optional<FrameFallback> fallback;
+    std::vector<double> passMilliseconds;
     const bool stopped = glThread_->run([&] {
         resources_->strands.setBatching(batching);
         inputs.samples = std::min(result.plan.msaaSamples, resources_->maxSamples);
@@ -634,10 +664,18 @@ void Renderer::runFrame(FrameInputs& inputs, RenderResult& result, const RenderS
         // skipped, is built again next frame.
         for (const std::string& key : context.unbuiltShadowMaps) shadowMaps_.forget(key);
         failure = context.failure;
+        fallback = context.fallback;
+        passMilliseconds = std::move(context.passMilliseconds);
         return context.stopped;
     });
+    stats.plan = result.plan.toJson(passMilliseconds);
     if (!failure.empty()) throw std::runtime_error(failure);
+    if (fallback) {
+        result.abandonedPlans.push_back({fallback->reason, result.plan, passMilliseconds});
+        return fallback;
+    }
     if (stopped) throw FrameCancelled();
+    return std::nullopt;
 }
 
 void Renderer::reportFrame(const Scene& scene, const CameraView& camera, const RenderSettings& settings,
@@ -669,7 +707,21 @@ void Renderer::reportFrame(const Scene& scene, const CameraView& camera, const R
     stats.glDevice = glDevice();
     stats.settings = settings.toJson();
     stats.settingOrigins = settingOriginsJson(settings);
-    stats.plan = plan.toJson();
+    for (const AbandonedPlan& abandoned : result.abandonedPlans)
+        stats.abandonedPlans.push_back(
+            {{"reason", abandoned.reason}, {"plan", abandoned.plan.toJson(abandoned.passMilliseconds)}});
+}
+
+RenderPlan Renderer::planFrame(const Scene& scene, const CameraView& camera, const RenderSettings& settings,
+                               const GatheredFrame& frame, const PlanRequest& request, const FrameControl& control,
+                               Diagnostics& diagnostics, RenderStats& stats) {
+    RenderPlan provisional =
+        makeRenderPlan(scene, settings, camera, frame.strands, frame.meshes, frame.domes, request);
+    // A preview leaves the shadow maps to the full frames.
+    if (control.preview) return provisional;
+    PlanRequest withMaps = request;
+    withMaps.shadowMaps = decideShadowMaps(provisional, frame.strands, settings, request.fallbacks, diagnostics, stats);
+    return makeRenderPlan(scene, settings, camera, frame.strands, frame.meshes, frame.domes, withMaps);
 }
 
 RenderResult Renderer::renderSamples(const Scene& scene, const CameraView& camera, const RenderSettings& settings,
@@ -690,20 +742,38 @@ RenderResult Renderer::renderSamples(const Scene& scene, const CameraView& camer
     const size_t warningsBefore = diagnostics.warningCount();
     prepareFrame(scene, settings, diagnostics, result.stats);
     GatheredFrame frame = gatherFrame(scene, camera, settings, diagnostics, control, result.stats);
-    result.plan = makeRenderPlan(scene, settings, camera, frame.strands, outputs.ids, frame.meshes,
-                                 outputs.gpuDisplay != nullptr, frame.domes);
-    // A preview leaves the shadow maps to the full frames.
-    if (!control.preview) decideShadowMaps(result.plan, frame.strands, settings, diagnostics, result.stats);
     FrameInputs& inputs = frame.inputs;
     inputs.camera = &camera;
     inputs.idsRequested = outputs.ids;
     inputs.depthRequested = outputs.depth;
     inputs.gpuDisplay = outputs.gpuDisplay;
     inputs.displayOverBlack = outputs.displayOverBlack;
-    inputs.frame = frameUniforms(camera, settings, result.plan);
-    inputs.fragmentListCapacity = size_t(result.plan.exactMemoryMB) * 1024 * 1024 / gl::kFragmentNodeBytes;
-    inputs.computeRasterCapacity = size_t(result.plan.strandRasterMemoryMB) * 1024 * 1024 / gl::kFragmentNodeBytes;
-    runFrame(inputs, result, settings, diagnostics, control);
+    PlanRequest request;
+    request.idsRequested = outputs.ids;
+    request.displayOnGpu = outputs.gpuDisplay != nullptr;
+    // Each attempt that a pass finds impossible (FrameFallback.h) is planned
+    // again without what it could not do; every fallback is reported once, so
+    // there are at most as many attempts as kinds of fallback and lights.
+    for (;;) {
+        // Warnings about the plan are said once, by the first attempt.
+        Diagnostics replanning;
+        Diagnostics& planning = result.abandonedPlans.empty() ? diagnostics : replanning;
+        result.plan = planFrame(scene, camera, settings, frame, request, control, planning, result.stats);
+        inputs.frame = frameUniforms(camera, settings, result.plan);
+        inputs.fragmentListCapacity = size_t(result.plan.exactMemoryMB) * 1024 * 1024 / gl::kFragmentNodeBytes;
+        inputs.computeRasterCapacity =
+            size_t(result.plan.strandRasterMemoryMB) * 1024 * 1024 / gl::kFragmentNodeBytes;
+        const size_t passesBefore = result.stats.passes.size();
+        const std::optional<FrameFallback> fallback = runFrame(inputs, result, settings, diagnostics, control);
+        if (!fallback) break;
+        if (!request.fallbacks.add(*fallback))
+            throw std::logic_error("a frame pass reported a fallback its plan had already made: " + fallback->reason);
+        // The abandoned attempt's pass times are its plan's (abandonedPlans);
+        // what it sent to the GPU is there for the next attempt.
+        result.stats.passes.resize(passesBefore);
+        keepUploadsOfAbandonedAttempt(inputs);
+    }
+    result.stats.fallback = request.fallbacks.describe();
     reportFrame(scene, camera, settings, frame, diagnostics, result);
     result.stats.warnings = diagnostics.warningCount() - warningsBefore;
     result.stats.totalMilliseconds = millisecondsSince(frameStart);

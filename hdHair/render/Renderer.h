@@ -112,8 +112,9 @@ private:
                            Diagnostics& diagnostics, GatheredFrame& frame, RenderStats& stats);
     // The plan's passes on the GL thread. Throws FrameCancelled, or
     // std::runtime_error when the frame failed (exactOverflow=fail).
-    void runFrame(FrameInputs& inputs, RenderResult& result, const RenderSettings& settings,
-                  Diagnostics& diagnostics, const FrameControl& control);
+    // Returns what a pass found that makes the plan impossible, if one did.
+    std::optional<FrameFallback> runFrame(FrameInputs& inputs, RenderResult& result, const RenderSettings& settings,
+                                          Diagnostics& diagnostics, const FrameControl& control);
     // The frame's warnings and statistics.
     void reportFrame(const Scene& scene, const CameraView& camera, const RenderSettings& settings,
                      const GatheredFrame& frame, Diagnostics& diagnostics, RenderResult& result);
@@ -154,9 +155,17 @@ private:
                                                  const std::vector<DrawnPrim>& drawn, const StrandUploadPlan& uploads,
                                                  bool srbfTables, Diagnostics& diagnostics);
     // Which shadow maps the frame rebuilds and which it keeps (ShadowMapCache),
-    // written into the plan.
-    void decideShadowMaps(RenderPlan& plan, const StrandSummary& summary, const RenderSettings& settings,
-                          Diagnostics& diagnostics, RenderStats& stats);
+    // for the maps an enabled pass of the provisional plan reads; the lights
+    // an earlier attempt could not build a map for get none.
+    ShadowMapAssignment decideShadowMaps(const RenderPlan& provisional, const StrandSummary& summary,
+                                         const RenderSettings& settings, const FrameFallbacks& fallbacks,
+                                         Diagnostics& diagnostics, RenderStats& stats);
+    // The plan a frame runs, made whole before it runs: a provisional plan
+    // says which shadow maps are read, the shadow map cache decides them, and
+    // the plan is made again with them (a preview draws no maps).
+    RenderPlan planFrame(const Scene& scene, const CameraView& camera, const RenderSettings& settings,
+                         const GatheredFrame& frame, const PlanRequest& request, const FrameControl& control,
+                         Diagnostics& diagnostics, RenderStats& stats);
 
     // What the renderer keeps between frames, and who owns each: the
     // prepared curves and their materials, by prim path (curves_,

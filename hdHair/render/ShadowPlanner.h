@@ -37,9 +37,12 @@ struct PlannedShadow {
     size_t light = 0;       // index into FrameRecipe::lights.lights
     std::string key;        // the light's path, or "camera light"
     ShadowLightView view;   // not valid: no map, the light shades unshadowed (view.fallback says why)
-    int slot = -1;          // where its map lives (gl::ShadowMapStorage), set by the renderer
+    // The renderer's decision for its map (ShadowMapAssignment, RenderPlan.h),
+    // copied in when the plan is made: never changed while the frame runs.
+    bool assigned = false;  // decided: the plan the frame runs
+    int slot = -1;          // where its map lives (gl::ShadowMapStorage); -1: no map
     bool rebuild = true;    // false: kept from an earlier frame (ShadowMapCache)
-    std::string reason;     // "rebuilt: ..." or "kept: ..." once the renderer decided
+    std::string reason;     // "rebuilt: ...", "kept: ..." or why it has no map
     bool overBudget = false;  // no map because shadowMemoryMB holds no more (one warning for all)
     // Deep opacity maps: the strands are drawn into this light's view as
     // one-texel lines (shadowStrandLines other than off, no strand much

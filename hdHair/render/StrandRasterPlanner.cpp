@@ -6,6 +6,7 @@
 
 #include <fmt/format.h>
 
+#include "hdHair/render/FrameFallback.h"
 #include "hdHair/render/FrameRecipe.h"
 #include "hdHair/render/SettingValues.h"
 
@@ -94,7 +95,7 @@ uint64_t expectedFragments(const StrandSummary& strands) {
 }  // namespace
 
 void planStrandRaster(FrameRecipe& recipe, const SettingValues& settings, const StrandSummary& strands,
-                      const std::string& approximationAskedFor) {
+                      const std::string& approximationAskedFor, const FrameFallbacks& fallbacks) {
     const StrandRasterSetting requested = settings.strandRaster;
     std::string& why = recipe.strandRasterReason;
     recipe.strandRaster = StrandRaster::Hardware;
@@ -102,6 +103,14 @@ void planStrandRaster(FrameRecipe& recipe, const SettingValues& settings, const 
     recipe.listedByHardware.clear();
     if (recipe.transparency == TransparencyPath::Opaque) {
         why = "hardware: the opaque path draws depth-tested ribbons, with nothing to composite";
+    } else if (fallbacks.computeListsOverBudget) {
+        why = fmt::format("hardware: the compute rasteriser's lists were over strandRasterMemoryMB={}",
+                          settings.strandRasterMemoryMB);
+    } else if (fallbacks.exactListsOverBudget) {
+        // Exact lists are only listed by the hardware: the frame whose
+        // lists overflowed was on it, and its bin sort stays there.
+        why = "hardware: exact transparency's lists were over exactMemoryMB, and the bin sort that replaces them "
+              "is drawn by the hardware rasteriser";
     } else if (requested == StrandRasterSetting::Hardware) {
         why = "hardware: strandRaster=hardware";
     } else if (requested == StrandRasterSetting::Compute) {

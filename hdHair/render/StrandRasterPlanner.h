@@ -14,6 +14,7 @@
 
 namespace hdhair {
 
+struct FrameFallbacks;
 struct FrameRecipe;
 struct SettingValues;
 struct StrandSummary;
@@ -35,7 +36,9 @@ struct TokenTable<StrandRaster> {
 // bin-sorted frame by a value other than the default, "transparency=unsorted"
 // or "sortBins=16", or empty. auto keeps such a frame on the hardware, since
 // the compute rasteriser's lists composite exactly and have no bins.
+// A frame whose compute lists an earlier attempt found over
+// strandRasterMemoryMB (fallbacks) is drawn by the hardware.
 void planStrandRaster(FrameRecipe& recipe, const SettingValues& settings, const StrandSummary& strands,
-                      const std::string& approximationAskedFor);
+                      const std::string& approximationAskedFor, const FrameFallbacks& fallbacks);
 
 }  // namespace hdhair

@@ -2,12 +2,14 @@
 
 #include <fmt/format.h>
 
+#include "hdHair/render/FrameFallback.h"
 #include "hdHair/render/FrameRecipe.h"
 #include "hdHair/render/SettingValues.h"
 
 namespace hdhair {
 
-void planTransparency(FrameRecipe& recipe, const SettingValues& settings, const StrandSummary& strands) {
+void planTransparency(FrameRecipe& recipe, const SettingValues& settings, const StrandSummary& strands,
+                      const FrameFallbacks& fallbacks) {
     const TransparencyPath requested = settings.transparency;
     const double threshold = settings.minPixelWidth;
     const bool needsBlending = !strands.allOpaque || strands.minProjectedWidthPixels < threshold;
@@ -20,6 +22,12 @@ void planTransparency(FrameRecipe& recipe, const SettingValues& settings, const 
         why = fmt::format("every strand is opaque and at least {:.2f} px wide (>= minPixelWidth {}): no blending "
                           "or sorting needed",
                           strands.minProjectedWidthPixels, threshold);
+    } else if (requested == TransparencyPath::Exact && fallbacks.exactListsOverBudget) {
+        recipe.transparency = TransparencyPath::BinSorted;
+        recipe.sortBins = kFallbackSortBins;
+        why = fmt::format("exact fell back: its fragment lists were over exactMemoryMB={}, so {} bins, drawn far to "
+                          "near with pre-multiplied blending",
+                          settings.exactMemoryMB, recipe.sortBins);
     } else if (requested == TransparencyPath::Exact) {
         recipe.transparency = TransparencyPath::Exact;
         why = "per-pixel fragment lists sorted by depth (exact)";

@@ -9,12 +9,16 @@
 
 namespace hdhair {
 
+struct FrameFallbacks;
 struct FrameRecipe;
 struct SettingValues;
 struct StrandSummary;
 
 // Sets the recipe's transparency, sortBins, msaaSamples, transparencyReason
 // and exact transparency's budget (exactMemoryMB, exactOverflowFails).
-void planTransparency(FrameRecipe& recipe, const SettingValues& settings, const StrandSummary& strands);
+// Exact transparency whose lists an earlier attempt at the frame found over
+// exactMemoryMB (fallbacks) is bin sorted with kFallbackSortBins bins.
+void planTransparency(FrameRecipe& recipe, const SettingValues& settings, const StrandSummary& strands,
+                      const FrameFallbacks& fallbacks);
 
 }  // namespace hdhair

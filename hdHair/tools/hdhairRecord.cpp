@@ -616,7 +616,7 @@ int run(const Options& options) {
         if (options.explain) printSettingOrigins(settings);
         if (options.explain)
             std::printf("hdhair-record: plan (%s):\n%s", describeTime(time).c_str(),
-                        result.plan.describe().c_str());
+                        result.describePlans().c_str());
         if (options.verbose || options.explain) {
             std::string passes;
             for (const PassTiming& pass : result.stats.passes)

@@ -8,12 +8,14 @@
 #include <random>
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include "OrthographicView.h"
 #include "StageRendering.h"
 #include "hdHair/gl/FragmentListPass.h"
 #include "hdHair/image/ImageComparison.h"
 #include "hdHair/render/CameraView.h"
+#include "hdHair/render/RenderResult.h"
 #include "hdHair/scene/Scene.h"
 #include "hdHair/usda/SceneReader.h"
 
@@ -327,6 +329,27 @@ TEST(Transparency, ExactModeOverItsMemoryBudgetFallsBackAndSaysSo) {
               "binSorted (1024 bins) instead");
     // The fallback image is the sorted one: 1 - 0.9^40 alpha.
     EXPECT_NEAR(result.color.at(64, 64, 3), 1.0 - std::pow(0.9, 40), kOneStep);
+    // The pass reported it and the frame was planned again: the plan that
+    // overflowed is kept, with why, and the images come from the second.
+    ASSERT_EQ(result.abandonedPlans.size(), 1u);
+    EXPECT_EQ(result.abandonedPlans[0].reason, "exact -> binSorted (1024 bins): fragment lists over exactMemoryMB");
+    EXPECT_EQ(result.abandonedPlans[0].plan.transparency, TransparencyPath::Exact);
+    EXPECT_EQ(result.plan.transparency, TransparencyPath::BinSorted);
+    EXPECT_TRUE(result.plan.isEnabled("sort"));
+    EXPECT_FALSE(result.abandonedPlans[0].plan.isEnabled("sort"));
+    EXPECT_NE(result.describePlans().find("this plan was abandoned: exact -> binSorted"), std::string::npos);
+    const nlohmann::json stats = result.stats.toJson();
+    ASSERT_EQ(stats["abandonedPlans"].size(), 1u);
+    EXPECT_EQ(stats["abandonedPlans"][0]["reason"], result.abandonedPlans[0].reason);
+    // Each pass's time is listed once, the abandoned attempt's with its plan.
+    size_t strandPasses = 0;
+    for (const PassTiming& pass : result.stats.passes) strandPasses += pass.name == "strands" ? 1 : 0;
+    EXPECT_EQ(strandPasses, 1u);
+    // The same picture as a frame planned bin sorted with 1024 bins from the start.
+    Diagnostics direct;
+    const RenderResult sorted = renderWithWarnings(fortyFaintSheets(), orthographicCamera(128),
+                                                   {"transparency=binSorted", "sortBins=1024"}, direct);
+    EXPECT_EQ(result.color.pixels, sorted.color.pixels);
 }
 
 TEST(Transparency, ExactCompositesLongFragmentListsInDepthOrder) {
@@ -574,6 +597,24 @@ TEST(Transparency, ComputeRasterOverItsMemoryBudgetFallsBackToTheHardwareAndSays
               "the compute rasteriser needs 20 MB for 655360 fragments, more than strandRasterMemoryMB=16; drawn by "
               "the hardware rasteriser instead");
     EXPECT_NEAR(result.color.at(64, 64, 3), 1.0 - std::pow(0.9, 40), kOneStep);
+    ASSERT_EQ(result.abandonedPlans.size(), 1u);
+    EXPECT_EQ(result.abandonedPlans[0].plan.strandRaster, StrandRaster::Compute);
+    EXPECT_EQ(result.plan.strandRaster, StrandRaster::Hardware);
+    // The same picture as a frame planned on the hardware from the start.
+    Diagnostics direct;
+    EXPECT_EQ(result.color.pixels, renderWithWarnings(scene, camera, {"strandRaster=hardware"}, direct).color.pixels);
+    // Both lists over their memory: planned three times, each fallback once.
+    Diagnostics both;
+    const RenderResult twice = renderWithWarnings(
+        scene, camera, {"strandRaster=compute", "strandRasterMemoryMB=16", "transparency=exact", "exactMemoryMB=16"},
+        both);
+    ASSERT_EQ(twice.abandonedPlans.size(), 2u);
+    EXPECT_EQ(twice.stats.fallback,
+              "compute -> hardware rasteriser: fragment lists over strandRasterMemoryMB; exact -> binSorted (1024 "
+              "bins): fragment lists over exactMemoryMB");
+    EXPECT_EQ(twice.plan.transparency, TransparencyPath::BinSorted);
+    EXPECT_EQ(twice.plan.strandRaster, StrandRaster::Hardware);
+    EXPECT_EQ(both.warnings().size(), 2u);
     // Within budget the same frame stays in compute, with the same picture.
     RenderResult inBudget =
         renderWithWarnings(scene, camera, {"strandRaster=compute", "strandRasterMemoryMB=32"}, diagnostics);

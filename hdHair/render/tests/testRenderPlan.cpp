@@ -129,25 +129,40 @@ TEST(RenderPlan, SaysWhichPassProducesDepthAndIds) {
     EXPECT_FALSE(opaque.isEnabled("ids"));
     EXPECT_NE(strandsReason(opaque).find("depth: the depth buffer"), std::string::npos);
 
-    // Exact over its memory falls back to bin sorting, which needs the ids pass.
-    exact.fallBackToBinSorted(1024, true);
-    EXPECT_EQ(exact.transparency, TransparencyPath::BinSorted);
-    EXPECT_EQ(exact.sortBins, 1024u);
-    EXPECT_TRUE(exact.isEnabled("sort"));
-    EXPECT_TRUE(exact.isEnabled("ids"));
-    RenderPlan exactWithoutIds = plan("exact", false);
-    exactWithoutIds.fallBackToBinSorted(1024, false);
-    EXPECT_FALSE(exactWithoutIds.isEnabled("ids"));
+    // Exact over its memory: the frame is planned again bin sorted, which
+    // needs the ids pass.
+    auto replanned = [&](bool ids) {
+        RenderSettings settings;
+        settings.set("transparency", "exact");
+        settings.set("strandRaster", "hardware");
+        PlanRequest request;
+        request.idsRequested = ids;
+        EXPECT_TRUE(request.fallbacks.add({FrameFallback::Kind::ExactListsOverBudget, "exact -> binSorted", ""}));
+        EXPECT_FALSE(request.fallbacks.add({FrameFallback::Kind::ExactListsOverBudget, "exact -> binSorted", ""}));
+        return makeRenderPlan(Scene{}, settings, cameraAtPlusZ(), translucent, {}, {}, request);
+    };
+    RenderPlan fellBack = replanned(true);
+    EXPECT_EQ(fellBack.transparency, TransparencyPath::BinSorted);
+    EXPECT_EQ(fellBack.sortBins, 1024u);
+    EXPECT_TRUE(fellBack.isEnabled("sort"));
+    EXPECT_TRUE(fellBack.isEnabled("ids"));
+    EXPECT_NE(fellBack.transparencyReason.find("exact fell back"), std::string::npos) << fellBack.transparencyReason;
+    EXPECT_FALSE(replanned(false).isEnabled("ids"));
 }
 
 TEST(RenderPlan, AutoRasterisesThinBlendedStrandsInComputeAndSaysWhy) {
     StrandSummary thin = wideOpaqueStrands(10);
     thin.minProjectedWidthPixels = 0.4;
     thin.maxProjectedWidthPixels = 1.5;
-    auto plan = [&](std::vector<std::string> assignments, const StrandSummary& strands, bool ids = false) {
+    auto plan = [&](std::vector<std::string> assignments, const StrandSummary& strands, bool ids = false,
+                    bool computeListsOverBudget = false) {
         RenderSettings settings;
         for (const std::string& assignment : assignments) settings.setFromAssignment(assignment);
-        return makeRenderPlan(Scene{}, settings, cameraAtPlusZ(), strands, ids);
+        PlanRequest request;
+        request.idsRequested = ids;
+        if (computeListsOverBudget)
+            request.fallbacks.add({FrameFallback::Kind::ComputeListsOverBudget, "compute -> hardware", ""});
+        return makeRenderPlan(Scene{}, settings, cameraAtPlusZ(), strands, {}, {}, request);
     };
     auto strandsReason = [](const RenderPlan& p) { return p.graph.find("strands")->reason; };
 
@@ -167,12 +182,17 @@ TEST(RenderPlan, AutoRasterisesThinBlendedStrandsInComputeAndSaysWhy) {
     EXPECT_EQ(std::find(reads.begin(), reads.end(), "drawOrder"), reads.end());
     EXPECT_NE(strandsReason(automatic).find("depth and ids: the nearest listed fragment"), std::string::npos);
 
-    // Over its memory budget the frame goes back to the hardware path with
-    // the transparency planned: binSorted needs its sort and, with ids, the ids pass.
-    automatic.fallBackToHardwareRaster(true);
-    EXPECT_EQ(automatic.strandRaster, StrandRaster::Hardware);
-    EXPECT_TRUE(automatic.isEnabled("sort"));
-    EXPECT_TRUE(automatic.isEnabled("ids"));
+    // Over its memory budget the frame is planned again on the hardware path
+    // with the transparency planned: binSorted needs its sort and, with ids,
+    // the ids pass.
+    RenderPlan fellBack = plan({}, thin, true, true);
+    EXPECT_EQ(fellBack.strandRaster, StrandRaster::Hardware);
+    EXPECT_TRUE(fellBack.isEnabled("sort"));
+    EXPECT_TRUE(fellBack.isEnabled("ids"));
+    EXPECT_NE(fellBack.strandRasterReason.find("hardware: the compute rasteriser's lists were over "
+                                               "strandRasterMemoryMB=512"),
+              std::string::npos)
+        << fellBack.strandRasterReason;
 
     StrandSummary wide = thin;
     wide.maxProjectedWidthPixels = 6.0;
@@ -219,8 +239,7 @@ TEST(RenderPlan, AutoRasterisesThinBlendedStrandsInComputeAndSaysWhy) {
                                                 "strands may project 9.00 px wide, into the same lists"),
               std::string::npos)
         << mixedAuto.strandRasterReason;
-    mixedAuto.fallBackToHardwareRaster(true);
-    EXPECT_FALSE(mixedAuto.mixesRasterisers());
+    EXPECT_FALSE(plan({}, mixed, true, true).mixesRasterisers());
     mixed.prims = {{1.5, 400, 4.0}, {std::numeric_limits<double>::infinity(), 600, 4.0}};
     RenderPlan mostlyWide = plan({}, mixed);
     EXPECT_EQ(mostlyWide.strandRaster, StrandRaster::Hardware);
@@ -371,17 +390,39 @@ TEST(RenderPlan, EveryCastingLightGetsADepthAndAnOpacityPassReadByItsBatch) {
     EXPECT_EQ(plan.shadows.lights.size(), 2u);
     EXPECT_TRUE(plan.shadows.lights[0].view.orthographic);
 
-    // A map kept from an earlier frame is an input: its passes do not run,
-    // the strands still read it.
-    plan.setShadowMap(0, 0, false, "kept: unchanged");
-    EXPECT_FALSE(plan.isEnabled("shadowDepth /key"));
-    EXPECT_FALSE(plan.isEnabled("deepOpacity /key"));
-    EXPECT_EQ(plan.graph.find("deepOpacity /key")->reason, "kept: unchanged");
-    EXPECT_TRUE(plan.isEnabled("strands"));
-    EXPECT_TRUE(plan.shadowUsed(0));
-    plan.setShadowMap(1, 1, true, "rebuilt: the light moved");
-    EXPECT_TRUE(plan.isEnabled("deepOpacity /rim"));
-    EXPECT_EQ(plan.graph.find("deepOpacity /rim")->reason.rfind("rebuilt: the light moved; ", 0), 0u);
+    EXPECT_TRUE(plan.shadowUsed(0) && plan.shadowUsed(1));
+
+    // The renderer's decisions come in with the plan that runs: a map kept
+    // from an earlier frame is an input, its passes do not run and the
+    // strands still read it; a rebuilt map says why; a light given no map
+    // is read by nothing.
+    auto withMaps = [&](std::vector<std::optional<ShadowMapAssignment::Map>> maps) {
+        PlanRequest request;
+        request.shadowMaps = ShadowMapAssignment{std::move(maps), 2};
+        return makeRenderPlan(scene, settings, cameraAtPlusZ(), castingStrands(), {}, {}, request);
+    };
+    const RenderPlan kept = withMaps({ShadowMapAssignment::Map{0, false, "kept: unchanged"},
+                                      ShadowMapAssignment::Map{1, true, "rebuilt: the light moved"}});
+    EXPECT_FALSE(kept.isEnabled("shadowDepth /key"));
+    EXPECT_FALSE(kept.isEnabled("deepOpacity /key"));
+    EXPECT_EQ(kept.graph.find("deepOpacity /key")->reason, "kept: unchanged");
+    EXPECT_TRUE(kept.isEnabled("strands"));
+    EXPECT_TRUE(reads(kept, "strands", "deepOpacity /key"));
+    EXPECT_TRUE(kept.shadowUsed(0));
+    EXPECT_TRUE(kept.shadows.isMapped(kept.shadows.lights[0]));
+    EXPECT_TRUE(kept.isEnabled("deepOpacity /rim"));
+    EXPECT_EQ(kept.graph.find("deepOpacity /rim")->reason.rfind("rebuilt: the light moved; ", 0), 0u);
+    EXPECT_EQ(kept.shadows.capacity, 2);
+
+    const RenderPlan unmapped = withMaps({ShadowMapAssignment::Map{-1, false, "no map: over the storage block"},
+                                          ShadowMapAssignment::Map{1, true, "rebuilt: new"}});
+    EXPECT_FALSE(unmapped.isEnabled("deepOpacity /key"));
+    EXPECT_EQ(unmapped.graph.find("deepOpacity /key")->reason, "no map: over the storage block");
+    EXPECT_FALSE(reads(unmapped, "strands", "deepOpacity /key"));
+    EXPECT_FALSE(unmapped.shadows.isMapped(unmapped.shadows.lights[0]));
+    EXPECT_TRUE(reads(unmapped, "lightBatch 2", "deepOpacity /rim"));
+    // One decision per planned shadow, or the plan is not made.
+    EXPECT_THROW(withMaps({ShadowMapAssignment::Map{0, true, "rebuilt"}}), std::logic_error);
 }
 
 TEST(RenderPlan, AStageWithNoCastingLightBuildsNoShadowPasses) {
