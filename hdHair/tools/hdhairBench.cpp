@@ -53,6 +53,7 @@
 #include <map>
 #include <set>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -508,9 +509,8 @@ void registerEnvironmentBenchmarks() {
     })->Unit(benchmark::kMillisecond);
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
+// What the command line asks for.
+struct BenchOptions {
     std::vector<std::string> stagePaths;
     int imageWidth = 0;
     std::string table = "all";
@@ -518,45 +518,59 @@ int main(int argc, char** argv) {
     int repetitions = 3;
     accuracy::CyclesComparison cycles;
     std::string out = "accuracy", report, domeTexture = HDHAIR_SOURCE_DIR "/examples/dome_sky.exr";
-    std::string command;
-    for (int i = 0; i < argc; ++i) command += (i ? " " : "") + std::string(argv[i]);
-
-    CLI::App app{"What accuracy costs in time: Google Benchmark tables, the accuracy matrix (--accuracy) and the "
-                 "dome lighting table (--table dome).",
-                 "hdhair-bench"};
-    app.add_option("--stage", stagePaths, "A stage to measure (repeatable; default examples/dense_clump.usda)");
-    app.add_option("--imageWidth", imageWidth,
-                   "Image width in pixels (default 512; 128 with --accuracy or --table dome, 64 with --quick)")
-        ->check(CLI::Range(1, 16384));
-    app.add_option("--table", table, "Which Google Benchmark tables, or the dome table")
-        ->check(CLI::IsMember({"all", "complexity", "transparency", "shading", "shadows", "tessellation", "dome"}))
-        ->capture_default_str();
-    app.add_option("--repetitions", repetitions, "Frames timed per configuration (--accuracy, --table dome)")
-        ->check(CLI::Range(1, 1000))
-        ->capture_default_str();
-    app.add_option("--domeTexture", domeTexture, "--table dome: the latlong sky")->capture_default_str();
-    auto* accuracyFlag = app.add_flag("--accuracy", accuracyRun,
-                                      "The error-versus-time matrix of every approximation and preset (AccuracyBench.h)");
-    app.add_flag("--quick", quick, "--accuracy: the CI run (short ladders, one repetition, 64 pixels wide)")
-        ->needs(accuracyFlag);
-    app.add_option("--out", out, "--accuracy, --report: the folder for accuracy.{json,csv,md}")->capture_default_str();
-    app.add_option("--report", report, "Write an earlier run's accuracy.json report again (front, tables, checks)");
-    auto* cyclesFlag = app.add_flag("--cycles", cyclesRun, "--accuracy: against Blender's Cycles too")->needs(accuracyFlag);
     std::vector<std::string> approximations;
-    app.add_option("--approximations", approximations,
+    std::string command;                 // as typed, for the accuracy report
+    std::vector<std::string> benchmark;  // what CLI11 does not know, for Google Benchmark
+};
+
+// The --accuracy and --cycles options.
+void addAccuracyOptions(CLI::App& app, BenchOptions& options) {
+    auto* accuracyFlag = app.add_flag("--accuracy", options.accuracyRun,
+                                      "The error-versus-time matrix of every approximation and preset (AccuracyBench.h)");
+    app.add_flag("--quick", options.quick, "--accuracy: the CI run (short ladders, one repetition, 64 pixels wide)")
+        ->needs(accuracyFlag);
+    app.add_option("--out", options.out, "--accuracy, --report: the folder for accuracy.{json,csv,md}")
+        ->capture_default_str();
+    app.add_option("--report", options.report, "Write an earlier run's accuracy.json report again (front, tables, checks)");
+    auto* cyclesFlag =
+        app.add_flag("--cycles", options.cyclesRun, "--accuracy: against Blender's Cycles too")->needs(accuracyFlag);
+    app.add_option("--approximations", options.approximations,
                    "--accuracy: only these approximations of the matrix, by name (\"preset\" for the quality presets; "
                    "repeatable, or comma-separated)")
         ->delimiter(',')
         ->needs(accuracyFlag);
-    app.add_option("--cyclesSamples", cycles.samples, "--cycles: Cycles' samples per pixel")
+    app.add_option("--cyclesSamples", options.cycles.samples, "--cycles: Cycles' samples per pixel")
         ->check(CLI::Range(1, 1 << 20))
         ->needs(cyclesFlag)
         ->capture_default_str();
-    app.add_option("--cyclesBlock", cycles.block, "--cycles: the side of the blocks errors are measured over, pixels")
+    app.add_option("--cyclesBlock", options.cycles.block, "--cycles: the side of the blocks errors are measured over, pixels")
         ->check(CLI::Range(1, 1024))
         ->needs(cyclesFlag)
         ->capture_default_str();
-    app.add_option("--blender", cycles.blender, "--cycles: the Blender executable")->needs(cyclesFlag)->capture_default_str();
+    app.add_option("--blender", options.cycles.blender, "--cycles: the Blender executable")
+        ->needs(cyclesFlag)
+        ->capture_default_str();
+}
+
+// Parses the command line into `options`; an exit status when it should end
+// the program (help, or 2 for a command line that does not parse).
+std::optional<int> parseOptions(int argc, char** argv, BenchOptions& options) {
+    for (int i = 0; i < argc; ++i) options.command += (i ? " " : "") + std::string(argv[i]);
+    CLI::App app{"What accuracy costs in time: Google Benchmark tables, the accuracy matrix (--accuracy) and the "
+                 "dome lighting table (--table dome).",
+                 "hdhair-bench"};
+    app.add_option("--stage", options.stagePaths, "A stage to measure (repeatable; default examples/dense_clump.usda)");
+    app.add_option("--imageWidth", options.imageWidth,
+                   "Image width in pixels (default 512; 128 with --accuracy or --table dome, 64 with --quick)")
+        ->check(CLI::Range(1, 16384));
+    app.add_option("--table", options.table, "Which Google Benchmark tables, or the dome table")
+        ->check(CLI::IsMember({"all", "complexity", "transparency", "shading", "shadows", "tessellation", "dome"}))
+        ->capture_default_str();
+    app.add_option("--repetitions", options.repetitions, "Frames timed per configuration (--accuracy, --table dome)")
+        ->check(CLI::Range(1, 1000))
+        ->capture_default_str();
+    app.add_option("--domeTexture", options.domeTexture, "--table dome: the latlong sky")->capture_default_str();
+    addAccuracyOptions(app, options);
     app.footer("Other arguments (--benchmark_filter=REGEX, --benchmark_repetitions=N, ...) go to Google Benchmark.");
     // Google Benchmark reads the arguments CLI11 does not know.
     app.allow_extras();
@@ -568,247 +582,293 @@ int main(int argc, char** argv) {
         std::fprintf(stderr, "hdhair-bench: error: %s\n", error.what());
         return 2;
     }
-    std::vector<std::string> extras = app.remaining();
-    std::string programName = "hdhair-bench";
-    std::vector<char*> benchmarkArguments{programName.data()};
-    for (std::string& extra : extras) benchmarkArguments.push_back(extra.data());
-    // --report FILE: the report of an earlier --accuracy run marked and
-    // written again (after a change to the report's tables or front).
-    if (!report.empty()) {
-        try {
-            std::string text;
-            if (std::string why = readRegularFile(report, text); !why.empty()) throw std::runtime_error(why);
-            nlohmann::json earlier = nlohmann::json::parse(text);
-            accuracy::markParetoFront(earlier);
-            std::vector<std::string> notes;
-            earlier["checks"] = accuracy::checkAccuracyReport(earlier, &notes);
-            earlier["checkNotes"] = notes;
-            accuracy::writeAccuracyReport(earlier, out);
-            std::printf("%s", accuracy::accuracyMarkdown(earlier).c_str());
-            return 0;
-        } catch (const std::exception& error) {
-            std::fprintf(stderr, "hdhair-bench: error: %s: %s\n", report.c_str(), error.what());
-            return 1;
-        }
-    }
-    if (quick) repetitions = 1;
+    options.benchmark = app.remaining();
+    if (options.quick) options.repetitions = 1;
     // Accuracy frames are many (about 50 configurations a stage, the
     // reference 16 samples a pixel): small images keep the matrix to minutes.
     // So are dome frames: the reference is a thousand lights, each with a map.
-    const bool domeTable = table == "dome";
-    if (imageWidth == 0) imageWidth = accuracyRun || domeTable ? (quick ? 64 : 128) : 512;
-    if (stagePaths.empty()) stagePaths.push_back(HDHAIR_SOURCE_DIR "/examples/dense_clump.usda");
-    int benchmarkArgc = int(benchmarkArguments.size());
-    benchmark::Initialize(&benchmarkArgc, benchmarkArguments.data());
-    // What neither CLI11 nor Google Benchmark knows is a typo, not a default.
-    if (benchmarkArgc > 1) {
-        std::string unknown;
-        for (int i = 1; i < benchmarkArgc; ++i) unknown += (i > 1 ? " " : "") + std::string(benchmarkArguments[i]);
-        std::fprintf(stderr, "hdhair-bench: error: unknown arguments: %s (--help lists them)\n", unknown.c_str());
-        return 2;
-    }
+    if (options.imageWidth == 0)
+        options.imageWidth = options.accuracyRun || options.table == "dome" ? (options.quick ? 64 : 128) : 512;
+    if (options.stagePaths.empty()) options.stagePaths.push_back(HDHAIR_SOURCE_DIR "/examples/dense_clump.usda");
+    return std::nullopt;
+}
 
-    std::vector<std::unique_ptr<BenchStage>> stages;
+// Hands Google Benchmark its arguments; 2 when some are neither its nor ours.
+int initializeBenchmark(BenchOptions& options) {
+    std::string programName = "hdhair-bench";
+    std::vector<char*> arguments{programName.data()};
+    for (std::string& extra : options.benchmark) arguments.push_back(extra.data());
+    int count = int(arguments.size());
+    benchmark::Initialize(&count, arguments.data());
+    // What neither CLI11 nor Google Benchmark knows is a typo, not a default.
+    if (count <= 1) return 0;
+    std::string unknown;
+    for (int i = 1; i < count; ++i) unknown += (i > 1 ? " " : "") + std::string(arguments[i]);
+    std::fprintf(stderr, "hdhair-bench: error: unknown arguments: %s (--help lists them)\n", unknown.c_str());
+    return 2;
+}
+
+// --report FILE: the report of an earlier --accuracy run marked and written
+// again (after a change to the report's tables or front).
+int rewriteReport(const BenchOptions& options) {
     try {
-        renderer() = std::make_unique<Renderer>(gl::defaultGlBackend());
-        for (const std::string& path : stagePaths) {
-            auto stage = std::make_unique<BenchStage>();
-            stage->path = path;
-            stage->name = std::filesystem::path(path).stem().string();
-            Diagnostics diagnostics;
-            usda::readSceneFile(path, -INFINITY, stage->scene, diagnostics);
-            SceneBounds bounds = renderer()->prepare(stage->scene, RenderSettings(), diagnostics);
-            auto camera = stage->scene.cameras().begin();
-            stage->camera = camera != stage->scene.cameras().end()
-                                ? cameraViewFromPrim(*camera->second.prim, imageWidth)
-                                : frameBounds(bounds.min, bounds.max, stage->scene.info().upAxis, imageWidth,
-                                              FramingStyle::FitAll);
-            for (const auto& [lightPath, entry] : stage->scene.lights()) stage->stageLights.push_back(*entry.prim);
-            for (const auto& [curvesPath, entry] : stage->scene.curves()) {
-                stage->prepared.push_back(prepareCurves(*entry.prim, diagnostics));
-                stage->sortHashes.push_back(segmentSortHashes(stage->prepared.back()));
-            }
-            for (size_t i = 0; i < stage->prepared.size(); ++i) {
-                const PreparedCurves& curves = stage->prepared[i];
-                stage->sortSpans.push_back(SortSpan{curves.controlPoints.data(), curves.segmentFirstControl.data(),
-                                                    stage->sortHashes[i].data(), curves.segmentCount(),
-                                                    stage->segments});
-                stage->segments += curves.segmentCount();
-            }
-            stages.push_back(std::move(stage));
-        }
-        std::printf("hdhair-bench: %s on %s\n", renderer()->glDescription().c_str(),
-                    renderer()->glDevice().c_str());
+        std::string text;
+        if (std::string why = readRegularFile(options.report, text); !why.empty()) throw std::runtime_error(why);
+        nlohmann::json earlier = nlohmann::json::parse(text);
+        accuracy::markParetoFront(earlier);
+        std::vector<std::string> notes;
+        earlier["checks"] = accuracy::checkAccuracyReport(earlier, &notes);
+        earlier["checkNotes"] = notes;
+        accuracy::writeAccuracyReport(earlier, options.out);
+        std::printf("%s", accuracy::accuracyMarkdown(earlier).c_str());
+        return 0;
     } catch (const std::exception& error) {
-        std::fprintf(stderr, "hdhair-bench: error: %s\n", error.what());
+        std::fprintf(stderr, "hdhair-bench: error: %s: %s\n", options.report.c_str(), error.what());
         return 1;
     }
-    if (domeTable) {
-        try {
-            std::vector<DomeBenchStage> domeStages;
-            for (const auto& stage : stages) domeStages.push_back({stage->name, stage->path, &stage->scene, stage->camera});
-            printDomeTables(*renderer(), domeStages, {domeTexture, repetitions});
-            renderer().reset();
-            return 0;
-        } catch (const std::exception& error) {
-            std::fprintf(stderr, "hdhair-bench: error: %s\n", error.what());
-            return 1;
-        }
-    }
-    if (accuracyRun) {
-        try {
-            std::vector<accuracy::AccuracyStage> accuracyStages;
-            for (const auto& stage : stages)
-                accuracyStages.push_back({stage->name, stage->path, &stage->scene, stage->camera});
-            accuracy::AccuracyRun run{quick, repetitions, command, std::nullopt, approximations};
-            if (cyclesRun) {
-                cycles.imagesFolder = out;
-                std::filesystem::create_directories(out);
-                run.cycles = cycles;
-            }
-            nlohmann::json results = accuracy::runAccuracyBench(*renderer(), accuracyStages, run);
-            accuracy::markParetoFront(results);
-            std::vector<std::string> notes;
-            // The checks read the whole matrix (every ladder, the presets):
-            // a part of it (--approximations) is reported, not checked.
-            const std::vector<std::string> problems =
-                approximations.empty() ? accuracy::checkAccuracyReport(results, &notes) : std::vector<std::string>();
-            if (!approximations.empty()) notes.push_back("a part of the matrix (--approximations): not checked");
-            results["checks"] = problems;
-            results["checkNotes"] = notes;
-            accuracy::writeAccuracyReport(results, out);
-            std::printf("%s", accuracy::accuracyMarkdown(results).c_str());
-            for (const std::string& note : notes) std::printf("hdhair-bench: note: %s\n", note.c_str());
-            for (const std::string& problem : problems) std::printf("hdhair-bench: check failed: %s\n", problem.c_str());
-            std::printf("hdhair-bench: accuracy matrix in %.0f s, %zu checks failed; wrote %s/accuracy.{json,csv,md}\n",
-                        results["seconds"].get<double>(), problems.size(), out.c_str());
-            renderer().reset();
-            // The checks' allowances are set for the matrix's own shading;
-            // against Cycles (every frame Marschner) they are reported only.
-            return quick && !cyclesRun && !problems.empty() ? 1 : 0;
-        } catch (const std::exception& error) {
-            std::fprintf(stderr, "hdhair-bench: error: %s\n", error.what());
-            return 1;
-        }
-    }
+}
 
+// A stage read, prepared and framed for the tables.
+std::unique_ptr<BenchStage> loadStage(const std::string& path, int imageWidth) {
+    auto stage = std::make_unique<BenchStage>();
+    stage->path = path;
+    stage->name = std::filesystem::path(path).stem().string();
+    Diagnostics diagnostics;
+    usda::readSceneFile(path, -INFINITY, stage->scene, diagnostics);
+    SceneBounds bounds = renderer()->prepare(stage->scene, RenderSettings(), diagnostics);
+    auto camera = stage->scene.cameras().begin();
+    stage->camera = camera != stage->scene.cameras().end()
+                        ? cameraViewFromPrim(*camera->second.prim, imageWidth)
+                        : frameBounds(bounds.min, bounds.max, stage->scene.info().upAxis, imageWidth,
+                                      FramingStyle::FitAll);
+    for (const auto& [lightPath, entry] : stage->scene.lights()) stage->stageLights.push_back(*entry.prim);
+    for (const auto& [curvesPath, entry] : stage->scene.curves()) {
+        stage->prepared.push_back(prepareCurves(*entry.prim, diagnostics));
+        stage->sortHashes.push_back(segmentSortHashes(stage->prepared.back()));
+    }
+    for (size_t i = 0; i < stage->prepared.size(); ++i) {
+        const PreparedCurves& curves = stage->prepared[i];
+        stage->sortSpans.push_back(SortSpan{curves.controlPoints.data(), curves.segmentFirstControl.data(),
+                                            stage->sortHashes[i].data(), curves.segmentCount(), stage->segments});
+        stage->segments += curves.segmentCount();
+    }
+    return stage;
+}
+
+// --table dome (DomeBench.h).
+int runDomeTable(const std::vector<std::unique_ptr<BenchStage>>& stages, const BenchOptions& options) {
+    std::vector<DomeBenchStage> domeStages;
+    for (const auto& stage : stages) domeStages.push_back({stage->name, stage->path, &stage->scene, stage->camera});
+    printDomeTables(*renderer(), domeStages, {options.domeTexture, options.repetitions});
+    return 0;
+}
+
+// --accuracy (AccuracyBench.h): the matrix, its report and its checks.
+int runAccuracy(const std::vector<std::unique_ptr<BenchStage>>& stages, BenchOptions& options) {
+    std::vector<accuracy::AccuracyStage> accuracyStages;
+    for (const auto& stage : stages) accuracyStages.push_back({stage->name, stage->path, &stage->scene, stage->camera});
+    accuracy::AccuracyRun run{options.quick, options.repetitions, options.command, std::nullopt, options.approximations};
+    if (options.cyclesRun) {
+        options.cycles.imagesFolder = options.out;
+        std::filesystem::create_directories(options.out);
+        run.cycles = options.cycles;
+    }
+    nlohmann::json results = accuracy::runAccuracyBench(*renderer(), accuracyStages, run);
+    accuracy::markParetoFront(results);
+    std::vector<std::string> notes;
+    // The checks read the whole matrix (every ladder, the presets): a part
+    // of it (--approximations) is reported, not checked.
+    const bool whole = options.approximations.empty();
+    const std::vector<std::string> problems =
+        whole ? accuracy::checkAccuracyReport(results, &notes) : std::vector<std::string>();
+    if (!whole) notes.push_back("a part of the matrix (--approximations): not checked");
+    results["checks"] = problems;
+    results["checkNotes"] = notes;
+    accuracy::writeAccuracyReport(results, options.out);
+    std::printf("%s", accuracy::accuracyMarkdown(results).c_str());
+    for (const std::string& note : notes) std::printf("hdhair-bench: note: %s\n", note.c_str());
+    for (const std::string& problem : problems) std::printf("hdhair-bench: check failed: %s\n", problem.c_str());
+    std::printf("hdhair-bench: accuracy matrix in %.0f s, %zu checks failed; wrote %s/accuracy.{json,csv,md}\n",
+                results["seconds"].get<double>(), problems.size(), options.out.c_str());
+    // The checks' allowances are set for the matrix's own shading; against
+    // Cycles (every frame Marschner) they are reported only.
+    return options.quick && !options.cyclesRun && !problems.empty() ? 1 : 0;
+}
+
+// Which Google Benchmark tables run (--table), and their configurations.
+struct Tables {
+    explicit Tables(const std::string& table)
+        : complexity(table == "all" || table == "complexity"), transparency(table == "all" || table == "transparency"),
+          shading(table == "all" || table == "shading"), shadow(table == "all" || table == "shadows"),
+          tessellation(table == "all" || table == "tessellation") {}
+    bool complexity, transparency, shading, shadow, tessellation;
     std::vector<Configuration> complexities = complexityConfigurations();
     std::vector<Configuration> transparencies = transparencyConfigurations();
-    bool complexityTable = table == "all" || table == "complexity";
-    bool transparencyTable = table == "all" || table == "transparency";
-    bool shadingTable = table == "all" || table == "shading";
-    bool shadowTable = table == "all" || table == "shadows";
-    bool tessellationTable = table == "all" || table == "tessellation";
     std::vector<Configuration> shadows = shadowConfigurations();
     std::vector<ShadingConfiguration> shadings = shadingConfigurations();
+};
+
+// A stage's curve preparation and bin sort, timed alone.
+void registerStageBenchmarks(BenchStage* stage) {
+    benchmark::RegisterBenchmark(("PrepareCurves/" + stage->name).c_str(), [stage](benchmark::State& state) {
+        Diagnostics diagnostics;
+        for (auto _ : state)
+            for (const auto& [path, entry] : stage->scene.curves())
+                benchmark::DoNotOptimize(prepareCurves(*entry.prim, diagnostics).controlPoints.data());
+    })->Unit(benchmark::kMillisecond);
+    benchmark::RegisterBenchmark(("BinSort/" + stage->name).c_str(), [stage](benchmark::State& state) {
+        const glm::dvec3 position = stage->camera.position(), direction = stage->camera.forward();
+        std::vector<uint32_t> order;
+        for (auto _ : state) {
+            binSortSegments(stage->sortSpans, position, direction, 256, order);
+            benchmark::DoNotOptimize(order.data());
+        }
+        state.counters["segments/s"] =
+            benchmark::Counter(double(stage->segments), benchmark::Counter::kIsIterationInvariantRate);
+    })->Unit(benchmark::kMillisecond);
+}
+
+// Every benchmark the tables asked for read.
+void registerTableBenchmarks(const std::vector<std::unique_ptr<BenchStage>>& stages, const Tables& tables) {
     registerReaderBenchmarks();
     registerSrbfTableBenchmarks();
     registerEnvironmentBenchmarks();
     for (const auto& stagePointer : stages) {
         BenchStage* stage = stagePointer.get();
-        benchmark::RegisterBenchmark(("PrepareCurves/" + stage->name).c_str(), [stage](benchmark::State& state) {
-            Diagnostics diagnostics;
-            for (auto _ : state)
-                for (const auto& [path, entry] : stage->scene.curves())
-                    benchmark::DoNotOptimize(prepareCurves(*entry.prim, diagnostics).controlPoints.data());
-        })->Unit(benchmark::kMillisecond);
-        benchmark::RegisterBenchmark(("BinSort/" + stage->name).c_str(), [stage](benchmark::State& state) {
-            const glm::dvec3 position = stage->camera.position(), direction = stage->camera.forward();
-            std::vector<uint32_t> order;
-            for (auto _ : state) {
-                binSortSegments(stage->sortSpans, position, direction, 256, order);
-                benchmark::DoNotOptimize(order.data());
-            }
-            state.counters["segments/s"] = benchmark::Counter(double(stage->segments),
-                                                              benchmark::Counter::kIsIterationInvariantRate);
-        })->Unit(benchmark::kMillisecond);
+        registerStageBenchmarks(stage);
         std::vector<Configuration> frames;
-        if (complexityTable) frames.insert(frames.end(), complexities.begin(), complexities.end());
-        if (transparencyTable) frames.insert(frames.end(), transparencies.begin(), transparencies.end());
+        if (tables.complexity) frames.insert(frames.end(), tables.complexities.begin(), tables.complexities.end());
+        if (tables.transparency)
+            frames.insert(frames.end(), tables.transparencies.begin(), tables.transparencies.end());
         for (const Configuration& configuration : frames) registerFrame(stage, configuration, kStageLights);
     }
-    for (const auto& stagePointer : stages) {
-        if (!shadingTable) break;
-        for (const ShadingConfiguration& shading : shadings)
-            registerFrame(stagePointer.get(), shading.configuration, shading.lights);
+    for (const auto& stage : stages) {
+        if (tables.shading)
+            for (const ShadingConfiguration& shading : tables.shadings)
+                registerFrame(stage.get(), shading.configuration, shading.lights);
+        if (tables.shadow)
+            for (const Configuration& configuration : tables.shadows) registerShadowFrame(stage.get(), configuration);
     }
-    for (const auto& stagePointer : stages) {
-        if (!shadowTable) break;
-        for (const Configuration& configuration : shadows) registerShadowFrame(stagePointer.get(), configuration);
+}
+
+// The complexity, tessellation and transparency tables of a stage.
+void printFrameTables(BenchStage& stage, const Tables& tables, const RecordingReporter& reporter) {
+    setLightCount(stage, kStageLights);
+    if (tables.complexity) printTable(stage, tables.complexities, 3, 0, reporter, "Complexity");
+    if (tables.tessellation) printTessellationTable(stage);
+    if (!tables.transparency) return;
+    printTable(stage, tables.transparencies, tables.transparencies.size() - 1, 0, reporter, "Transparency");
+    auto sort = reporter.seconds.find("BinSort/" + stage.name);
+    auto sorted = reporter.seconds.find(frameName(stage, tables.transparencies[5]));  // binSorted 256
+    if (sort != reporter.seconds.end() && sorted != reporter.seconds.end())
+        std::printf("\nThe CPU bin sort (256 bins) is %.1f%% of a binSorted frame.\n",
+                    100.0 * sort->second / sorted->second);
+}
+
+// Each shading model's time with 1 to 16 lights, relative to flat with one.
+void printShadingTable(const BenchStage& stage, const Tables& tables, const RecordingReporter& reporter) {
+    std::printf("\nShading, %s: time relative to flat with 1 light (same run)\n\n| model | 1 light | 4 lights | "
+                "8 lights | 16 lights |\n|---|---|---|---|---|\n",
+                stage.path.c_str());
+    auto base = reporter.seconds.find(frameName(stage, tables.shadings[0].configuration));
+    for (size_t i = 0; i < tables.shadings.size(); i += 4) {
+        std::string row = "| " + tables.shadings[i].model + " |";
+        for (size_t j = i; j < i + 4; ++j) {
+            auto time = reporter.seconds.find(frameName(stage, tables.shadings[j].configuration));
+            row += (time != reporter.seconds.end() && base != reporter.seconds.end())
+                       ? fmt::format(" {:.2f}x |", time->second / base->second)
+                       : " not run |";
+        }
+        std::printf("%s\n", row.c_str());
     }
+}
+
+// The images of the two Marschner paths against analytic, with the stage's own lights.
+void printMarschnerImageTable(BenchStage& stage) {
+    setLightCount(stage, kStageLights);
+    Diagnostics diagnostics;
+    auto marschnerImage = [&](MarschnerAzimuthal azimuthal) {
+        RenderSettings settings;
+        settings.setValue(&SettingValues::shadingModel, ShadingModel::Marschner);
+        settings.setValue(&SettingValues::marschnerAzimuthal, azimuthal);
+        return renderer()->render(stage.scene, stage.camera, settings, diagnostics).color;
+    };
+    Image analytic = marschnerImage(MarschnerAzimuthal::Analytic);
+    double peak = 0.0;
+    for (float value : analytic.pixels) peak = std::max(peak, double(value));
+    std::printf("\nMarschner images, %s: against analytic (GPU, stage lights; brightest channel %.3f)\n\n"
+                "| marschner:azimuthal | RMSE | max difference | pixels over 1/255 |\n|---|---|---|---|\n",
+                stage.path.c_str(), peak);
+    for (MarschnerAzimuthal azimuthal : {MarschnerAzimuthal::Tables, MarschnerAzimuthal::Auto}) {
+        // exactWithin: every covered pixel more than a step apart is an outlier.
+        ImageComparison difference = compareImages(marschnerImage(azimuthal), analytic, exactWithin(kOneStep));
+        std::printf("| %s | %.5f | %.4f | %.2f%% |\n", toString(azimuthal), difference.rootMeanSquare,
+                    difference.maxDifference,
+                    100.0 * double(difference.outliers) / double(std::max<size_t>(difference.coveredPixels, 1)));
+    }
+}
+
+// Tabled Marschner against analytic on the CPU, over directions a frame would see.
+void printMarschnerTableErrors() {
+    MarschnerParameters parameters;
+    parameters.sigmaA = marschnerSigmaAFromMelanin(0.3f, 0.0f);
+    std::printf("\nMarschner, tabled against analytic (radiance over 20,000 random directions):\n\n"
+                "| table | precision | max | RMS | max / peak |\n|---|---|---|---|---|\n");
+    for (const MarschnerTableError& error : measureMarschnerTableErrors(parameters, {32, 64, 128}))
+        std::printf("| %dx%d | %s | %.4f | %.6f | %.2f%% |\n", error.width, error.height,
+                    error.precision == MarschnerTablePrecision::Half ? "half" : "float", error.maxAbsolute,
+                    error.rms, 100.0 * error.maxAbsolute / error.peak);
+}
+
+// The Google Benchmark tables (--table): registered, run, printed.
+int runTables(const std::vector<std::unique_ptr<BenchStage>>& stages, const BenchOptions& options) {
+    const Tables tables(options.table);
+    registerTableBenchmarks(stages, tables);
     RecordingReporter reporter;
     benchmark::RunSpecifiedBenchmarks(&reporter);
-
+    for (const auto& stage : stages) printFrameTables(*stage, tables, reporter);
     for (const auto& stage : stages) {
-        setLightCount(*stage, kStageLights);
-        if (complexityTable) printTable(*stage, complexities, 3, 0, reporter, "Complexity");
-        if (tessellationTable) printTessellationTable(*stage);
-        if (transparencyTable) {
-            printTable(*stage, transparencies, transparencies.size() - 1, 0, reporter, "Transparency");
-            auto sort = reporter.seconds.find("BinSort/" + stage->name);
-            auto sorted = reporter.seconds.find(frameName(*stage, transparencies[5]));  // binSorted 256
-            if (sort != reporter.seconds.end() && sorted != reporter.seconds.end())
-                std::printf("\nThe CPU bin sort (256 bins) is %.1f%% of a binSorted frame.\n",
-                            100.0 * sort->second / sorted->second);
-        }
+        if (!tables.shading) break;
+        printShadingTable(*stage, tables, reporter);
     }
     for (const auto& stage : stages) {
-        if (!shadingTable) break;
-        std::printf("\nShading, %s: time relative to flat with 1 light (same run)\n\n| model | 1 light | 4 lights | "
-                    "8 lights | 16 lights |\n|---|---|---|---|---|\n",
-                    stage->path.c_str());
-        auto base = reporter.seconds.find(frameName(*stage, shadings[0].configuration));
-        for (size_t i = 0; i < shadings.size(); i += 4) {
-            std::string row = "| " + shadings[i].model + " |";
-            for (size_t j = i; j < i + 4; ++j) {
-                auto time = reporter.seconds.find(frameName(*stage, shadings[j].configuration));
-                row += (time != reporter.seconds.end() && base != reporter.seconds.end())
-                           ? fmt::format(" {:.2f}x |", time->second / base->second)
-                           : " not run |";
-            }
-            std::printf("%s\n", row.c_str());
-        }
-    }
-    for (const auto& stage : stages) {
-        if (!shadingTable) break;
-        // The images of the two Marschner paths, with the stage's own lights.
-        setLightCount(*stage, kStageLights);
-        Diagnostics diagnostics;
-        auto marschnerImage = [&](const char* azimuthal) {
-            RenderSettings settings;
-            settings.set("shadingModel", "marschner");
-            settings.set("marschner:azimuthal", azimuthal);
-            return renderer()->render(stage->scene, stage->camera, settings, diagnostics).color;
-        };
-        Image analytic = marschnerImage("analytic");
-        double peak = 0.0;
-        for (float value : analytic.pixels) peak = std::max(peak, double(value));
-        std::printf("\nMarschner images, %s: against analytic (GPU, stage lights; brightest channel %.3f)\n\n"
-                    "| marschner:azimuthal | RMSE | max difference | pixels over 1/255 |\n|---|---|---|---|\n",
-                    stage->path.c_str(), peak);
-        for (const char* azimuthal : {"tables", "auto"}) {
-            // exactWithin: every covered pixel more than a step apart is an outlier.
-            ImageComparison difference = compareImages(marschnerImage(azimuthal), analytic, exactWithin(kOneStep));
-            std::printf("| %s | %.5f | %.4f | %.2f%% |\n", azimuthal, difference.rootMeanSquare,
-                        difference.maxDifference,
-                        100.0 * double(difference.outliers) / double(std::max<size_t>(difference.coveredPixels, 1)));
-        }
+        if (!tables.shading) break;
+        printMarschnerImageTable(*stage);
     }
     for (const auto& stage : stages)
-        if (shadowTable) printShadowTable(*stage, shadows, reporter);
-    if (shadingTable) {
-        // Tabled against analytic Marschner on the CPU, over directions a
-        // frame would see.
-        MarschnerParameters parameters;
-        parameters.sigmaA = marschnerSigmaAFromMelanin(0.3f, 0.0f);
-        std::printf("\nMarschner, tabled against analytic (radiance over 20,000 random directions):\n\n"
-                    "| table | precision | max | RMS | max / peak |\n|---|---|---|---|---|\n");
-        for (const MarschnerTableError& error : measureMarschnerTableErrors(parameters, {32, 64, 128}))
-            std::printf("| %dx%d | %s | %.4f | %.6f | %.2f%% |\n", error.width, error.height,
-                        error.precision == MarschnerTablePrecision::Half ? "half" : "float", error.maxAbsolute,
-                        error.rms, 100.0 * error.maxAbsolute / error.peak);
-    }
+        if (tables.shadow) printShadowTable(*stage, tables.shadows, reporter);
+    if (tables.shading) printMarschnerTableErrors();
     benchmark::Shutdown();
-    renderer().reset();
     return 0;
+}
+
+// Runs `job` with the renderer made, turning an error into one line and exit 1.
+template <typename Job>
+int withRenderer(Job&& job) {
+    try {
+        renderer() = std::make_unique<Renderer>(gl::defaultGlBackend());
+        const int status = job();
+        renderer().reset();
+        return status;
+    } catch (const std::exception& error) {
+        std::fprintf(stderr, "hdhair-bench: error: %s\n", error.what());
+        return 1;
+    }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    BenchOptions options;
+    if (std::optional<int> status = parseOptions(argc, argv, options)) return *status;
+    if (!options.report.empty()) return rewriteReport(options);
+    if (int status = initializeBenchmark(options); status != 0) return status;
+    return withRenderer([&] {
+        std::vector<std::unique_ptr<BenchStage>> stages;
+        for (const std::string& path : options.stagePaths) stages.push_back(loadStage(path, options.imageWidth));
+        std::printf("hdhair-bench: %s on %s\n", renderer()->glDescription().c_str(), renderer()->glDevice().c_str());
+        if (options.table == "dome") return runDomeTable(stages, options);
+        if (options.accuracyRun) return runAccuracy(stages, options);
+        return runTables(stages, options);
+    });
 }
