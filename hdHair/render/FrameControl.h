@@ -28,6 +28,15 @@ struct FrameControl {
     // A preview draws every this-many-th curve of each prim only
     // (keepEveryNthCurve, InteractivePreview.h); 1 for every other frame.
     int previewCurveStride = 1;
+    // Whether each pass's code is checked against the resources its pass
+    // declares (FramePasses.cpp: a pass touching one it did not declare
+    // throws std::logic_error): in debug builds always, and where a test
+    // asks for it.
+#ifdef NDEBUG
+    bool checkResourceAccess = false;
+#else
+    bool checkResourceAccess = true;
+#endif
 };
 
 }  // namespace hdhair

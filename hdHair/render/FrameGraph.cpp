@@ -9,15 +9,23 @@
 
 namespace hdhair {
 
-namespace {
-
-std::string joined(const std::vector<FrameResource>& resources) {
-    std::string text;
-    for (const FrameResource& resource : resources) text += (text.empty() ? "" : ", ") + resource;
-    return text.empty() ? "-" : text;
+std::string FrameGraph::nameOf(const FrameResource& resource) const {
+    if (!isPerLight(resource.kind)) return toString(resource.kind);
+    return std::string(toString(resource.kind)) + " " +
+           (resource.light < lightNames_.size() ? lightNames_[resource.light] : std::to_string(resource.light));
 }
 
-}  // namespace
+std::vector<std::string> FrameGraph::namesOf(const std::vector<FrameResource>& resources) const {
+    std::vector<std::string> names;
+    for (const FrameResource& resource : resources) names.push_back(nameOf(resource));
+    return names;
+}
+
+std::string FrameGraph::joined(const std::vector<FrameResource>& resources) const {
+    std::string text;
+    for (const FrameResource& resource : resources) text += (text.empty() ? "" : ", ") + nameOf(resource);
+    return text.empty() ? "-" : text;
+}
 
 void FrameGraph::input(const FrameResource& resource) { inputs_.push_back(resource); }
 
@@ -52,7 +60,7 @@ void FrameGraph::compile() {
         for (const FrameResource& resource : pass.reads)
             if (!available.count(resource))
                 throw std::logic_error(fmt::format("frame graph: pass '{}' reads '{}', which no earlier pass writes",
-                                                   pass.name, resource));
+                                                   pass.name, nameOf(resource)));
         available.insert(pass.writes.begin(), pass.writes.end());
     }
 }
@@ -78,7 +86,7 @@ bool FrameGraph::isEnabled(PassKind kind, size_t subject) const {
     return pass && pass->enabled;
 }
 
-std::string FrameGraph::reasonFor(const FramePass& pass) {
+std::string FrameGraph::reasonFor(const FramePass& pass) const {
     if (pass.wanted && !pass.enabled)
         return pass.reason + fmt::format("; not built: nothing reads its output ({})", joined(pass.writes));
     return pass.reason;
@@ -103,7 +111,7 @@ nlohmann::json FrameGraph::toJson(const std::vector<double>& milliseconds) const
     for (size_t i = 0; i < passes_.size(); ++i) {
         const FramePass& pass = passes_[i];
         nlohmann::json entry = {{"pass", pass.name},       {"enabled", pass.enabled}, {"reason", reasonFor(pass)},
-                                {"reads", pass.reads},     {"writes", pass.writes}};
+                                {"reads", namesOf(pass.reads)}, {"writes", namesOf(pass.writes)}};
         if (pass.enabled) entry["milliseconds"] = milliseconds.size() == passes_.size() ? milliseconds[i] : 0.0;
         json.push_back(std::move(entry));
     }

@@ -6,19 +6,80 @@
 // delivers (its colour, depth and ids). The renderer then runs exactly the
 // enabled passes, in declaration order; nothing else decides what runs.
 //
-// Resources are named: "preparedStrands" (an input from the CPU),
-// "strands" (the GPU copy), "drawOrder", "color", "depth", "ids",
-// "deepOpacity <light>", and so on. A pass that reads and writes the same
-// resource (a light batch adding onto "color") updates it in place.
+// Resources are typed: a kind and, for the kinds each shadow-casting light
+// has one of, the index of its planned shadow (ShadowPlan::lights), after
+// Filament's FrameGraphId. A pass that reads and writes the same resource
+// (a light batch adding onto the colour) updates it in place. Each pass's
+// code checks what it touches against what its pass declares
+// (FramePasses.cpp, FrameAccess), so a declaration cannot drift from the
+// code unseen.
 
+#include <array>
+#include <cstddef>
 #include <string>
 #include <vector>
 
 #include <nlohmann/json_fwd.hpp>
 
+#include "hdHair/base/TokenTable.h"
+
 namespace hdhair {
 
-using FrameResource = std::string;
+enum class ResourceKind {
+    PreparedStrands,   // the drawn prims' curves on the CPU (an input)
+    PreparedMeshes,    // the drawn meshes on the CPU (an input)
+    Strands,           // the strands on the GPU, with their materials
+    MeshGeometry,      // the meshes on the GPU
+    DrawOrder,         // the bin sort's segment order
+    HairDepth,         // per light: the nearest hair in its view
+    DeepOpacity,       // per light: its opacity layers
+    ShadowFragments,   // per light: every light-view fragment (shadowMode=reference)
+    MeshDepth,         // per light: the nearest mesh in its view
+    ConvolvedOpacity,  // every map's opacity layers as a mip chain
+    Color,
+    Depth,
+    Ids,
+    Aovs,              // the frame's images on the CPU
+    DisplayImage,      // the display image made on the GPU
+};
+template <>
+struct TokenTable<ResourceKind> {
+    static constexpr std::array<TokenName<ResourceKind>, 15> names{{
+        {ResourceKind::PreparedStrands, "preparedStrands"},
+        {ResourceKind::PreparedMeshes, "preparedMeshes"},
+        {ResourceKind::Strands, "strands"},
+        {ResourceKind::MeshGeometry, "meshGeometry"},
+        {ResourceKind::DrawOrder, "drawOrder"},
+        {ResourceKind::HairDepth, "hairDepth"},
+        {ResourceKind::DeepOpacity, "deepOpacity"},
+        {ResourceKind::ShadowFragments, "shadowFragments"},
+        {ResourceKind::MeshDepth, "meshDepth"},
+        {ResourceKind::ConvolvedOpacity, "convolvedOpacity"},
+        {ResourceKind::Color, "color"},
+        {ResourceKind::Depth, "depth"},
+        {ResourceKind::Ids, "ids"},
+        {ResourceKind::Aovs, "aovs"},
+        {ResourceKind::DisplayImage, "displayImage"},
+    }};
+};
+
+// Whether each light has a resource of this kind (indexed by its planned shadow).
+constexpr bool isPerLight(ResourceKind kind) {
+    return kind == ResourceKind::HairDepth || kind == ResourceKind::DeepOpacity ||
+           kind == ResourceKind::ShadowFragments || kind == ResourceKind::MeshDepth;
+}
+
+struct FrameResource {
+    ResourceKind kind;
+    size_t light = 0;  // per-light kinds: the planned shadow (ShadowPlan::lights); else 0
+
+    FrameResource(ResourceKind kind, size_t light = 0) : kind(kind), light(isPerLight(kind) ? light : 0) {}
+    bool operator==(const FrameResource& other) const { return kind == other.kind && light == other.light; }
+    bool operator!=(const FrameResource& other) const { return !(*this == other); }
+    bool operator<(const FrameResource& other) const {
+        return kind != other.kind ? kind < other.kind : light < other.light;
+    }
+};
 
 // What a pass does. The renderer runs a pass by its kind (FramePasses.cpp
 // has one function per kind, named as the kind is in --explain: a pass
@@ -42,6 +103,28 @@ enum class PassKind {
     Readback,
     DisplayTransform,
 };
+// Each kind's name: its passes' labels begin with it ("deepOpacity /World/key").
+template <>
+struct TokenTable<PassKind> {
+    static constexpr std::array<TokenName<PassKind>, 16> names{{
+        {PassKind::Upload, "upload"},
+        {PassKind::MeshUpload, "meshUpload"},
+        {PassKind::Sort, "sort"},
+        {PassKind::ShadowDepth, "shadowDepth"},
+        {PassKind::DeepOpacity, "deepOpacity"},
+        {PassKind::ShadowFragments, "shadowFragments"},
+        {PassKind::MeshShadow, "meshShadow"},
+        {PassKind::OpacityMipmaps, "opacityMipmaps"},
+        {PassKind::Clear, "clear"},
+        {PassKind::Meshes, "meshes"},
+        {PassKind::Strands, "strands"},
+        {PassKind::Ids, "ids"},
+        {PassKind::Resolve, "resolve"},
+        {PassKind::LightBatch, "lightBatch"},
+        {PassKind::Readback, "readback"},
+        {PassKind::DisplayTransform, "displayTransform"},
+    }};
+};
 
 struct FramePass {
     PassKind kind;
@@ -60,6 +143,12 @@ class FrameGraph {
 public:
     // Declares a resource that comes from outside the graph (prepared curves).
     void input(const FrameResource& resource);
+    // The names of the lights per-light resources are indexed by, for
+    // --explain and --stats ("deepOpacity /World/key").
+    void nameLights(std::vector<std::string> names) { lightNames_ = std::move(names); }
+    // "color", "deepOpacity /World/key".
+    std::string nameOf(const FrameResource& resource) const;
+    std::vector<std::string> namesOf(const std::vector<FrameResource>& resources) const;
     // Declares a pass; passes run in the order they are added.
     FramePass& add(FramePass pass);
     // What the frame delivers: passes that (transitively) feed these run.
@@ -74,6 +163,7 @@ public:
 
     // Once compiled, the graph is read only: a frame runs it as it is.
     const std::vector<FramePass>& passes() const { return passes_; }
+    const std::vector<FrameResource>& inputs() const { return inputs_; }
     const std::vector<FrameResource>& outputs() const { return outputs_; }
     // By label (--explain's names: tests and tools).
     const FramePass* find(const std::string& name) const;
@@ -90,10 +180,12 @@ public:
 
 private:
     // The pass's reason, and for a wanted pass that is not built, why not.
-    static std::string reasonFor(const FramePass& pass);
+    std::string reasonFor(const FramePass& pass) const;
+    std::string joined(const std::vector<FrameResource>& resources) const;
 
     std::vector<FrameResource> inputs_, outputs_;
     std::vector<FramePass> passes_;
+    std::vector<std::string> lightNames_;
 };
 
 }  // namespace hdhair

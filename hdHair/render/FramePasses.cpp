@@ -23,6 +23,37 @@ namespace hdhair {
 
 namespace {
 
+// How a pass's code uses a resource: reads it, writes it, or updates it in
+// place (both).
+enum class Access { Read, Write, Update };
+
+// Checks that the running pass declared `resource` for `access`, when the
+// frame checks (FrameContext::checkAccess): a pass whose code touches what
+// its FramePass does not declare is a wiring mistake, never bad input, and
+// the graph's culling would be wrong about it.
+void touch(FrameContext& context, const FrameResource& resource, Access access) {
+    if (!context.checkAccess || !context.pass) return;
+    const FramePass& pass = *context.pass;
+    auto declares = [&](const std::vector<FrameResource>& list) {
+        return std::find(list.begin(), list.end(), resource) != list.end();
+    };
+    const bool reads = access != Access::Write, writes = access != Access::Read;
+    if ((reads && !declares(pass.reads)) || (writes && !declares(pass.writes)))
+        throw std::logic_error(fmt::format("frame graph: pass '{}' {} '{}', which it does not declare",
+                                           pass.name, reads && !declares(pass.reads) ? "reads" : "writes",
+                                           context.plan.graph.nameOf(resource)));
+}
+
+// The frame's images a pass draws into: colour and depth, and the ids when
+// the frame has them and the pass writes them. Nothing when `target` is a
+// light batch's own (the batch adds it onto the colour itself).
+void touchFrameImages(FrameContext& context, const gl::RenderTarget& target, Access access, bool writesIds) {
+    if (&target != context.target) return;
+    touch(context, ResourceKind::Color, access);
+    touch(context, ResourceKind::Depth, access);
+    if (writesIds && context.inputs.idsRequested) touch(context, ResourceKind::Ids, Access::Write);
+}
+
 // The lights of one batch; the dome's ambient or uniform term belongs to
 // the first batch only, so that summing batches counts it once. An SRBF
 // light is kind 2 (lightVector.w), its bandwidth in lightScale.w.
@@ -48,6 +79,8 @@ gl::LightUniforms lightUniforms(const RenderPlan& plan, size_t batch) {
 }
 
 void sortAndSend(FrameContext& context) {
+    touch(context, ResourceKind::PreparedStrands, Access::Read);
+    touch(context, ResourceKind::DrawOrder, Access::Write);
     const CameraView& camera = *context.inputs.camera;
     binSortSegments(context.inputs.sortSpans, camera.position(), camera.forward(),
                     context.plan.sortBins, context.drawOrder);
@@ -60,6 +93,8 @@ void sortAndSend(FrameContext& context) {
 // preparedStrands -> strands: what changed since the last frame, and the
 // materials when they changed.
 void upload(FrameContext& context) {
+    touch(context, ResourceKind::PreparedStrands, Access::Read);
+    touch(context, ResourceKind::Strands, Access::Write);
     FrameInputs& inputs = context.inputs;
     gl::StrandGeometry& strands = context.resources.strands;
     strands.reserve(inputs.uploads.capacityNeeded, inputs.uploads.controlCapacityNeeded);
@@ -87,6 +122,8 @@ void upload(FrameContext& context) {
 
 // preparedMeshes -> meshGeometry: every drawn mesh, when one changed.
 void meshUpload(FrameContext& context) {
+    touch(context, ResourceKind::PreparedMeshes, Access::Read);
+    touch(context, ResourceKind::MeshGeometry, Access::Write);
     const MeshUpload& meshes = context.inputs.meshes;
     if (!meshes.changed) return;
     gl::MeshGeometry& geometry = context.resources.meshes;
@@ -129,9 +166,31 @@ gl::ShadingFeatures bindBatchInputs(FrameContext& context, gl::RenderTarget& tar
     return features;
 }
 
+// The maps the strand programs of light batch `batch` look up, as their
+// uniforms name them by slot: each planned shadow's map (and the meshes'
+// depth beside it), and the mip chain when an SRBF light reads through it.
+void touchBatchShadows(FrameContext& context, size_t batch) {
+    const ShadowPlan& shadows = context.plan.shadows;
+    const gl::ShadowUniforms uniforms = batchShadowUniforms(context.plan, batch);
+    const auto [begin, end] = context.plan.lightBatches[batch];
+    for (size_t entry = 0; entry < end - begin && entry < size_t(gl::kMaxLightsPerPass); ++entry) {
+        const int slot = int(uniforms.lightMap[entry].x);
+        if (slot < 0) continue;
+        for (size_t shadow = 0; shadow < shadows.lights.size(); ++shadow) {
+            if (!shadows.isMapped(shadows.lights[shadow]) || shadows.lights[shadow].slot != slot) continue;
+            touch(context, shadows.resourceOf(shadow), Access::Read);
+            if (shadows.meshesCast) touch(context, shadows.meshResourceOf(shadow), Access::Read);
+        }
+        if (shadows.convolvedOpacity && context.plan.lights.lights[begin + entry].isSrbf())
+            touch(context, ResourceKind::ConvolvedOpacity, Access::Read);
+    }
+}
+
 // Draws the meshes lit by the lights of one batch into `target`, before the
 // strands: their depth is what every strand path tests against.
 void drawMeshes(FrameContext& context, gl::RenderTarget& target, size_t batch) {
+    touch(context, ResourceKind::MeshGeometry, Access::Read);
+    touchFrameImages(context, target, Access::Update, true);
     bindBatchInputs(context, target, batch);
     context.resources.meshPass.draw(context.resources.meshes, context.inputs.meshes.draws,
                                     context.inputs.frame.viewProjection,
@@ -146,6 +205,9 @@ void clear(FrameContext& context) {
                                         context.plan.transparency != TransparencyPath::Opaque,
                                         context.inputs.samples};
     context.target = &context.resources.frameTarget(camera.imageWidth, camera.imageHeight, images);
+    touch(context, ResourceKind::Color, Access::Write);
+    touch(context, ResourceKind::Depth, Access::Write);
+    if (context.inputs.idsRequested) touch(context, ResourceKind::Ids, Access::Write);
     // Empty pixels are transparent black: pre-multiplied "nothing".
     context.target->bindAndClear(glm::vec4(0.0f));
 }
@@ -245,6 +307,7 @@ void listStrands(FrameContext& context, gl::RenderTarget& target, size_t batch, 
         filling.pieceSegments = context.strandPieceSegments;
         filling.stopRequested = [&context] { return stopRequested(context); };
     }
+    touchFrameImages(context, target, Access::Update, true);  // the resolve writes depth and ids
     const size_t capacity = compute ? inputs.computeRasterCapacity : inputs.fragmentListCapacity;
     const uint64_t fragments = resources.fragmentLists.render(
         resources.strands, compute ? listedSegments(plan, inputs.uploads) : gl::ListedSegments{inputs.uploads.drawRanges, {}},
@@ -281,15 +344,23 @@ void listStrands(FrameContext& context, gl::RenderTarget& target, size_t batch, 
 // or opaque by the hardware.
 void drawStrands(FrameContext& context, gl::RenderTarget& target, size_t batch) {
     const RenderPlan& plan = context.plan;
+    touch(context, ResourceKind::Strands, Access::Read);
+    touchBatchShadows(context, batch);
     const gl::ShadingFeatures features = bindBatchInputs(context, target, batch);
     if (plan.strandRaster == StrandRaster::Compute) return listStrands(context, target, batch, features, true);
     if (plan.transparency == TransparencyPath::Exact) return listStrands(context, target, batch, features, false);
-    drawStrandPieces(context, context.inputs.frame.orderedDraw != 0,
-                     plan.transparency == TransparencyPath::Opaque ? gl::StrandBlending::Opaque
-                                                                   : gl::StrandBlending::PremultipliedOver);
+    const bool ordered = context.inputs.frame.orderedDraw != 0;
+    if (ordered) touch(context, ResourceKind::DrawOrder, Access::Read);
+    // Blended, the ids are the ids pass's; opaque, the depth test keeps them here.
+    const bool opaque = plan.transparency == TransparencyPath::Opaque;
+    touchFrameImages(context, target, Access::Update, opaque);
+    drawStrandPieces(context, ordered, opaque ? gl::StrandBlending::Opaque : gl::StrandBlending::PremultipliedOver);
 }
 
 void ids(FrameContext& context) {
+    touch(context, ResourceKind::Strands, Access::Read);
+    touch(context, ResourceKind::Depth, Access::Read);
+    touch(context, ResourceKind::Ids, Access::Write);
     gl::FrameUniforms idsFrame = context.inputs.frame;
     idsFrame.drawMode = 2;
     idsFrame.orderedDraw = 0;
@@ -309,6 +380,7 @@ void lightBatch(FrameContext& context, size_t batch) {
     if (context.plan.isEnabled(PassKind::Meshes)) drawMeshes(context, batchTarget, batch);
     if (context.plan.isEnabled(PassKind::Strands)) drawStrands(context, batchTarget, batch);
     batchTarget.resolve();
+    touch(context, ResourceKind::Color, Access::Update);
     context.resources.lightBatchAccumulation.add(*context.target, batchTarget);
 }
 
@@ -327,6 +399,13 @@ gl::LightViewStrands lightViewStrands(const PlannedShadow& shadow) {
 
 // The hair in light L's view, as shadowDepth or deepOpacity draws it.
 void hairShadowMap(FrameContext& context, size_t shadow, PassKind kind) {
+    touch(context, ResourceKind::Strands, Access::Read);
+    if (kind == PassKind::DeepOpacity) {
+        touch(context, {ResourceKind::HairDepth, shadow}, Access::Read);
+        touch(context, {ResourceKind::DeepOpacity, shadow}, Access::Write);
+    } else {
+        touch(context, {ResourceKind::HairDepth, shadow}, Access::Write);
+    }
     prepareShadowMaps(context);
     FrameResources& resources = context.resources;
     const gl::FrameUniforms view = lightViewFrameUniforms(context.plan, shadow, context.inputs.frame);
@@ -348,6 +427,8 @@ void deepOpacity(FrameContext& context, size_t shadow) { hairShadowMap(context, 
 
 // "meshShadow L": the nearest mesh in light L's view.
 void meshShadow(FrameContext& context, size_t shadow) {
+    touch(context, ResourceKind::MeshGeometry, Access::Read);
+    touch(context, {ResourceKind::MeshDepth, shadow}, Access::Write);
     prepareShadowMaps(context);
     FrameResources& resources = context.resources;
     resources.shadowMapPass.renderMeshDepth(resources.shadowMaps, resources.meshPass, resources.meshes,
@@ -359,12 +440,18 @@ void meshShadow(FrameContext& context, size_t shadow) {
 // "opacityMipmaps": the mip chain of every map (ShadowMapStorage says why
 // all at once).
 void opacityMipmaps(FrameContext& context) {
+    const ShadowPlan& shadows = context.plan.shadows;
+    for (size_t shadow = 0; shadow < shadows.lights.size(); ++shadow)
+        if (shadows.isMapped(shadows.lights[shadow])) touch(context, shadows.resourceOf(shadow), Access::Read);
+    touch(context, ResourceKind::ConvolvedOpacity, Access::Write);
     prepareShadowMaps(context);
     context.resources.shadowMaps.generateOpacityMipmaps();
 }
 
 // "shadowFragments L": every fragment of light L's view (shadowMode=reference).
 void shadowFragments(FrameContext& context, size_t shadow) {
+    touch(context, ResourceKind::Strands, Access::Read);
+    touch(context, {ResourceKind::ShadowFragments, shadow}, Access::Write);
     FrameResources& resources = context.resources;
     const PlannedShadow& planned = context.plan.shadows.lights[shadow];
     resources.shadowReference.ensure(context.plan.shadows.resolution, std::max(context.plan.shadows.capacity, 1));
@@ -398,6 +485,10 @@ Image imageOf(int width, int height, int channels, std::vector<float> pixels) {
 }
 
 void readback(FrameContext& context) {
+    touch(context, ResourceKind::Color, Access::Read);
+    if (context.inputs.depthRequested) touch(context, ResourceKind::Depth, Access::Read);
+    if (context.inputs.idsRequested) touch(context, ResourceKind::Ids, Access::Read);
+    touch(context, ResourceKind::Aovs, Access::Write);
     const CameraView& camera = *context.inputs.camera;
     RenderResult& result = context.result;
     result.color = imageOf(camera.imageWidth, camera.imageHeight, 4, context.target->readColor());
@@ -412,11 +503,19 @@ void readback(FrameContext& context) {
 
 // The display image from the frame's resolved colour, on the GPU.
 void displayTransform(FrameContext& context) {
+    touch(context, ResourceKind::Color, Access::Read);
+    touch(context, ResourceKind::DisplayImage, Access::Write);
     const CameraView& camera = *context.inputs.camera;
     context.result.display = imageOf(
         camera.imageWidth, camera.imageHeight, 4,
         context.resources.displayTransform.run(*context.inputs.gpuDisplay, context.target->resolvedColorTexture(),
                                                camera.imageWidth, camera.imageHeight, context.inputs.displayOverBlack));
+}
+
+// "resolve": the multisampled images averaged, in place.
+void resolve(FrameContext& context) {
+    touchFrameImages(context, *context.target, Access::Update, true);
+    context.target->resolve();
 }
 
 }  // namespace
@@ -456,7 +555,7 @@ void runFramePass(const FramePass& pass, FrameContext& context) {
     case PassKind::Meshes: return drawMeshes(context, *context.target, 0);
     case PassKind::Strands: return drawStrands(context, *context.target, 0);
     case PassKind::Ids: return ids(context);
-    case PassKind::Resolve: return context.target->resolve();
+    case PassKind::Resolve: return resolve(context);
     case PassKind::LightBatch: return lightBatch(context, pass.subject);
     case PassKind::Readback: return readback(context);
     case PassKind::DisplayTransform: return displayTransform(context);

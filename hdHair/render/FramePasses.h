@@ -103,6 +103,10 @@ struct FrameContext {
     std::optional<FrameFallback> fallback = {};
     // Each pass's time, by index into the plan's passes (with timing on).
     std::vector<double> passMilliseconds = {};
+    // The pass running (FrameScheduler), and whether what its code touches
+    // is checked against what it declares (FrameControl::checkResourceAccess).
+    const FramePass* pass = nullptr;
+    bool checkAccess = false;
 };
 
 // Runs one pass of the plan. Throws std::logic_error for a pass it does not know.

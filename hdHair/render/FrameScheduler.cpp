@@ -15,7 +15,9 @@ void runFrameGraph(FrameContext& context, gl::PassTiming timing) {
             continue;
         }
         timer.begin(i, isCpuPass(passes[i]));
+        context.pass = &passes[i];
         runFramePass(passes[i], context);
+        context.pass = nullptr;
         timer.end(i);
         if (context.cancellation) glFinish();
     }

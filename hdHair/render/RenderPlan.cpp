@@ -26,7 +26,7 @@ std::string depthSource(const FrameRecipe& plan) {
 // Ids need a pass of their own only where blending draws strands in an
 // order that is not nearest-last (integer images cannot be min-blended).
 FramePass idsPass(const FrameRecipe& plan, bool idsRequested, bool anyStrands, bool anyMeshes) {
-    FramePass ids{PassKind::Ids, "ids", {"strands", "depth"}, {"ids"}, false, ""};
+    FramePass ids{PassKind::Ids, "ids", {ResourceKind::Strands, ResourceKind::Depth}, {ResourceKind::Ids}, false, ""};
     if (!idsRequested) {
         ids.reason = "no ids asked for";
     } else if (!anyStrands) {
@@ -47,8 +47,8 @@ FramePass idsPass(const FrameRecipe& plan, bool idsRequested, bool anyStrands, b
 // What the strand and light-batch passes read: the strands, and the draw
 // order when they are drawn bin sorted.
 std::vector<FrameResource> strandReads(const FrameRecipe& plan, std::vector<FrameResource> more) {
-    std::vector<FrameResource> reads{"strands"};
-    if (plan.drawsSorted()) reads.push_back("drawOrder");
+    std::vector<FrameResource> reads{ResourceKind::Strands};
+    if (plan.drawsSorted()) reads.push_back(ResourceKind::DrawOrder);
     reads.insert(reads.end(), more.begin(), more.end());
     return reads;
 }
@@ -78,8 +78,8 @@ void addShadowPasses(FrameGraph& graph, const RenderPlan& plan, size_t index, bo
     };
     // A map kept from an earlier frame comes into the graph from outside.
     if (shadow.assigned && shadow.slot >= 0 && !shadow.rebuild) {
-        graph.input(shadows.resourceOf(shadow));
-        if (shadows.meshesCast) graph.input(shadows.meshResourceOf(shadow));
+        graph.input(shadows.resourceOf(index));
+        if (shadows.meshesCast) graph.input(shadows.meshResourceOf(index));
     }
     bool wanted = false;
     std::string why, flat;
@@ -97,7 +97,7 @@ void addShadowPasses(FrameGraph& graph, const RenderPlan& plan, size_t index, bo
     }
     const std::string& key = shadow.key;
     if (shadows.mode == ShadowMode::Reference) {
-        add(FramePass{PassKind::ShadowFragments, "shadowFragments " + key, {"strands"}, {"shadowFragments " + key}, wanted,
+        add(FramePass{PassKind::ShadowFragments, "shadowFragments " + key, {ResourceKind::Strands}, {{ResourceKind::ShadowFragments, index}}, wanted,
                             why + (wanted ? ": every fragment kept per texel, the reference (slow)" : "") + flat});
     } else {
         // How the strands are drawn there, when they are.
@@ -114,9 +114,9 @@ void addShadowPasses(FrameGraph& graph, const RenderPlan& plan, size_t index, bo
                                   ? fmt::format("the widest is {:.2f} texels", shadow.widestTexels)
                               : shadows.minPixelWidth > 1.0 ? "minPixelWidth above 1"
                                                             : "shadowStrandLines=off");
-        add(FramePass{PassKind::ShadowDepth, "shadowDepth " + key, {"strands"}, {"hairDepth " + key}, wanted,
+        add(FramePass{PassKind::ShadowDepth, "shadowDepth " + key, {ResourceKind::Strands}, {{ResourceKind::HairDepth, index}}, wanted,
                             why + (wanted ? ": the nearest hair per texel" : "") + drawn + flat});
-        add(FramePass{PassKind::DeepOpacity, "deepOpacity " + key, {"strands", "hairDepth " + key}, {"deepOpacity " + key}, wanted,
+        add(FramePass{PassKind::DeepOpacity, "deepOpacity " + key, {ResourceKind::Strands, {ResourceKind::HairDepth, index}}, {{ResourceKind::DeepOpacity, index}}, wanted,
                             (wanted ? why + fmt::format(": {} opacity layers behind it, the last {} of the hair's "
                                                         "depth along the light",
                                                         shadows.layers, shadows.layerDepth)
@@ -124,13 +124,13 @@ void addShadowPasses(FrameGraph& graph, const RenderPlan& plan, size_t index, bo
                                 drawn + flat});
     }
     if (shadows.meshesCast)
-        add(FramePass{PassKind::MeshShadow, "meshShadow " + key, {"meshGeometry"}, {shadows.meshResourceOf(shadow)}, wanted,
+        add(FramePass{PassKind::MeshShadow, "meshShadow " + key, {ResourceKind::MeshGeometry}, {shadows.meshResourceOf(index)}, wanted,
                             why + (wanted ? ": the nearest mesh per texel, opaque: the hair behind it is unlit" : "") +
                                 flat});
 }
 
 // The opacity layers of every map averaged into a mip chain ("opacityMipmaps").
-const FrameResource kConvolvedOpacity = "convolvedOpacity";
+const FrameResource kConvolvedOpacity{ResourceKind::ConvolvedOpacity};
 
 // The shadow maps light batch `batch` reads: those of its lights that have
 // one, and the mip chain when its SRBF lights read through it.
@@ -144,11 +144,11 @@ std::vector<FrameResource> batchShadowReads(const RenderPlan& plan, size_t batch
             assignedNoMap(plan.shadows.lights[size_t(shadow)]))
             continue;
         srbfMapRead = srbfMapRead || plan.lights.lights[light].isSrbf();
-        const FrameResource map = plan.shadows.resourceOf(plan.shadows.lights[size_t(shadow)]);
+        const FrameResource map = plan.shadows.resourceOf(size_t(shadow));
         // SRBF lights share maps (ShadowPlan::sharedMaps): each read once.
         if (std::find(reads.begin(), reads.end(), map) != reads.end()) continue;
         reads.push_back(map);
-        if (plan.shadows.meshesCast) reads.push_back(plan.shadows.meshResourceOf(plan.shadows.lights[size_t(shadow)]));
+        if (plan.shadows.meshesCast) reads.push_back(plan.shadows.meshResourceOf(size_t(shadow)));
     }
     // Its SRBF lights that read a map read it through the mip chain (which
     // "opacityMipmaps" makes whenever an SRBF light has a map).
@@ -161,20 +161,20 @@ std::vector<FrameResource> batchShadowReads(const RenderPlan& plan, size_t batch
 void addUploadPasses(FrameGraph& graph, const RenderPlan& plan, const StrandSummary& strands,
                      const MeshSummary& meshes, const std::string& noMeshes) {
     const bool anyStrands = strands.segments > 0, anyMeshes = meshes.meshes > 0;
-    graph.input("preparedStrands");
-    graph.add(FramePass{PassKind::Upload, "upload", {"preparedStrands"}, {"strands"}, anyStrands,
+    graph.input(ResourceKind::PreparedStrands);
+    graph.add(FramePass{PassKind::Upload, "upload", {ResourceKind::PreparedStrands}, {ResourceKind::Strands}, anyStrands,
                         anyStrands ? fmt::format("{} segments to the GPU: only prims that changed since the last frame",
                                                  strands.segments)
                                    : "no visible curves"});
-    graph.input("preparedMeshes");
-    graph.add(FramePass{PassKind::MeshUpload, "meshUpload", {"preparedMeshes"}, {"meshGeometry"}, anyMeshes,
+    graph.input(ResourceKind::PreparedMeshes);
+    graph.add(FramePass{PassKind::MeshUpload, "meshUpload", {ResourceKind::PreparedMeshes}, {ResourceKind::MeshGeometry}, anyMeshes,
                         !anyMeshes       ? noMeshes
                         : meshes.changed ? fmt::format("{} mesh(es), {} triangles to the GPU: a mesh changed since "
                                                        "the last frame",
                                                        meshes.meshes, meshes.triangles)
                                          : "the meshes on the GPU are current: nothing to send"});
     const bool sorted = plan.drawsSorted() && anyStrands;
-    graph.add(FramePass{PassKind::Sort, "sort", {"preparedStrands"}, {"drawOrder"}, sorted,
+    graph.add(FramePass{PassKind::Sort, "sort", {ResourceKind::PreparedStrands}, {ResourceKind::DrawOrder}, sorted,
                         sorted ? fmt::format("{} segments into {} depth bins on the CPU, O(n)", strands.segments,
                                              plan.sortBins)
                         : plan.strandRaster == StrandRaster::Compute
@@ -193,11 +193,12 @@ void addShadowMapPasses(FrameGraph& graph, const RenderPlan& plan, bool anyStran
     // map (batchShadowReads); no strands, no valid light views.
     FramePass mipmaps{PassKind::OpacityMipmaps, "opacityMipmaps", {}, {kConvolvedOpacity}, true, ""};
     size_t lobes = 0;
-    for (const PlannedShadow& shadow : plan.shadows.lights)
-        if (shadow.view.valid && !assignedNoMap(shadow)) {
-            mipmaps.reads.push_back(plan.shadows.resourceOf(shadow));
-            lobes += plan.lights.lights[shadow.light].isSrbf() ? 1 : 0;
-        }
+    for (size_t index = 0; index < plan.shadows.lights.size(); ++index) {
+        const PlannedShadow& shadow = plan.shadows.lights[index];
+        if (!shadow.view.valid || assignedNoMap(shadow)) continue;
+        mipmaps.reads.push_back(plan.shadows.resourceOf(index));
+        lobes += plan.lights.lights[shadow.light].isSrbf() ? 1 : 0;
+    }
     mipmaps.wanted = lobes > 0;
     mipmaps.reason = mipmaps.wanted ? fmt::format("the opacity layers of {} SRBF light map(s) averaged into a mip "
                                                   "chain: the convolution optical depth map their lookups widen "
@@ -210,7 +211,7 @@ void addShadowMapPasses(FrameGraph& graph, const RenderPlan& plan, bool anyStran
 // The meshes pass: opaque, before the strands, with the lights of batch 1.
 FramePass meshesPass(const std::vector<FrameResource>& frameImages, const RenderPlan& plan, const MeshSummary& meshes,
                      bool idsRequested, const std::string& noMeshes) {
-    std::vector<FrameResource> reads{"meshGeometry"};
+    std::vector<FrameResource> reads{ResourceKind::MeshGeometry};
     reads.insert(reads.end(), frameImages.begin(), frameImages.end());
     FramePass pass{PassKind::Meshes, "meshes", reads, frameImages, meshes.meshes > 0, noMeshes};
     if (!pass.wanted) return pass;
@@ -251,9 +252,9 @@ std::string shadingDescription(const RenderPlan& plan, const StrandSummary& stra
 FramePass strandsPass(const RenderPlan& plan, const StrandSummary& strands, bool idsRequested, size_t lightsPerPass) {
     // The strand pass writes ids itself where it can keep the nearest
     // fragment's (opaque, and exact's resolve).
-    std::vector<FrameResource> writes{"color", "depth"};
+    std::vector<FrameResource> writes{ResourceKind::Color, ResourceKind::Depth};
     if (idsRequested && (plan.transparency == TransparencyPath::Opaque || plan.compositesFromLists()))
-        writes.push_back("ids");
+        writes.push_back(ResourceKind::Ids);
     std::vector<FrameResource> inPlace = writes;
     for (const FrameResource& shadow : batchShadowReads(plan, 0)) inPlace.push_back(shadow);
     const bool anyStrands = strands.segments > 0;
@@ -277,11 +278,11 @@ void addLightBatchPasses(FrameGraph& graph, const RenderPlan& plan, bool anyStra
     const size_t lightCount = plan.lightBatches.back().second;
     for (size_t batch = 1; batch < plan.lightBatches.size(); ++batch) {
         std::vector<FrameResource> reads;
-        if (anyMeshes) reads.push_back("meshGeometry");
-        reads.push_back("color");
+        if (anyMeshes) reads.push_back(ResourceKind::MeshGeometry);
+        reads.push_back(ResourceKind::Color);
         for (const FrameResource& shadow : batchShadowReads(plan, batch)) reads.push_back(shadow);
         FramePass lights{PassKind::LightBatch, fmt::format("lightBatch {}", batch + 1),
-                         anyStrands ? strandReads(plan, reads) : reads, {"color"},
+                         anyStrands ? strandReads(plan, reads) : reads, {ResourceKind::Color},
                          anyStrands || anyMeshes,
                          fmt::format("lights {}-{} of {} (lightsPerPass {}): {} again, colour added, alpha counted "
                                      "once",
@@ -299,11 +300,14 @@ void buildFrameGraph(RenderPlan& plan, const Scene& scene, const StrandSummary& 
     const bool anyStrands = strands.segments > 0, anyMeshes = meshes.meshes > 0;
     // Why the mesh passes are off, when they are.
     const std::string noMeshes = scene.meshes().empty() ? "no meshes" : "no visible meshes";
+    std::vector<std::string> lights;
+    for (const PlannedShadow& shadow : plan.shadows.lights) lights.push_back(shadow.key);
+    graph.nameLights(std::move(lights));
     addUploadPasses(graph, plan, strands, meshes, noMeshes);
     addShadowMapPasses(graph, plan, anyStrands);
 
-    std::vector<FrameResource> frameImages{"color", "depth"};
-    if (idsRequested) frameImages.push_back("ids");
+    std::vector<FrameResource> frameImages{ResourceKind::Color, ResourceKind::Depth};
+    if (idsRequested) frameImages.push_back(ResourceKind::Ids);
     graph.add(FramePass{PassKind::Clear, "clear", {}, frameImages, true,
                         "the frame's images, empty (transparent black, depth 1, ids -1)"});
     graph.add(meshesPass(frameImages, plan, meshes, idsRequested, noMeshes));
@@ -317,12 +321,12 @@ void buildFrameGraph(RenderPlan& plan, const Scene& scene, const StrandSummary& 
                                              : "no multisampling"});
     addLightBatchPasses(graph, plan, anyStrands, anyMeshes, lightsPerPass);
 
-    graph.add(FramePass{PassKind::Readback, "readback", frameImages, {"aovs"}, true, "the frame's images to the CPU"});
-    graph.output("aovs");
-    graph.add(FramePass{PassKind::DisplayTransform, "displayTransform", {"color"}, {"displayImage"}, displayOnGpu,
+    graph.add(FramePass{PassKind::Readback, "readback", frameImages, {ResourceKind::Aovs}, true, "the frame's images to the CPU"});
+    graph.output(ResourceKind::Aovs);
+    graph.add(FramePass{PassKind::DisplayTransform, "displayTransform", {ResourceKind::Color}, {ResourceKind::DisplayImage}, displayOnGpu,
                         displayOnGpu ? "the display image through the display transform's GLSL, on the GPU"
                                      : "no display image asked of the GPU (display transforms run on the CPU)"});
-    if (displayOnGpu) graph.output("displayImage");
+    if (displayOnGpu) graph.output(ResourceKind::DisplayImage);
     graph.compile();
 }
 
@@ -364,7 +368,7 @@ nlohmann::json RenderPlan::toJson(const std::vector<double>& passMilliseconds) c
 }
 
 bool RenderPlan::shadowUsed(size_t shadow) const {
-    const std::string resource = shadows.resourceOf(shadows.lights[shadow]);
+    const FrameResource resource = shadows.resourceOf(shadow);
     for (const FramePass& pass : graph.passes())
         if (pass.enabled && std::find(pass.reads.begin(), pass.reads.end(), resource) != pass.reads.end())
             return true;

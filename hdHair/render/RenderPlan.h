@@ -21,7 +21,8 @@ namespace hdhair {
 
 struct CameraView;
 
-// The passes, in the order they run:
+// The passes, in the order they run, one kind a line (PassKind, in its
+// order: RenderPlan.ThePassListHereIsEveryKindInOrder checks this list):
 //   upload        preparedStrands -> strands        GPU copy of the changed prims
 //   meshUpload    preparedMeshes -> meshGeometry    GPU copy of the meshes, when one changed
 //   sort          preparedStrands -> drawOrder      binSorted only, by the hardware rasteriser
@@ -30,6 +31,7 @@ struct CameraView;
 //   shadowFragments L  strands -> shadowFragments L  shadowMode=reference instead: every fragment
 //   meshShadow L       meshGeometry -> meshDepth L  with meshes: the nearest mesh, which hides the hair behind it
 //                 (a map kept from an earlier frame is an input of the graph instead)
+//   opacityMipmaps  deepOpacity of every light -> convolvedOpacity   domeShadowFilter=mipmap, an SRBF light's map read
 //   clear         -> color, depth[, ids]            the frame's targets, empty
 //   meshes        meshGeometry, color, depth[, ids] -> color, depth[, ids]   opaque, lights of batch 1
 //   strands       strands[, drawOrder], color, depth[, the batch's shadows] -> color, depth[, ids]   lights of batch 1

@@ -652,6 +652,7 @@ std::optional<FrameFallback> Renderer::runFrame(FrameInputs& inputs, RenderResul
         FrameContext context{inputs, result.plan, *resources_, diagnostics, result, {}, nullptr, false, {}};
         context.cancellation = control.cancellation;
         context.strandPieceSegments = control.strandPieceSegments;
+        context.checkAccess = control.checkResourceAccess;
         runFrameGraph(context, timing);
         stats.strandTriangles = resources_->strandPass.takeTriangles();
         const gl::LightViewSpanCounts spans = resources_->shadowMapPass.takeSpanCounts();

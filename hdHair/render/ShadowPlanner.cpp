@@ -13,10 +13,6 @@
 
 namespace hdhair {
 
-std::string ShadowPlan::resourceOf(const PlannedShadow& shadow) const {
-    return (mode == ShadowMode::Reference ? "shadowFragments " : "deepOpacity ") + shadow.key;
-}
-
 int ShadowPlan::shadowOf(size_t light) const {
     if (auto shared = sharedMaps.find(light); shared != sharedMaps.end()) light = shared->second;
     for (size_t i = 0; i < lights.size(); ++i)

@@ -13,6 +13,7 @@
 #include <tuple>
 #include <vector>
 
+#include "hdHair/render/FrameGraph.h"
 #include "hdHair/render/SettingTokens.h"
 #include "hdHair/render/ShadowLightView.h"
 
@@ -92,13 +93,15 @@ struct ShadowPlan {
     // `maxMaps` (shadowMapBudget); they shade unshadowed.
     size_t maxMaps = 0;
     size_t overBudget = 0;
-    // The resource light `shadow` gives the strand passes ("deepOpacity L",
-    // "shadowFragments L").
-    std::string resourceOf(const PlannedShadow& shadow) const;
+    // The resource planned shadow `shadow` gives the strand passes
+    // ("deepOpacity L", or "shadowFragments L" under shadowMode=reference).
+    FrameResource resourceOf(size_t shadow) const {
+        return {mode == ShadowMode::Reference ? ResourceKind::ShadowFragments : ResourceKind::DeepOpacity, shadow};
+    }
     // Meshes are drawn, so every map has their depth too ("meshDepth L",
     // the opaque occluders strands test against).
     bool meshesCast = false;
-    std::string meshResourceOf(const PlannedShadow& shadow) const { return "meshDepth " + shadow.key; }
+    FrameResource meshResourceOf(size_t shadow) const { return {ResourceKind::MeshDepth, shadow}; }
     // SRBF lights without a map of their own that read another light's
     // (DomeLighting.h): light index -> the index of the light whose map.
     std::map<size_t, size_t> sharedMaps;

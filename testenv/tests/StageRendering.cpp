@@ -53,7 +53,10 @@ StageRender renderScene(const Scene& scene, const StageRenderRequest& request, g
     Renderer& renderer = sharedRenderer(backend);
     CameraView camera = stageCamera(scene, request, renderer, diagnostics);
     StageRender render;
-    render.result = renderer.render(scene, camera, stageSettings(request), diagnostics);
+    // Every image test also checks that each pass touches only what it declares.
+    FrameControl control;
+    control.checkResourceAccess = true;
+    render.result = renderer.render(scene, camera, stageSettings(request), diagnostics, {}, control);
     render.warnings = diagnostics.warnings();
     return render;
 }

@@ -22,14 +22,15 @@ FramePass pass(const char* name, std::vector<FrameResource> reads, std::vector<F
 // A small frame: shadows feed the colour pass only when it reads them.
 FrameGraph shadowedFrame(bool colourReadsShadow) {
     FrameGraph graph;
-    graph.input("strands");
-    graph.add(pass("shadow", {"strands"}, {"shadowMap"}));
-    graph.add(pass("clear", {}, {"color"}));
-    std::vector<FrameResource> reads{"strands", "color"};
-    if (colourReadsShadow) reads.push_back("shadowMap");
-    graph.add(pass("color", reads, {"color"}));
-    graph.add(pass("readback", {"color"}, {"image"}));
-    graph.output("image");
+    graph.nameLights({"/key"});
+    graph.input(ResourceKind::Strands);
+    graph.add(pass("shadow", {ResourceKind::Strands}, {FrameResource{ResourceKind::DeepOpacity, 0}}));
+    graph.add(pass("clear", {}, {ResourceKind::Color}));
+    std::vector<FrameResource> reads{ResourceKind::Strands, ResourceKind::Color};
+    if (colourReadsShadow) reads.push_back(FrameResource{ResourceKind::DeepOpacity, 0});
+    graph.add(pass("color", reads, {ResourceKind::Color}));
+    graph.add(pass("readback", {ResourceKind::Color}, {ResourceKind::Aovs}));
+    graph.output(ResourceKind::Aovs);
     graph.compile();
     return graph;
 }
@@ -46,15 +47,15 @@ TEST(FrameGraph, AWantedPassRunsOnlyWhenSomethingReadsItsOutput) {
     EXPECT_TRUE(unlit.isEnabled("clear"));
     EXPECT_TRUE(unlit.isEnabled("readback"));
     const std::string text = unlit.describe();
-    EXPECT_NE(text.find("not built: nothing reads its output (shadowMap)"), std::string::npos) << text;
+    EXPECT_NE(text.find("not built: nothing reads its output (deepOpacity /key)"), std::string::npos) << text;
 }
 
 TEST(FrameGraph, PassesThatAreNotWantedNeverRun) {
     FrameGraph graph;
-    graph.add(pass("clear", {}, {"color"}));
-    graph.add(pass("extra", {"color"}, {"color"}, false));
-    graph.add(pass("readback", {"color"}, {"image"}));
-    graph.output("image");
+    graph.add(pass("clear", {}, {ResourceKind::Color}));
+    graph.add(pass("extra", {ResourceKind::Color}, {ResourceKind::Color}, false));
+    graph.add(pass("readback", {ResourceKind::Color}, {ResourceKind::Aovs}));
+    graph.output(ResourceKind::Aovs);
     graph.compile();
     EXPECT_FALSE(graph.isEnabled("extra"));
     EXPECT_TRUE(graph.isEnabled("clear"));
@@ -65,11 +66,11 @@ TEST(FrameGraph, PassesThatAreNotWantedNeverRun) {
 TEST(FrameGraph, InPlaceUpdatesKeepTheirProducersAlive) {
     // clear -> batch 1 -> batch 2 all write "color"; each later one reads it.
     FrameGraph graph;
-    graph.add(pass("clear", {}, {"color"}));
-    graph.add(pass("batch1", {"color"}, {"color"}));
-    graph.add(pass("batch2", {"color"}, {"color"}));
-    graph.add(pass("readback", {"color"}, {"image"}));
-    graph.output("image");
+    graph.add(pass("clear", {}, {ResourceKind::Color}));
+    graph.add(pass("batch1", {ResourceKind::Color}, {ResourceKind::Color}));
+    graph.add(pass("batch2", {ResourceKind::Color}, {ResourceKind::Color}));
+    graph.add(pass("readback", {ResourceKind::Color}, {ResourceKind::Aovs}));
+    graph.output(ResourceKind::Aovs);
     graph.compile();
     for (const char* name : {"clear", "batch1", "batch2", "readback"}) EXPECT_TRUE(graph.isEnabled(name)) << name;
 }
@@ -77,10 +78,10 @@ TEST(FrameGraph, InPlaceUpdatesKeepTheirProducersAlive) {
 TEST(FrameGraph, AnOverwrittenResultIsNotBuilt) {
     // "draft" writes colour that "final" replaces without reading: draft is dead.
     FrameGraph graph;
-    graph.add(pass("draft", {}, {"color"}));
-    graph.add(pass("final", {}, {"color"}));
-    graph.add(pass("readback", {"color"}, {"image"}));
-    graph.output("image");
+    graph.add(pass("draft", {}, {ResourceKind::Color}));
+    graph.add(pass("final", {}, {ResourceKind::Color}));
+    graph.add(pass("readback", {ResourceKind::Color}, {ResourceKind::Aovs}));
+    graph.output(ResourceKind::Aovs);
     graph.compile();
     EXPECT_FALSE(graph.isEnabled("draft"));
     EXPECT_TRUE(graph.isEnabled("final"));
@@ -88,12 +89,28 @@ TEST(FrameGraph, AnOverwrittenResultIsNotBuilt) {
 
 TEST(FrameGraph, ReadingWhatNothingWroteIsAWiringError) {
     FrameGraph graph;
-    graph.add(pass("color", {"strands"}, {"color"}));
-    graph.add(pass("readback", {"color"}, {"image"}));
-    graph.output("image");
+    graph.add(pass("color", {ResourceKind::Strands}, {ResourceKind::Color}));
+    graph.add(pass("readback", {ResourceKind::Color}, {ResourceKind::Aovs}));
+    graph.output(ResourceKind::Aovs);
     EXPECT_THROW(graph.compile(), std::logic_error);
-    graph.input("strands");
+    graph.input(ResourceKind::Strands);
     EXPECT_NO_THROW(graph.compile());
+}
+
+// A resource is a kind and, for the kinds each light has one of, the light's
+// planned shadow: those of two lights are two resources, whatever their names.
+TEST(FrameGraph, ResourcesAreKindsAndLights) {
+    EXPECT_EQ(FrameResource(ResourceKind::DeepOpacity, 1), FrameResource(ResourceKind::DeepOpacity, 1));
+    EXPECT_NE(FrameResource(ResourceKind::DeepOpacity, 1), FrameResource(ResourceKind::DeepOpacity, 2));
+    EXPECT_NE(FrameResource(ResourceKind::DeepOpacity, 1), FrameResource(ResourceKind::HairDepth, 1));
+    // Kinds of one per frame have no light index.
+    EXPECT_EQ(FrameResource(ResourceKind::Color, 3), FrameResource(ResourceKind::Color));
+    FrameGraph graph;
+    graph.nameLights({"/key", "camera light"});
+    EXPECT_EQ(graph.nameOf({ResourceKind::MeshDepth, 1}), "meshDepth camera light");
+    EXPECT_EQ(graph.nameOf(ResourceKind::ConvolvedOpacity), "convolvedOpacity");
+    // A light the graph was not told of is named by its index.
+    EXPECT_EQ(graph.nameOf({ResourceKind::HairDepth, 7}), "hairDepth 7");
 }
 
 TEST(FrameGraph, StatsKeepEachPassWithItsResourcesAndTime) {
@@ -101,7 +118,7 @@ TEST(FrameGraph, StatsKeepEachPassWithItsResourcesAndTime) {
     nlohmann::json json = graph.toJson({0.0, 0.0, 2.5, 0.0});
     ASSERT_EQ(json.size(), 4u);
     EXPECT_EQ(json[2]["pass"], "color");
-    EXPECT_EQ(json[2]["reads"], nlohmann::json({"strands", "color", "shadowMap"}));
+    EXPECT_EQ(json[2]["reads"], nlohmann::json({"strands", "color", "deepOpacity /key"}));
     EXPECT_EQ(json[2]["writes"], nlohmann::json({"color"}));
     EXPECT_EQ(json[2]["milliseconds"], 2.5);
     EXPECT_EQ(json[2]["enabled"], true);

@@ -1,4 +1,6 @@
 #include <algorithm>
+#include <fstream>
+#include <sstream>
 #include <limits>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -12,6 +14,11 @@
 using namespace hdhair;
 
 namespace {
+
+// The names of what a pass reads, as --explain prints them.
+std::vector<std::string> readNames(const RenderPlan& plan, const std::string& pass) {
+    return plan.graph.namesOf(plan.graph.find(pass)->reads);
+}
 
 LightPrim hostLight() {
     LightPrim light;
@@ -179,7 +186,7 @@ TEST(RenderPlan, AutoRasterisesThinBlendedStrandsInComputeAndSaysWhy) {
     EXPECT_FALSE(automatic.isEnabled("sort"));
     EXPECT_FALSE(automatic.isEnabled("ids"));
     const std::vector<FrameResource>& reads = automatic.graph.find("strands")->reads;
-    EXPECT_EQ(std::find(reads.begin(), reads.end(), "drawOrder"), reads.end());
+    EXPECT_EQ(std::find(reads.begin(), reads.end(), FrameResource(ResourceKind::DrawOrder)), reads.end());
     EXPECT_NE(strandsReason(automatic).find("depth and ids: the nearest listed fragment"), std::string::npos);
 
     // Over its memory budget the frame is planned again on the hardware path
@@ -299,7 +306,7 @@ TEST(RenderPlan, MeshPassesRunOnlyForVisibleMeshes) {
         EXPECT_FALSE(hairOnly.isEnabled(pass)) << pass;
     }
     EXPECT_EQ(hairOnly.graph.find("meshes")->reason, "no meshes");
-    EXPECT_EQ(hairOnly.graph.find("lightBatch 2")->reads, (std::vector<FrameResource>{"strands", "drawOrder", "color"}));
+    EXPECT_EQ(readNames(hairOnly, "lightBatch 2"), (std::vector<std::string>{"strands", "drawOrder", "color"}));
 
     MeshSummary meshes;
     meshes.meshes = 2;
@@ -322,15 +329,15 @@ TEST(RenderPlan, MeshPassesRunOnlyForVisibleMeshes) {
         if (pass.enabled) order.push_back(pass.name);
     EXPECT_EQ(order, (std::vector<std::string>{"upload", "meshUpload", "sort", "clear", "meshes", "strands", "ids",
                                                "lightBatch 2", "readback"}));
-    EXPECT_EQ(withMeshes.graph.find("lightBatch 2")->reads,
-              (std::vector<FrameResource>{"strands", "drawOrder", "meshGeometry", "color"}));
+    EXPECT_EQ(readNames(withMeshes, "lightBatch 2"),
+              (std::vector<std::string>{"strands", "drawOrder", "meshGeometry", "color"}));
 
     // Meshes alone: no strand pass, the meshes still lit in both batches.
     const RenderPlan meshesOnly = makeRenderPlan(scene, settings, cameraAtPlusZ(), StrandSummary{}, false, meshes);
     EXPECT_FALSE(meshesOnly.isEnabled("strands"));
     EXPECT_TRUE(meshesOnly.isEnabled("meshes"));
     EXPECT_TRUE(meshesOnly.isEnabled("lightBatch 2"));
-    EXPECT_EQ(meshesOnly.graph.find("lightBatch 2")->reads, (std::vector<FrameResource>{"meshGeometry", "color"}));
+    EXPECT_EQ(readNames(meshesOnly, "lightBatch 2"), (std::vector<std::string>{"meshGeometry", "color"}));
 
     // shadingModel=flat: meshes unlit, and without lit hair no lights at all.
     settings.set("shadingModel", "flat");
@@ -366,8 +373,8 @@ std::vector<std::string> shadowPassNames(const RenderPlan& plan) {
 }
 
 bool reads(const RenderPlan& plan, const std::string& pass, const std::string& resource) {
-    const std::vector<FrameResource>& list = plan.graph.find(pass)->reads;
-    return std::find(list.begin(), list.end(), resource) != list.end();
+    const std::vector<std::string> names = plan.graph.namesOf(plan.graph.find(pass)->reads);
+    return std::find(names.begin(), names.end(), resource) != names.end();
 }
 
 }  // namespace
@@ -430,7 +437,7 @@ TEST(RenderPlan, AStageWithNoCastingLightBuildsNoShadowPasses) {
     scene.setLight(distantLight("/key", false));
     RenderPlan plan = makeRenderPlan(scene, RenderSettings{}, cameraAtPlusZ(), castingStrands());
     EXPECT_TRUE(shadowPassNames(plan).empty());
-    EXPECT_EQ(plan.graph.find("strands")->reads, (std::vector<FrameResource>{"strands", "color", "depth"}));
+    EXPECT_EQ(readNames(plan, "strands"), (std::vector<std::string>{"strands", "color", "depth"}));
 }
 
 TEST(RenderPlan, NothingReadsShadowsUnderFlatShadingOrWithShadowsOff) {
@@ -496,4 +503,23 @@ TEST(RenderPlan, TheCameraLightCastsOnlyWhenAsked) {
     ASSERT_TRUE(plan.cameraLight);
     EXPECT_EQ(shadowPassNames(plan), (std::vector<std::string>{"shadowDepth camera light", "deepOpacity camera light"}));
     EXPECT_TRUE(reads(plan, "strands", "deepOpacity camera light"));
+}
+
+// RenderPlan.h lists the passes for the next engineer, one kind a line:
+// every kind, in PassKind's order, and nothing else.
+TEST(RenderPlan, ThePassListHereIsEveryKindInOrder) {
+    std::ifstream header(std::string(HDHAIR_SOURCE_DIR) + "/hdHair/render/RenderPlan.h");
+    ASSERT_TRUE(header) << "RenderPlan.h";
+    std::vector<std::string> listed;
+    bool inList = false;
+    for (std::string line; std::getline(header, line);) {
+        if (line.rfind("// The passes, in the order they run", 0) == 0) inList = true;
+        else if (inList && line.rfind("//   ", 0) != 0 && line.rfind("// ", 0) != 0) break;
+        if (!inList || line.rfind("//   ", 0) != 0 || line.size() < 6 || line[5] == ' ') continue;
+        std::istringstream words(line.substr(5));
+        std::string name;
+        words >> name;
+        listed.push_back(name);
+    }
+    EXPECT_EQ(listed, tokenNames<PassKind>());
 }
