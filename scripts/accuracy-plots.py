@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Plots of hdhair-bench --accuracy's report (hdHair/tools/AccuracyReport.h).
+"""Plots of hdhair-bench --accuracy's report (hdHair/bench/AccuracyReport.h).
 
     /usr/bin/python3 scripts/accuracy-plots.py accuracy.json OUT_FOLDER
 

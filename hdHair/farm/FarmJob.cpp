@@ -11,7 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "hdHair/base/AtomicFile.h"
-#include "hdHair/tools/FrameSpec.h"
+#include "hdHair/base/FrameSpec.h"
 
 namespace hdhair::farm {
 

@@ -6,7 +6,7 @@
 #include <fmt/format.h>
 
 #include "hdHair/farm/FarmJob.h"
-#include "hdHair/tools/FrameSpec.h"
+#include "hdHair/base/FrameSpec.h"
 
 namespace hdhair::farm {
 namespace {

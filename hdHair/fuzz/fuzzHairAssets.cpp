@@ -8,8 +8,8 @@
 #include <stdexcept>
 #include <vector>
 
-#include "hdHair/tools/TressFxReader.h"
-#include "hdHair/tools/YukselHairReader.h"
+#include "hdHair/assets/TressFxReader.h"
+#include "hdHair/assets/YukselHairReader.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     const std::vector<uint8_t> bytes(data, data + size);

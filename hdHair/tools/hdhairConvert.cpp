@@ -24,10 +24,10 @@
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
-#include "hdHair/tools/ObjMeshReader.h"
-#include "hdHair/tools/TressFxReader.h"
-#include "hdHair/tools/UsdaCurvesWriter.h"
-#include "hdHair/tools/YukselHairReader.h"
+#include "hdHair/assets/ObjMeshReader.h"
+#include "hdHair/assets/TressFxReader.h"
+#include "hdHair/assets/UsdaCurvesWriter.h"
+#include "hdHair/assets/YukselHairReader.h"
 
 namespace {
 

@@ -36,7 +36,7 @@
 #include "hdHair/farm/FrameTask.h"
 #include "hdHair/farm/JobRegistry.h"
 #include "hdHair/farm/SlurmCommands.h"
-#include "hdHair/tools/FrameSpec.h"
+#include "hdHair/base/FrameSpec.h"
 
 namespace {
 

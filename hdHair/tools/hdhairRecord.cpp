@@ -44,7 +44,7 @@
 #include "hdHair/render/SettingOrigins.h"
 #include "hdHair/scene/Scene.h"
 #include "hdHair/scene/SceneValidation.h"
-#include "hdHair/tools/FrameSpec.h"
+#include "hdHair/base/FrameSpec.h"
 #include "hdHair/usda/SceneReader.h"
 #include "hdHair/usda/Stage.h"
 #if HDHAIR_WITH_USD

@@ -5,7 +5,7 @@
     /usr/bin/python3 -m testenv.stages.generate_stages --check   # exit 1 if they are stale
 
 Run from the repository's root, as a module. Standard library only and
-deterministic. It shares hdHair/usda/usdagen.py with the examples' generator:
+deterministic. It shares scripts/usdagen.py with the examples' generator:
 every file is printed the way usdcat prints it, parsed back, composed and
 checked (vertex counts for each basis and wrap, primvar sizes for each
 interpolation, xformOpOrder entries, every curve point inside
@@ -16,7 +16,7 @@ Each stage stays under 100 KB so a software rasteriser renders it quickly.
 import math
 import os
 
-from hdHair.usda import usdagen as u
+from scripts import usdagen as u
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 

@@ -14,7 +14,7 @@
 #include "Commands.h"
 #include "StageRendering.h"
 #include "hdHair/image/ImageWriter.h"
-#include "hdHair/tools/FrameSpec.h"
+#include "hdHair/base/FrameSpec.h"
 
 namespace hdhair::testenv {
 namespace fs = std::filesystem;

@@ -19,8 +19,8 @@
 #include "Commands.h"
 
 #include "hdHair/image/ImageWriter.h"
-#include "hdHair/tools/AccuracyChecks.h"
-#include "hdHair/tools/AccuracyMatrix.h"
+#include "hdHair/bench/AccuracyChecks.h"
+#include "hdHair/bench/AccuracyMatrix.h"
 
 using namespace hdhair;
 namespace fs = std::filesystem;

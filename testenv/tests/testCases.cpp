@@ -14,7 +14,7 @@
 #include "StageRendering.h"
 #include "TestCases.h"
 #include "hdHair/image/ImageWriter.h"
-#include "hdHair/tools/FrameSpec.h"
+#include "hdHair/base/FrameSpec.h"
 #include "testenv/tests/BaselineUpdates.h"
 
 using namespace hdhair;

@@ -1,6 +1,6 @@
 #!/usr/bin/python3
 """Writes the .tfx and .hair fuzzing seeds: small valid files in each layout
-the importers read (hdHair/tools/TressFxReader.h, YukselHairReader.h).
+the importers read (hdHair/assets/TressFxReader.h, YukselHairReader.h).
 
     /usr/bin/python3 hdHair/fuzz/seeds/generate_hair_seeds.py
 """

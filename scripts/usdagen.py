@@ -1,7 +1,7 @@
 """Shared helpers for hdHair's stage generators (standard library only).
 
 Used by examples/generate_examples.py and testenv/stages/generate_stages.py,
-which import it as hdHair.usda.usdagen (run them from the repository's root
+which import it as scripts.usdagen (run them from the repository's root
 with python3 -m). The C++ reader of the same text is hdHair/usda/.
 It does three things:
 

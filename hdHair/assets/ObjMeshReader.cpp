@@ -1,4 +1,4 @@
-#include "hdHair/tools/ObjMeshReader.h"
+#include "hdHair/assets/ObjMeshReader.h"
 
 #include <cmath>
 #include <sstream>

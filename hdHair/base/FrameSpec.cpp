@@ -1,4 +1,4 @@
-#include "hdHair/tools/FrameSpec.h"
+#include "hdHair/base/FrameSpec.h"
 
 #include <charconv>
 #include <cmath>

@@ -27,7 +27,7 @@
 #include <string>
 #include <vector>
 
-#include "hdHair/tools/TressFxReader.h"
+#include "hdHair/assets/TressFxReader.h"
 
 namespace hdhair::convert {
 

@@ -1,4 +1,4 @@
-#include "hdHair/tools/YukselHairReader.h"
+#include "hdHair/assets/YukselHairReader.h"
 
 #include <cmath>
 #include <cstring>

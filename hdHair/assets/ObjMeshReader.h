@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "hdHair/tools/TressFxReader.h"
+#include "hdHair/assets/TressFxReader.h"
 
 namespace hdhair::convert {
 

@@ -2,7 +2,7 @@
 
 #include <gtest/gtest.h>
 
-#include "hdHair/tools/FrameSpec.h"
+#include "hdHair/base/FrameSpec.h"
 
 using namespace hdhair;
 

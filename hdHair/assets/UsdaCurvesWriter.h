@@ -54,8 +54,8 @@
 #include <string>
 #include <vector>
 
-#include "hdHair/tools/ObjMeshReader.h"
-#include "hdHair/tools/TressFxReader.h"
+#include "hdHair/assets/ObjMeshReader.h"
+#include "hdHair/assets/TressFxReader.h"
 
 namespace hdhair::convert {
 

@@ -1,4 +1,4 @@
-#include "hdHair/tools/AccuracyMatrix.h"
+#include "hdHair/bench/AccuracyMatrix.h"
 
 #include <fmt/format.h>
 

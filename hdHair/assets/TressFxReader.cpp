@@ -1,4 +1,4 @@
-#include "hdHair/tools/TressFxReader.h"
+#include "hdHair/assets/TressFxReader.h"
 
 #include <cmath>
 #include <cstring>

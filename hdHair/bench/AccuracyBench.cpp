@@ -1,4 +1,4 @@
-#include "hdHair/tools/AccuracyBench.h"
+#include "hdHair/bench/AccuracyBench.h"
 
 #include <algorithm>
 #include <chrono>
@@ -18,8 +18,8 @@
 #include "hdHair/render/QualityPresets.h"
 #include "hdHair/render/Renderer.h"
 #include "hdHair/scene/Scene.h"
-#include "hdHair/tools/AccuracyMatrix.h"
-#include "hdHair/tools/BenchLights.h"
+#include "hdHair/bench/AccuracyMatrix.h"
+#include "hdHair/bench/BenchLights.h"
 
 namespace hdhair::accuracy {
 

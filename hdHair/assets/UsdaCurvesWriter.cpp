@@ -1,4 +1,4 @@
-#include "hdHair/tools/UsdaCurvesWriter.h"
+#include "hdHair/assets/UsdaCurvesWriter.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "hdHair/tools/AccuracyReport.h"
+#include "hdHair/bench/AccuracyReport.h"
 
 #include <algorithm>
 #include <filesystem>

@@ -1,4 +1,4 @@
-#include "hdHair/tools/DomeBench.h"
+#include "hdHair/bench/DomeBench.h"
 
 #include <algorithm>
 #include <cstdio>
@@ -11,7 +11,7 @@
 #include "hdHair/image/ImageComparison.h"
 #include "hdHair/render/Renderer.h"
 #include "hdHair/scene/Scene.h"
-#include "hdHair/tools/BenchLights.h"
+#include "hdHair/bench/BenchLights.h"
 
 namespace hdhair {
 

@@ -8,8 +8,8 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include "hdHair/tools/AccuracyChecks.h"
-#include "hdHair/tools/AccuracyReport.h"
+#include "hdHair/bench/AccuracyChecks.h"
+#include "hdHair/bench/AccuracyReport.h"
 
 using namespace hdhair::accuracy;
 

@@ -24,10 +24,10 @@
 
 #include "hdHair/base/Diagnostics.h"
 #include "hdHair/scene/Scene.h"
-#include "hdHair/tools/ObjMeshReader.h"
-#include "hdHair/tools/TressFxReader.h"
-#include "hdHair/tools/UsdaCurvesWriter.h"
-#include "hdHair/tools/YukselHairReader.h"
+#include "hdHair/assets/ObjMeshReader.h"
+#include "hdHair/assets/TressFxReader.h"
+#include "hdHair/assets/UsdaCurvesWriter.h"
+#include "hdHair/assets/YukselHairReader.h"
 #include "hdHair/usda/SceneReader.h"
 #include "hdHair/usda/Stage.h"
 

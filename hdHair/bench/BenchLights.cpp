@@ -1,4 +1,4 @@
-#include "hdHair/tools/BenchLights.h"
+#include "hdHair/bench/BenchLights.h"
 
 #include <vector>
 

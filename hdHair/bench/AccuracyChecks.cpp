@@ -1,4 +1,4 @@
-#include "hdHair/tools/AccuracyChecks.h"
+#include "hdHair/bench/AccuracyChecks.h"
 
 #include <cmath>
 #include <map>
