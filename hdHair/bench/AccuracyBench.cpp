@@ -15,7 +15,7 @@
 #include "hdHair/image/ImageComparison.h"
 #include "hdHair/image/ImageWriter.h"
 #include "hdHair/reference/CyclesFrame.h"
-#include "hdHair/render/QualityPresets.h"
+#include "hdHair/plan/QualityPresets.h"
 #include "hdHair/render/Renderer.h"
 #include "hdHair/scene/Scene.h"
 #include "hdHair/bench/AccuracyMatrix.h"

@@ -32,7 +32,7 @@
 
 #include <nlohmann/json_fwd.hpp>
 
-#include "hdHair/render/CameraView.h"
+#include "hdHair/plan/CameraView.h"
 
 namespace hdhair {
 

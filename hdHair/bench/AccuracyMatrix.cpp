@@ -2,8 +2,8 @@
 
 #include <fmt/format.h>
 
-#include "hdHair/render/QualityPresets.h"
-#include "hdHair/render/RenderSettings.h"
+#include "hdHair/plan/QualityPresets.h"
+#include "hdHair/plan/RenderSettings.h"
 
 namespace hdhair::accuracy {
 

@@ -1,6 +1,6 @@
 #pragma once
 // hdhair-bench --table dome: what the SRBF dome lighting (Ren et al.
-// 2010; hdHair/render/DomeLighting.h) costs and how far it is from its
+// 2010; hdHair/plan/DomeLighting.h) costs and how far it is from its
 // reference, per stage, under one latlong texture.
 //
 // Each stage's own lights are replaced by one DomeLight of the texture
@@ -29,7 +29,7 @@
 #include <string>
 #include <vector>
 
-#include "hdHair/render/CameraView.h"
+#include "hdHair/plan/CameraView.h"
 
 namespace hdhair {
 

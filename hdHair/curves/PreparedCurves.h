@@ -37,7 +37,7 @@ struct StrandControlPoint {
 static_assert(sizeof(StrandControlPoint) == 32, "tightly packed for the GPU");
 
 // A primvar the renderer asks prepareCurves to carry besides the colours
-// (hair parameters: hdHair/render/HairMaterial.h), with the value an
+// (hair parameters: hdHair/plan/HairMaterial.h), with the value an
 // authored but unusable primvar falls back to (one element).
 struct ShadingPrimvarRequest {
     std::string name;  // e.g. "hdHair:melanin"

@@ -2,7 +2,7 @@
 // The light a DomeLight gives, in world space, ready for shading: either an
 // analytic uniform radiance (an untextured dome) or the SRBF lights fitted
 // to its texture (Ren et al. 2010, §3 Eq. 2; SrbfFit.h), which
-// hdHair/render/DomeLighting.h draws.
+// hdHair/plan/DomeLighting.h draws.
 //
 // - Untextured (inputs:texture:file empty): radiance `radianceScale` from
 //   every direction, exactly; nothing is fitted.

@@ -51,7 +51,7 @@ public:
     // tested, not written, so opaque geometry drawn before hides what is
     // behind it. The frame and light uniform blocks must be bound
     // (StrandPass::setUniforms). Depth and ids follow
-    // hdHair/render/NearestStrandRule.h.
+    // hdHair/plan/NearestStrandRule.h.
     // Returns how many fragments the strands produced; more than
     // `capacity` (the budget) means the image is incomplete and must not be
     // used. Storage follows what frames need (the last render's count),

@@ -12,7 +12,7 @@
 // nearest-depth image instead: R32F, cleared to 1 and min-blended, written by
 // the strand shaders at output kNearestDepthOutput with the window depth of
 // each fragment that may define it, and by the meshes, drawn before them
-// (hdHair/render/NearestStrandRule.h).
+// (hdHair/plan/NearestStrandRule.h).
 
 #include <array>
 #include <cstdint>

@@ -1,6 +1,6 @@
 #pragma once
 // The frame's SRBF-convolution tables on the GPU (dome lighting,
-// hdHair/render/DomeLighting.h), as shaders/include/srbfLighting.glsl reads
+// hdHair/plan/DomeLighting.h), as shaders/include/srbfLighting.glsl reads
 // them:
 // - unit 5: every Marschner table (hdHair/shading/SrbfConvolutionTables.h,
 //   GL_RGB16F, 32 × 64 × 512), side by side along x: table k's ψ nodes are

@@ -25,7 +25,7 @@ struct FrameUniforms {  // binding 0, shaders/include/frameUniforms.glsl
     int32_t drawMode = 0;        // 0 opaque, 1 pre-multiplied, 2 ids only (the ids pass)
     int32_t orderedDraw = 0;     // 1: patches come through the draw-order buffer
     // Blended frames: the least alpha (coverage x opacity) of a fragment that
-    // may give its pixel depth and ids (hdHair/render/NearestStrandRule.h).
+    // may give its pixel depth and ids (hdHair/plan/NearestStrandRule.h).
     float nearestStrandMinAlpha = 0.0f;
     // screenError tessellation: the most a centre line may stray from its
     // curve, in this pass's pixels (a light view's texels); 0 selects
@@ -58,7 +58,7 @@ struct LightUniforms {  // binding 1, shaders/include/lights.glsl
 static_assert(sizeof(LightUniforms) == 16 * 4 * kMaxLightsPerPass + 32, "std140 layout of LightUniforms");
 
 // How a pass's lights shadow the hair (binding 2, shaders/include/shadows.glsl;
-// hdHair/render/DeepOpacityLayers.h has the formulas). Light i of a pass is
+// hdHair/plan/DeepOpacityLayers.h has the formulas). Light i of a pass is
 // entry i; a shadow pass writes its one light as entry 0.
 constexpr int kMaxShadowLayerVectors = 8;  // 32 layer boundaries, 4 a vec4
 struct ShadowUniforms {

@@ -9,8 +9,8 @@
 // framing (HdRenderPassState::GetProjectionMatrix), for an image the size of
 // the data window.
 
-#include "hdHair/render/CameraView.h"
-#include "hdHair/render/RenderSettings.h"
+#include "hdHair/plan/CameraView.h"
+#include "hdHair/plan/RenderSettings.h"
 
 namespace hdhair::hydra {
 

@@ -10,7 +10,7 @@
 #include "pxr/imaging/hd/renderDelegate.h"
 #include "pxr/imaging/hd/resourceRegistry.h"
 
-#include "hdHair/render/RenderSettings.h"
+#include "hdHair/plan/RenderSettings.h"
 
 PXR_NAMESPACE_OPEN_SCOPE
 

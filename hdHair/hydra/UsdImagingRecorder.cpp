@@ -25,7 +25,7 @@
 #include "hdHair/base/InputError.h"
 #include "hdHair/hydra/TfDiagnosticCapture.h"
 #include "hdHair/hydra/UsdStageChecks.h"
-#include "hdHair/render/CameraView.h"
+#include "hdHair/plan/CameraView.h"
 #include "hdHair/render/FrameMemory.h"
 #include "hdHair/scene/SceneValidation.h"
 

@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "hdHair/image/Image.h"
-#include "hdHair/render/RenderSettings.h"
+#include "hdHair/plan/RenderSettings.h"
 
 namespace hdhair::hydra {
 

@@ -4,7 +4,7 @@
 
 #include <glm/geometric.hpp>
 
-#include "hdHair/render/CameraView.h"
+#include "hdHair/plan/CameraView.h"
 
 namespace hdhair {
 

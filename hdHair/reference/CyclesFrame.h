@@ -12,7 +12,7 @@
 #include "hdHair/image/ImageWriter.h"
 #include "hdHair/reference/CyclesProcess.h"
 #include "hdHair/reference/CyclesScene.h"
-#include "hdHair/render/CameraView.h"
+#include "hdHair/plan/CameraView.h"
 
 namespace hdhair {
 

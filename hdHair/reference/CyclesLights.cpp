@@ -7,8 +7,8 @@
 #include <glm/mat3x3.hpp>
 
 #include "hdHair/base/Diagnostics.h"
-#include "hdHair/render/CameraView.h"
-#include "hdHair/render/LightPlanner.h"
+#include "hdHair/plan/CameraView.h"
+#include "hdHair/plan/LightPlanner.h"
 #include "hdHair/scene/Scene.h"
 #include "hdHair/shading/ShadingLight.h"
 

@@ -6,9 +6,9 @@
 #include "hdHair/base/Diagnostics.h"
 #include "hdHair/curves/StrandColorSource.h"
 #include "hdHair/meshes/PreparedMesh.h"
-#include "hdHair/render/CameraView.h"
-#include "hdHair/render/RenderPlan.h"
-#include "hdHair/render/RenderSettings.h"
+#include "hdHair/plan/CameraView.h"
+#include "hdHair/plan/RenderPlan.h"
+#include "hdHair/plan/RenderSettings.h"
 #include "hdHair/scene/Scene.h"
 
 namespace hdhair {

@@ -21,8 +21,8 @@
 #include "hdHair/reference/CyclesCamera.h"
 #include "hdHair/reference/CyclesLights.h"
 #include "hdHair/reference/CyclesStrands.h"
-#include "hdHair/render/CameraView.h"
-#include "hdHair/render/FramingBounds.h"
+#include "hdHair/plan/CameraView.h"
+#include "hdHair/plan/FramingBounds.h"
 
 namespace hdhair {
 

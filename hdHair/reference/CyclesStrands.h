@@ -21,7 +21,7 @@
 
 #include "hdHair/curves/PreparedCurves.h"
 #include "hdHair/reference/PrincipledHair.h"
-#include "hdHair/render/HairMaterial.h"
+#include "hdHair/plan/HairMaterial.h"
 
 namespace hdhair {
 

@@ -8,7 +8,7 @@
 #include <cstdint>
 
 #include "hdHair/base/AvailableMemory.h"
-#include "hdHair/render/RenderSettings.h"
+#include "hdHair/plan/RenderSettings.h"
 
 namespace hdhair {
 

@@ -14,7 +14,7 @@
 #include "hdHair/gl/GpuMemory.h"
 #include "hdHair/meshes/PreparedMesh.h"
 #include "hdHair/render/FrameResources.h"
-#include "hdHair/render/RenderSettings.h"
+#include "hdHair/plan/RenderSettings.h"
 #include "hdHair/render/RenderResult.h"
 #include "hdHair/render/ShadowPassUniforms.h"
 #include "hdHair/render/StrandShadingFeatures.h"

@@ -18,10 +18,10 @@
 #include "hdHair/gl/UniformBlocks.h"
 #include "hdHair/image/DisplayShader.h"
 #include "hdHair/render/BinSort.h"
-#include "hdHair/render/CameraView.h"
+#include "hdHair/plan/CameraView.h"
 #include "hdHair/render/FrameCancellation.h"
-#include "hdHair/render/FrameFallback.h"
-#include "hdHair/render/RenderPlan.h"
+#include "hdHair/plan/FrameFallback.h"
+#include "hdHair/plan/RenderPlan.h"
 #include "hdHair/render/SrbfMaterialTables.h"
 #include "hdHair/render/StrandUploads.h"
 

@@ -25,8 +25,8 @@
 // curves cover less: the strand shader keeps each strand's coverage to its
 // own width, so a thinned preview looks sparser and lighter than the frame.
 
-#include "hdHair/render/CameraView.h"
-#include "hdHair/render/RenderSettings.h"
+#include "hdHair/plan/CameraView.h"
+#include "hdHair/plan/RenderSettings.h"
 
 namespace hdhair {
 

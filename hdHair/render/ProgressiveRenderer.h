@@ -31,10 +31,10 @@
 #include <string>
 #include <thread>
 
-#include "hdHair/render/CameraView.h"
+#include "hdHair/plan/CameraView.h"
 #include "hdHair/render/FrameCancellation.h"
 #include "hdHair/render/InteractivePreview.h"
-#include "hdHair/render/RenderSettings.h"
+#include "hdHair/plan/RenderSettings.h"
 #include "hdHair/render/Renderer.h"
 #include "hdHair/scene/Scene.h"
 

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "hdHair/image/Image.h"
-#include "hdHair/render/RenderPlan.h"
+#include "hdHair/plan/RenderPlan.h"
 #include "hdHair/render/RenderStats.h"
 
 namespace hdhair {

@@ -20,8 +20,8 @@
 #include <string>
 #include <vector>
 
-#include "hdHair/render/ShadowLightView.h"
-#include "hdHair/render/ShadowPlanner.h"
+#include "hdHair/plan/ShadowLightView.h"
+#include "hdHair/plan/ShadowPlanner.h"
 
 namespace hdhair {
 

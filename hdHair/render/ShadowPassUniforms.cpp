@@ -1,6 +1,6 @@
 #include "hdHair/render/ShadowPassUniforms.h"
 
-#include "hdHair/render/DeepOpacityLayers.h"
+#include "hdHair/plan/DeepOpacityLayers.h"
 
 namespace hdhair {
 

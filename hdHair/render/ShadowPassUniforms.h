@@ -4,7 +4,7 @@
 // passes (entry 0), and the frame uniforms of a light's view.
 
 #include "hdHair/gl/UniformBlocks.h"
-#include "hdHair/render/RenderPlan.h"
+#include "hdHair/plan/RenderPlan.h"
 
 namespace hdhair {
 

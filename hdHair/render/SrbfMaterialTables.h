@@ -1,6 +1,6 @@
 #pragma once
 // Which SRBF-convolution table each hair material reads under dome lighting
-// (hdHair/render/DomeLighting.h), and the tables' texels for the GPU
+// (hdHair/plan/DomeLighting.h), and the tables' texels for the GPU
 // (gl::SrbfTableTextures): a Marschner table keyed by the material's fibre
 // parameters, a Kajiya-Kay table keyed by its shininess, each from
 // SrbfTableCache (memory, then the cache directory: $HDHAIR_CACHE_DIR, ...;
@@ -22,7 +22,7 @@
 #include <glm/vec3.hpp>
 
 #include "hdHair/gl/SrbfTableTextures.h"
-#include "hdHair/render/HairMaterial.h"
+#include "hdHair/plan/HairMaterial.h"
 #include "hdHair/shading/SrbfTableCache.h"
 
 namespace hdhair {

@@ -9,8 +9,8 @@
 #include <vector>
 
 #include "hdHair/gl/ShadingFeatures.h"
-#include "hdHair/render/HairMaterial.h"
-#include "hdHair/render/RenderPlan.h"
+#include "hdHair/plan/HairMaterial.h"
+#include "hdHair/plan/RenderPlan.h"
 
 namespace hdhair {
 

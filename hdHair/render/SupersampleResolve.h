@@ -15,7 +15,7 @@
 //    centre was the other choice; with an even N there is no such sample,
 //    and it would drop strands thinner than the gaps between samples.
 
-#include "hdHair/render/CameraView.h"
+#include "hdHair/plan/CameraView.h"
 
 namespace hdhair {
 

@@ -13,7 +13,7 @@
 // - RectLight, DiskLight: one-sided point approximations at their centre,
 //   emitting along −Z: E = L·A·cosθ/d², with A = width·height or π·r².
 // - DomeLight: by default SRBF lights and an analytic uniform term, which
-//   hdHair/render/DomeLighting.h adds; toShadingLights gives the old flat
+//   hdHair/plan/DomeLighting.h adds; toShadingLights gives the old flat
 //   ambient radiance L (the domeLighting=ambient setting).
 // - An SRBF light (srbfBandwidth > 0) is one Gaussian lobe of a dome
 //   (hdHair/environment/Srbf.h): directionOrPosition is its centre ξ, scale
@@ -67,7 +67,7 @@ struct ShadingLights {
     std::vector<ShadingLight> lights;  // distant and local lights
     glm::vec3 ambient{0.0f};           // dome lights' radiance, summed: a flat term (domeLighting=ambient)
     // Untextured domes' radiance, summed, shaded as the fibre model's exact
-    // response to uniform light (domeLighting=srbf; hdHair/render/DomeLighting.h).
+    // response to uniform light (domeLighting=srbf; hdHair/plan/DomeLighting.h).
     glm::vec3 uniformDome{0.0f};
 };
 

@@ -84,7 +84,7 @@
 #include "hdHair/bench/AccuracyReport.h"
 #include "hdHair/bench/BenchLights.h"
 #include "hdHair/render/BinSort.h"
-#include "hdHair/render/CameraView.h"
+#include "hdHair/plan/CameraView.h"
 #include "hdHair/render/Renderer.h"
 #include "hdHair/scene/Scene.h"
 #include "hdHair/bench/DomeBench.h"

@@ -18,8 +18,8 @@
 #include <vector>
 
 #include "StageRendering.h"
-#include "hdHair/render/CameraView.h"
-#include "hdHair/render/RenderPlan.h"
+#include "hdHair/plan/CameraView.h"
+#include "hdHair/plan/RenderPlan.h"
 #include "hdHair/scene/Scene.h"
 
 namespace hdhair::testenv {

@@ -6,7 +6,7 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "hdHair/render/CameraView.h"
+#include "hdHair/plan/CameraView.h"
 #include "hdHair/scene/CameraPrim.h"
 
 namespace hdhair::testenv {

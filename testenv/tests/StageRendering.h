@@ -7,8 +7,8 @@
 
 #include "hdHair/base/Diagnostics.h"
 #include "hdHair/image/Image.h"
-#include "hdHair/render/CameraView.h"
-#include "hdHair/render/RenderSettings.h"
+#include "hdHair/plan/CameraView.h"
+#include "hdHair/plan/RenderSettings.h"
 #include "hdHair/render/Renderer.h"
 #include "hdHair/scene/Scene.h"
 

@@ -10,7 +10,7 @@
 
 #include "StageRendering.h"
 #include "hdHair/image/ImageComparison.h"
-#include "hdHair/render/CameraView.h"
+#include "hdHair/plan/CameraView.h"
 #include "hdHair/scene/Scene.h"
 #include "hdHair/usda/SceneReader.h"
 

@@ -33,7 +33,7 @@
 #include "TestStages.h"
 #include "hdHair/image/ImageComparison.h"
 #include "hdHair/image/ImageWriter.h"
-#include "hdHair/render/CameraView.h"
+#include "hdHair/plan/CameraView.h"
 #include "hdHair/scene/Scene.h"
 #include "hdHair/usda/SceneReader.h"
 #include "testenv/tests/BaselineUpdates.h"

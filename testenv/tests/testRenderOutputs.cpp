@@ -3,7 +3,7 @@
 // hand: flat shading, straight strands facing the camera at known distances,
 // known opacities. Under blending, depth and ids belong to the nearest strand
 // fragment whose alpha (coverage x opacity) is at least 0.1
-// (hdHair/render/NearestStrandRule.h); fainter strands in front still colour
+// (hdHair/plan/NearestStrandRule.h); fainter strands in front still colour
 // the pixel but are looked through.
 
 #include <string>
@@ -14,7 +14,7 @@
 
 #include "HorizontalStrands.h"
 #include "StageRendering.h"
-#include "hdHair/render/CameraView.h"
+#include "hdHair/plan/CameraView.h"
 #include "hdHair/scene/Scene.h"
 
 using namespace hdhair;

@@ -1,5 +1,5 @@
 // Hair self-shadowing: deep opacity maps and their reference
-// (hdHair/render/DeepOpacityLayers.h, ShadowMapCache.h, ShadowLightView.h),
+// (hdHair/plan/DeepOpacityLayers.h, ShadowMapCache.h, ShadowLightView.h),
 // rendered. Transmittance is measured as the ratio of a pixel's colour with
 // shadows to its colour without: shadows scale each light's irradiance and
 // nothing else, so the ratio is T wherever one light shades.
@@ -16,7 +16,7 @@
 #include "OrthographicView.h"
 #include "StageRendering.h"
 #include "hdHair/image/ImageComparison.h"
-#include "hdHair/render/CameraView.h"
+#include "hdHair/plan/CameraView.h"
 #include "hdHair/render/Renderer.h"
 #include "hdHair/scene/Scene.h"
 #include "hdHair/scene/tests/AuthoredPrimvar.h"

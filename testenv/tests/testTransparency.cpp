@@ -14,7 +14,7 @@
 #include "StageRendering.h"
 #include "hdHair/gl/FragmentListPass.h"
 #include "hdHair/image/ImageComparison.h"
-#include "hdHair/render/CameraView.h"
+#include "hdHair/plan/CameraView.h"
 #include "hdHair/render/RenderResult.h"
 #include "hdHair/scene/Scene.h"
 #include "hdHair/usda/SceneReader.h"

@@ -19,8 +19,8 @@
 #include "hdHair/reference/CyclesScene.h"
 #include "hdHair/reference/CyclesStrands.h"
 #include "hdHair/reference/PrincipledHair.h"
-#include "hdHair/render/CameraView.h"
-#include "hdHair/render/RenderSettings.h"
+#include "hdHair/plan/CameraView.h"
+#include "hdHair/plan/RenderSettings.h"
 #include "hdHair/scene/Scene.h"
 
 using namespace hdhair;

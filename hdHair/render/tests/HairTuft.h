@@ -10,7 +10,7 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "hdHair/render/CameraView.h"
+#include "hdHair/plan/CameraView.h"
 #include "hdHair/scene/Scene.h"
 
 namespace hdhair::testscenes {

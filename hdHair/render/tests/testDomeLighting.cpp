@@ -1,4 +1,4 @@
-// Dome lighting on the GPU (hdHair/render/DomeLighting.h): the shader's
+// Dome lighting on the GPU (hdHair/plan/DomeLighting.h): the shader's
 // SRBF-table lookup against sampleSrbfTable on the CPU, turning the dome,
 // the uniform dome's analytic term, domeLighting=ambient's old flat term, a
 // missing texture, the plan's shadows and --explain, the shadows drawn, and
@@ -17,7 +17,7 @@
 #include "hdHair/environment/DomeEnvironment.h"
 #include "hdHair/environment/tests/LatlongTestTextures.h"
 #include "hdHair/curves/PreparedCurves.h"
-#include "hdHair/render/HairMaterial.h"
+#include "hdHair/plan/HairMaterial.h"
 #include "hdHair/render/Renderer.h"
 #include "hdHair/meshes/tests/TestMeshes.h"
 #include "hdHair/render/tests/OwnCacheFolderTest.h"

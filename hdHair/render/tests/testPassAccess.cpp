@@ -16,9 +16,9 @@
 #include "hdHair/gl/GlRenderThread.h"
 #include "hdHair/render/FrameResources.h"
 #include "hdHair/render/FrameScheduler.h"
-#include "hdHair/render/RenderPlan.h"
+#include "hdHair/plan/RenderPlan.h"
 #include "hdHair/render/RenderResult.h"
-#include "hdHair/render/RenderSettings.h"
+#include "hdHair/plan/RenderSettings.h"
 #include "hdHair/scene/Scene.h"
 
 using namespace hdhair;

@@ -23,7 +23,7 @@
 #include "hdHair/gl/GlRenderThread.h"
 #include "hdHair/gl/StrandGeometry.h"
 #include "hdHair/gl/UniformBlocks.h"
-#include "hdHair/render/CameraView.h"
+#include "hdHair/plan/CameraView.h"
 #include "hdHair/scene/CurvesPrim.h"
 
 using namespace hdhair;

@@ -6,7 +6,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
 
-#include "hdHair/render/DeepOpacityLayers.h"
+#include "hdHair/plan/DeepOpacityLayers.h"
 #include "hdHair/render/ShadowMapCache.h"
 
 using namespace hdhair;

@@ -1,0 +1,169 @@
+#include "hdHair/plan/ShadowPlanner.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include <fmt/format.h>
+
+#include "hdHair/gl/LightViewRaster.h"
+#include "hdHair/plan/DeepOpacityLayers.h"
+#include "hdHair/plan/FrameRecipe.h"
+#include "hdHair/plan/RenderSettings.h"
+
+namespace hdhair {
+
+int ShadowPlan::shadowOf(size_t light) const {
+    if (auto shared = sharedMaps.find(light); shared != sharedMaps.end()) light = shared->second;
+    for (size_t i = 0; i < lights.size(); ++i)
+        if (lights[i].light == light) return int(i);
+    return -1;
+}
+
+namespace {
+
+// Where the deep opacity maps are looked up (shadowSampling). Vertex shadows
+// interpolate each light's transmittance along a segment, and a map
+// resolves it to a texel: what matters is how far apart the points are in
+// the finest map's texels (a texel at the casters' nearest depth for a
+// perspective light), so spans longer than kVertexShadowTexels of it are cut
+// to that length (FrameUniforms::shadowSegmentLength), beyond the error
+// rule's cut. vertex always does this, which on stages of long spans costs
+// many segments; auto only when that cut alone would average at most
+// kVertexShadowSegmentsPerSpan segments a span (real grooms: the TressFX
+// bear's and Ratboy's spans, which the error rule cuts about as finely
+// anyway), else looks up per fragment; fragment, and reference shadows,
+// always per fragment.
+void planShadowSampling(ShadowPlan& shadows, ShadowSampling sampling, const StrandSummary& strands) {
+    double finestTexel = 0.0;
+    for (const PlannedShadow& shadow : shadows.lights) {
+        if (!shadow.view.valid) continue;
+        const double texel =
+            shadow.view.texelSize * (shadow.view.orthographic ? 1.0 : std::max(shadow.view.nearDepth, 1e-6));
+        if (texel > 0.0 && (finestTexel == 0.0 || texel < finestTexel)) finestTexel = texel;
+    }
+    const double longest = kVertexShadowTexels * finestTexel;
+    shadows.perVertex = false;
+    shadows.vertexSegmentLength = 0.0;
+    shadows.sampling.clear();
+    if (shadows.mode != ShadowMode::DeepOpacity || longest <= 0.0) return;
+    const double segments = strands.meanSegmentsOfAtMost(longest);
+    const std::string counted = fmt::format("spans cut to {} texels of the finest map ({:.3g}) would average {:.2f} "
+                                            "segments",
+                                            kVertexShadowTexels, longest, segments);
+    if (sampling == ShadowSampling::Fragment) {
+        shadows.sampling = "shadows looked up per fragment (shadowSampling=fragment)";
+    } else if (sampling == ShadowSampling::Vertex || segments <= kVertexShadowSegmentsPerSpan) {
+        shadows.perVertex = true;
+        shadows.vertexSegmentLength = longest;
+        shadows.sampling = fmt::format("shadows looked up per tessellated point: {} (shadowSampling={})", counted,
+                                       toString(sampling));
+    } else {
+        shadows.sampling = fmt::format("shadows looked up per fragment: {}, over {} (shadowSampling=auto)", counted,
+                                       kVertexShadowSegmentsPerSpan);
+    }
+}
+
+// Whether a deep opacity map draws the strands as one-texel lines: when none
+// is much wider than a texel (the widest authored width, at the casters'
+// nearest depth for a perspective view). A ribbon under a texel wide is
+// drawn a texel wide with its alpha scaled down (minPixelWidth, at most 1
+// for lines to stand in for it); a line carries the same coverage, as alpha
+// width / m (strandLinePoint.glsl), without the geometry shader that widens
+// each segment. Up to kMaxStrandLineTexels (TressFX's roots are about a texel at
+// 512) that alpha may pass 1: the texels a line lights sum the ribbon's
+// opacity, in one texel where the ribbon spread it over two, a difference
+// within the texel the bilinear lookup blurs over anyway. With `drawn` the
+// spans the view leaves one segment skip the tessellator too; `tessellated`
+// keeps every span on it, the path that check compares against; `compute`
+// rasterises every span in compute (gl/LightViewRaster.h), on every core of
+// llvmpipe; `auto` is compute unless strandRaster=hardware, then drawn.
+void planStrandLines(PlannedShadow& shadow, const ShadowPlan& shadows, ShadowStrandLines setting, double maxWidth) {
+    const ShadowLightView& view = shadow.view;
+    if (!view.valid || shadows.mode != ShadowMode::DeepOpacity) return;
+    const double texel = view.orthographic ? view.texelSize : view.texelSize * view.nearDepth;
+    shadow.widestTexels = texel > 0.0 ? maxWidth / texel : std::numeric_limits<double>::infinity();
+    shadow.strandLines = setting != ShadowStrandLines::Off && shadows.minPixelWidth <= 1.0 &&
+                         shadow.widestTexels <= kMaxStrandLineTexels;
+    shadow.straightSpans = shadow.strandLines && setting != ShadowStrandLines::Tessellated;
+    if (!shadow.straightSpans) return;
+    // The compute rasteriser: asked for (compute), or with the camera's
+    // (auto, unless strandRaster=hardware); its layer sums must fit.
+    const bool asked = setting == ShadowStrandLines::Compute ||
+                       (setting == ShadowStrandLines::Auto && shadows.rasterSetting != StrandRasterSetting::Hardware);
+    const double sumBytes = double(gl::LightViewRaster::layerSumBytes(shadows.resolution, shadows.layers));
+    const bool fits = sumBytes <= 0.5 * double(shadows.memoryMB) * 1024.0 * 1024.0;
+    shadow.computeLines = asked && fits;
+    shadow.rasterReason =
+        !asked ? (setting == ShadowStrandLines::Drawn ? "drawn (shadowStrandLines=drawn)" : "drawn (strandRaster=hardware)")
+        : fits ? (setting == ShadowStrandLines::Compute
+                      ? "rasterised in compute (shadowStrandLines=compute)"
+                      : fmt::format("rasterised in compute (strandRaster={})", toString(shadows.rasterSetting)))
+               : fmt::format("drawn: the compute rasteriser's layer sums ({:.0f} MB) need more than half of "
+                             "shadowMemoryMB={}",
+                             sumBytes / (1024.0 * 1024.0), shadows.memoryMB);
+}
+
+}  // namespace
+
+void planShadows(FrameRecipe& recipe, const RenderSettings& settings, const StrandSummary& strands, bool anyMeshes) {
+    const SettingValues& values = settings.values();
+    ShadowPlan& shadows = recipe.shadows;
+    shadows.mode = values.shadowMode;
+    shadows.layers = values.shadowLayers;
+    shadows.boundaries = deepOpacityLayerBoundaries(shadows.layers, values.shadowLayerSpacing);
+    shadows.layerDepth = values.shadowLayerDepth;
+    shadows.bilinear = values.shadowFilter == ShadowFilter::Bilinear;
+    shadows.samplingSetting = values.shadowSampling;
+    shadows.resolution = values.shadowMapResolution;
+    shadows.minPixelWidth = values.minPixelWidth;
+    shadows.tessellationTolerance = values.shadowTessellationTolerance;
+    shadows.tessellation = values.tessellation;
+    shadows.pixelsPerSegment = values.pixelsPerSegment;
+    shadows.maxSegmentsPerSpan = values.maxSegmentsPerSpan;
+    shadows.strandLinesSetting = values.shadowStrandLines;
+    shadows.rasterSetting = values.strandRaster;
+    shadows.memoryMB = values.shadowMemoryMB;
+    shadows.meshesCast = anyMeshes && shadows.mode != ShadowMode::Off;
+    shadows.maxMaps = shadowMapBudget(shadows.resolution, shadows.layers, shadows.memoryMB);
+    size_t mapped = 0;
+    for (size_t i = 0; i < recipe.lights.lights.size(); ++i) {
+        const ShadingLight& light = recipe.lights.lights[i];
+        if (!light.castsShadow) continue;
+        PlannedShadow shadow;
+        shadow.light = i;
+        shadow.key = light.path.empty() ? "camera light" : light.path;
+        if (shadows.mode != ShadowMode::Off) {
+            if (mapped < shadows.maxMaps) {
+                shadow.view = fitShadowLightView(light, strands.casters, shadows.resolution);
+                mapped += shadow.view.valid ? 1 : 0;
+            } else {
+                shadow.view.valid = false;
+                shadow.overBudget = true;
+                shadow.view.fallback = fmt::format("shadowMemoryMB={} holds {} maps of {}x{} texels", shadows.memoryMB,
+                                                   shadows.maxMaps, shadows.resolution, shadows.resolution);
+                shadows.overBudget += 1;
+            }
+        }
+        planStrandLines(shadow, shadows, shadows.strandLinesSetting, strands.casters.maxWidth);
+        shadows.lights.push_back(std::move(shadow));
+    }
+    planShadowSampling(shadows, shadows.samplingSetting, strands);
+    if (shadows.mode == ShadowMode::DeepOpacity && values.domeShadowFilter == DomeShadowFilter::Mipmap)
+        for (size_t i = 0; i < recipe.lights.lights.size() && !shadows.convolvedOpacity; ++i)
+            shadows.convolvedOpacity = recipe.lights.lights[i].isSrbf() && shadows.shadowOf(i) >= 0;
+}
+
+size_t shadowMapBudget(int resolution, int layers, int memoryMB) {
+    constexpr size_t kGuaranteedArrayLayers = 2048;  // GL 4.5's minimum GL_MAX_ARRAY_TEXTURE_LAYERS
+    const size_t targets = size_t((layers + 3) / 4);
+    const double bytesPerMap = double(resolution) * double(resolution) * (4.0 + 4.0 + 8.0 * double(targets));
+    const double fitting = std::floor(double(memoryMB) * 1024.0 * 1024.0 / bytesPerMap);
+    const size_t limit = std::min(kGuaranteedArrayLayers / targets, size_t(std::min(fitting, 1e9)));
+    if (limit == 0) return 0;
+    size_t maps = 1;
+    while (maps * 2 <= limit) maps *= 2;
+    return maps;
+}
+
+}  // namespace hdhair
