@@ -6,7 +6,7 @@
 // unlit. Depth is written and tested like any opaque geometry, so strands
 // behind a mesh are hidden on every transparency path; the ids and the
 // nearest depth name the mesh where it is the nearest thing
-// (hdHair/render/NearestStrandRule.h).
+// (hdHair/plan/NearestStrandRule.h).
 // Meshes are two-sided: no face is culled, and a face seen from the back is
 // lit as its back (the normal reversed). They receive the hair's shadows
 // (the deep opacity maps of the batch's lights), not their own.

@@ -3,7 +3,7 @@
 // spelt, from which it is parsed, printed and listed. An enum takes part by
 // specialising TokenTable with a `names` array, in the header that declares
 // it; its first entry is what tokenName gives a value outside the table (a
-// cast integer). Settings (render/SettingTokens.h), curve and primvar tokens,
+// cast integer). Settings (plan/SettingTokens.h), curve and primvar tokens,
 // colour spaces and the tools' options all use it, so a value is spelt once
 // and a misspelt one does not compile.
 

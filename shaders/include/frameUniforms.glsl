@@ -17,7 +17,7 @@ layout(std140, binding = 0) uniform FrameUniforms {
     int orderedDraw;          // 1: patches are read through the draw-order buffer
     // Blended frames: a pixel's depth and ids belong to its nearest strand
     // fragment whose alpha (coverage x opacity) is at least this
-    // (hdHair/render/NearestStrandRule.h).
+    // (hdHair/plan/NearestStrandRule.h).
     float nearestStrandMinAlpha;
     // screenError tessellation: the most a strand's centre line may stray
     // from its curve, in this pass's pixels (a light view's texels); 0:

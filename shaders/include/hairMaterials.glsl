@@ -1,4 +1,4 @@
-// Hair materials (hdHair/render/HairMaterial.h), one per distinct prim
+// Hair materials (hdHair/plan/HairMaterial.h), one per distinct prim
 // material in the frame, and the per-control-point hair parameters of prims
 // whose parameters vary per curve or per vertex; hdHair/gl/HairMaterialTable.h
 // fills both. Needs catmullRom.glsl, marschnerAnalytic.glsl and strandGeometry.glsl,

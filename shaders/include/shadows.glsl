@@ -1,7 +1,7 @@
 // How much of each light of a pass reaches a strand: the transmittance of
 // the hair in front of it, from deep opacity maps (Yuksel & Keyser 2008, as
 // Svoboda 2012 section 2.7 implemented them) or, with shadowMode=reference,
-// from every fragment the light view saw. hdHair/render/DeepOpacityLayers.h
+// from every fragment the light view saw. hdHair/plan/DeepOpacityLayers.h
 // gives the layers, the lookup and k; hdHair/gl/UniformBlocks.h
 // ShadowUniforms mirrors the block. Needs lights.glsl (HDHAIR_MAX_LIGHTS)
 // and shadowFragmentLists.glsl, after shadingFeatures.glsl.

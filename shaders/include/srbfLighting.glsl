@@ -1,4 +1,4 @@
-// A dome's light on a strand (hdHair/render/DomeLighting.h): SRBF lights,
+// A dome's light on a strand (hdHair/plan/DomeLighting.h): SRBF lights,
 // each read from its material's SRBF-convolution table, and a uniform dome's
 // exact response. Ren, Zhou, Li, Hua & Guo 2010, eq. (4): lobe j adds
 //   L_j T̃_j I(ωo; ξ_j, λ_j),  I = ∫ G(ωi; ξ_j, λ_j) f(ωi, ωo) dωi,
