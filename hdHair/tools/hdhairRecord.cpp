@@ -527,7 +527,11 @@ int checkInput(const Options& options, const usda::SceneReadOptions& readOptions
     return 0;
 }
 
-int run(const Options& options) {
+// The settings a run renders with, after the checks every path shares:
+// --complexity, --quality, --imageWidth, the output's extension and
+// placeholder, the outputs' folders. Throws std::invalid_argument with the
+// reason.
+RenderSettings checkedSettings(const Options& options) {
     Complexity complexity;
     if (!parseToken(options.complexity, &complexity))
         throw std::invalid_argument("--complexity must be " + tokenChoices<Complexity>());
@@ -544,6 +548,116 @@ int run(const Options& options) {
     if (!isSupportedImagePath(options.outputPath))
         throw std::invalid_argument("cannot write '" + options.outputPath +
                                     "': unsupported image extension (use .exr, .png, .tif, .tiff, .jpg or .jpeg)");
+    return settings;
+}
+
+// The embedded reader's render: what stays the same for every frame.
+struct EmbeddedRun {
+    const Options& options;
+    const RenderSettings& settings;
+    const DisplayTransform& display;
+    RenderingSpace space;
+    usda::SceneReadOptions readOptions;
+    Renderer& renderer;
+    DisplayShader displayShader;  // --displayTransformOn gpu
+    Diagnostics& diagnostics;
+};
+
+// --verbose and --explain for one frame: the plans, the passes' times and
+// what was drawn.
+void printFrameReport(const EmbeddedRun& run, double time, const CameraView& camera, const std::string& cameraName,
+                      const RenderResult& result, const std::string& outputPath) {
+    const Options& options = run.options;
+    if (options.explain) printSettingOrigins(run.settings);
+    if (options.explain)
+        std::printf("hdhair-record: plan (%s):\n%s", describeTime(time).c_str(), result.describePlans().c_str());
+    if (!options.verbose && !options.explain) return;
+    std::string passes;
+    for (const PassTiming& pass : result.stats.passes)
+        passes += fmt::format("{}{} {:.1f} ms", passes.empty() ? "" : ", ", pass.name, pass.milliseconds);
+    std::string programs;
+    for (const std::string& shading : result.stats.strandShaders)
+        programs += fmt::format("{}[{}]", programs.empty() ? "" : ", ", shading);
+    std::printf("hdhair-record: %s: %dx%d, camera %s, %llu curves, %llu segments, %llu strand triangles"
+                "; %s; strand %s; strand programs %s; wrote %s\n",
+                describeTime(time).c_str(), camera.imageWidth, camera.imageHeight, cameraName.c_str(),
+                static_cast<unsigned long long>(result.stats.curves),
+                static_cast<unsigned long long>(result.stats.segments),
+                static_cast<unsigned long long>(result.stats.strandTriangles), passes.c_str(),
+                result.stats.drawBatching.c_str(), programs.empty() ? "none" : programs.c_str(), outputPath.c_str());
+}
+
+// One frame through the embedded reader: the stage at `time` into `scene`
+// (prims that did not change keep their versions, so they are not prepared
+// or uploaded again), rendered and written. Returns its stats.
+nlohmann::json renderEmbeddedFrame(EmbeddedRun& run, const usda::Stage& stage, Scene& scene, double time) {
+    const Options& options = run.options;
+    Diagnostics& diagnostics = run.diagnostics;
+    Clock::time_point sceneStart = Clock::now();
+    Scene atTime;
+    usda::readScene(stage, time, atTime, diagnostics, run.readOptions);
+    scene.updateFrom(atTime);
+    double sceneMilliseconds = millisecondsSince(sceneStart);
+
+    std::optional<CameraView> chosen = cameraPrimView(options, scene, diagnostics);
+    CameraView camera = chosen ? *chosen
+                               : framingView(options, run.settings, scene,
+                                             run.renderer.prepare(scene, run.settings, diagnostics));
+    const std::string cameraName = cameraDescription(options, run.settings);
+
+    const bool gpuDisplay = options.displayTransformOn == "gpu" && !isSceneLinearImagePath(options.outputPath);
+    RenderOutputs outputs;
+    outputs.gpuDisplay = gpuDisplay ? &run.displayShader : nullptr;
+    outputs.displayOverBlack = !keepsAlpha(options.outputPath);
+    outputs.depth = false;  // only colour is written
+    RenderResult result = run.renderer.render(scene, camera, run.settings, diagnostics, outputs);
+    if (std::string why = whyNothingDrawn(scene, result, diagnostics.warningCount()); !why.empty())
+        diagnostics.warn(options.usdFile, why);
+    result.stats.camera = cameraName;
+    result.stats.time = time;
+    result.stats.passes.insert(result.stats.passes.begin(), PassTiming{"readScene", sceneMilliseconds});
+
+    std::string outputPath =
+        std::isfinite(time) ? expandFramePlaceholder(options.outputPath, time) : options.outputPath;
+    nlohmann::json frameColor;
+    writeFrameImage(std::move(result.color), gpuDisplay ? &result.display : nullptr, run.display, run.space,
+                    outputPath, options.exrFloat32, diagnostics, result.stats.passes, frameColor);
+    printFrameReport(run, time, camera, cameraName, result, outputPath);
+    nlohmann::json frameStats = result.stats.toJson();
+    frameStats["output"] = outputPath;
+    frameStats["color"] = frameColor["color"];
+    return frameStats;
+}
+
+// --reader embedded: hdHair's own .usda reader and renderer, every frame.
+int runEmbedded(const Options& options, const RenderSettings& settings, gl::GlBackend backend,
+                const usda::SceneReadOptions& readOptions, const DisplayTransform& display, RenderingSpace space) {
+    Diagnostics diagnostics;
+    size_t printed = 0;
+    diagnostics.setListener([&](const Diagnostic& warning) {
+        if (printed++ < kWarningsPrinted)
+            std::fprintf(stderr, "hdhair-record: warning: %s: %s\n", warning.where.c_str(), warning.message.c_str());
+    });
+    Clock::time_point readStart = Clock::now();
+    std::unique_ptr<usda::Stage> stage = usda::Stage::open(options.usdFile);
+    double readMilliseconds = millisecondsSince(readStart);
+
+    Renderer renderer(backend);
+    EmbeddedRun run{options, settings, display, space, readOptions, renderer, {}, diagnostics};
+    if (options.displayTransformOn == "gpu") run.displayShader = display.shader();
+    if (options.verbose)
+        std::printf("hdhair-record: GL %s (%s) on %s; read %s in %.1f ms\n", gl::toString(backend),
+                    renderer.glDescription().c_str(), renderer.glDevice().c_str(), options.usdFile.c_str(),
+                    readMilliseconds);
+    nlohmann::json allStats = nlohmann::json::array();
+    Scene scene;
+    for (double time : timesToRender(options)) allStats.push_back(renderEmbeddedFrame(run, *stage, scene, time));
+    finishRun(options, allStats, diagnostics, printed);
+    return 0;
+}
+
+int run(const Options& options) {
+    const RenderSettings settings = checkedSettings(options);
     gl::GlBackend backend = gl::defaultGlBackend();
     if (!options.gl.empty() && !gl::parseGlBackend(options.gl, &backend))
         throw std::invalid_argument("--gl must be egl or osmesa");
@@ -558,89 +672,7 @@ int run(const Options& options) {
     if (!options.reference.empty()) return runCyclesReference(options, readOptions, display, space, settings);
     if (options.reader == "usd") return runThroughUsdImaging(options, readOptions, display, space);
     if (options.reader != "embedded") throw std::invalid_argument("--reader must be usd or embedded");
-
-    Diagnostics diagnostics;
-    size_t printed = 0;
-    diagnostics.setListener([&](const Diagnostic& warning) {
-        if (printed++ < kWarningsPrinted)
-            std::fprintf(stderr, "hdhair-record: warning: %s: %s\n", warning.where.c_str(), warning.message.c_str());
-    });
-
-    Clock::time_point readStart = Clock::now();
-    std::unique_ptr<usda::Stage> stage = usda::Stage::open(options.usdFile);
-    double readMilliseconds = millisecondsSince(readStart);
-    const std::vector<double> times = timesToRender(options);
-
-    Renderer renderer(backend);
-    DisplayShader displayShader;
-    if (options.displayTransformOn == "gpu") displayShader = display.shader();
-    if (options.verbose)
-        std::printf("hdhair-record: GL %s (%s) on %s; read %s in %.1f ms\n", gl::toString(backend),
-                    renderer.glDescription().c_str(), renderer.glDevice().c_str(), options.usdFile.c_str(),
-                    readMilliseconds);
-
-    nlohmann::json allStats = nlohmann::json::array();
-    // One scene for every frame: prims that do not change between frames keep
-    // their versions, so they are not prepared or uploaded again.
-    Scene scene;
-    for (double time : times) {
-        Clock::time_point sceneStart = Clock::now();
-        Scene atTime;
-        usda::readScene(*stage, time, atTime, diagnostics, readOptions);
-        scene.updateFrom(atTime);
-        double sceneMilliseconds = millisecondsSince(sceneStart);
-
-        std::optional<CameraView> chosen = cameraPrimView(options, scene, diagnostics);
-        CameraView camera = chosen ? *chosen
-                                   : framingView(options, settings, scene, renderer.prepare(scene, settings, diagnostics));
-        const std::string cameraName = cameraDescription(options, settings);
-
-        const bool gpuDisplay = options.displayTransformOn == "gpu" && !isSceneLinearImagePath(options.outputPath);
-        RenderOutputs outputs;
-        outputs.gpuDisplay = gpuDisplay ? &displayShader : nullptr;
-        outputs.displayOverBlack = !keepsAlpha(options.outputPath);
-        outputs.depth = false;  // only colour is written
-        RenderResult result = renderer.render(scene, camera, settings, diagnostics, outputs);
-        if (std::string why = whyNothingDrawn(scene, result, diagnostics.warningCount()); !why.empty())
-            diagnostics.warn(options.usdFile, why);
-        result.stats.camera = cameraName;
-        result.stats.time = time;
-        result.stats.passes.insert(result.stats.passes.begin(), PassTiming{"readScene", sceneMilliseconds});
-
-        std::string outputPath =
-            std::isfinite(time) ? expandFramePlaceholder(options.outputPath, time) : options.outputPath;
-        nlohmann::json frameColor;
-        writeFrameImage(std::move(result.color), gpuDisplay ? &result.display : nullptr, display, space, outputPath,
-                        options.exrFloat32, diagnostics, result.stats.passes, frameColor);
-
-        if (options.explain) printSettingOrigins(settings);
-        if (options.explain)
-            std::printf("hdhair-record: plan (%s):\n%s", describeTime(time).c_str(),
-                        result.describePlans().c_str());
-        if (options.verbose || options.explain) {
-            std::string passes;
-            for (const PassTiming& pass : result.stats.passes)
-                passes += fmt::format("{}{} {:.1f} ms", passes.empty() ? "" : ", ", pass.name, pass.milliseconds);
-            std::string programs;
-            for (const std::string& shading : result.stats.strandShaders)
-                programs += fmt::format("{}[{}]", programs.empty() ? "" : ", ", shading);
-            std::printf("hdhair-record: %s: %dx%d, camera %s, %llu curves, %llu segments, %llu strand triangles"
-                        "; %s; strand %s; strand programs %s; wrote %s\n",
-                        describeTime(time).c_str(), camera.imageWidth,
-                        camera.imageHeight, cameraName.c_str(),
-                        static_cast<unsigned long long>(result.stats.curves),
-                        static_cast<unsigned long long>(result.stats.segments),
-                        static_cast<unsigned long long>(result.stats.strandTriangles), passes.c_str(),
-                        result.stats.drawBatching.c_str(), programs.empty() ? "none" : programs.c_str(),
-                        outputPath.c_str());
-        }
-        nlohmann::json frameStats = result.stats.toJson();
-        frameStats["output"] = outputPath;
-        frameStats["color"] = frameColor["color"];
-        allStats.push_back(frameStats);
-    }
-    finishRun(options, allStats, diagnostics, printed);
-    return 0;
+    return runEmbedded(options, settings, backend, readOptions, display, space);
 }
 
 }  // namespace
@@ -673,10 +705,10 @@ static std::string settingsMarkdown() {
     return text;
 }
 
-int main(int argc, char** argv) {
-    Options options;
-    CLI::App app{"Renders a USD stage's hair curves to images, like usdrecord, with hdHair's engine.",
-                 "hdhair-record"};
+namespace {
+
+// The stage, the camera, the frames and what is rendered.
+void addRenderOptions(CLI::App& app, Options& options) {
     app.add_option("usdFile", options.usdFile, "The stage to render (.usda)")->required();
     app.add_option("outputImagePath", options.outputPath,
                    "Output image (.exr: scene-linear half float; .png/.tif/.jpg: 8-bit through the display "
@@ -708,6 +740,10 @@ int main(int argc, char** argv) {
                    "How the stage is read: usd (OpenUSD, UsdImaging and the HdHair plugin, when built with "
                    "OpenUSD) or embedded (hdHair's own .usda reader)")
         ->capture_default_str();
+}
+
+// How the image is written and what the run reports.
+void addOutputOptions(CLI::App& app, Options& options) {
     app.add_option("--colorCorrectionMode,--color", options.colorCorrectionMode,
                    "Display transform of .png/.tif/.jpg outputs: disabled, sRGB or openColorIO (EXR stays "
                    "scene-linear)")
@@ -733,6 +769,10 @@ int main(int argc, char** argv) {
     app.add_flag("--check", options.check,
                  "Check the arguments, outputs, stage and camera (at the first frame) as a render would, render "
                  "nothing, and print the frames and image size as JSON (hdhair-farm runs it before submitting)");
+}
+
+// --reference cycles and its options.
+void addReferenceOptions(CLI::App& app, Options& options) {
     app.add_option("--reference", options.reference,
                    "Render a path-traced reference instead: cycles (Blender's Cycles, headless; the stage is read "
                    "by the embedded reader and exported as hdHair prepares it; docs/cycles-reference.md)");
@@ -745,42 +785,35 @@ int main(int argc, char** argv) {
                    "--reference: stop after this many seconds (0: none), at the sample reached")
         ->capture_default_str();
     app.add_option("--blender", options.blender, "--reference: the Blender executable")->capture_default_str();
-    bool listSettings = false;
-    std::string settingsFormat = "text";
-    app.add_flag("--help-settings", listSettings, "List the renderer settings with defaults and exit");
-    app.add_option("--format", settingsFormat,
-                   "--help-settings: text, or markdown (the table of docs/settings.md, which a test keeps equal)")
-        ->capture_default_str();
+}
 
-    // --help-settings needs no positional arguments.
+// --help-settings [--format text|markdown], which needs no positional
+// arguments: the exit status when it was asked for.
+std::optional<int> listSettingsIfAsked(int argc, char** argv) {
+    bool asked = false;
+    std::string format = "text";
     for (int i = 1; i < argc; ++i) {
-        if (std::string(argv[i]) != "--help-settings") continue;
-        for (int j = 1; j + 1 < argc; ++j)
-            if (std::string(argv[j]) == "--format") settingsFormat = argv[j + 1];
-        if (settingsFormat == "markdown") {
-            std::printf("%s", settingsMarkdown().c_str());
-            return 0;
-        }
-        if (settingsFormat != "text") {
-            std::fprintf(stderr, "hdhair-record: error: --format must be text or markdown, not '%s'\n",
-                         settingsFormat.c_str());
-            return 2;
-        }
-        for (const SettingDescriptor& descriptor : RenderSettings::descriptors())
-            std::printf("%-22s default %-8s %s\n", descriptor.name.c_str(), descriptor.defaultValue.c_str(),
-                        descriptor.description.c_str());
+        asked = asked || std::string(argv[i]) == "--help-settings";
+        if (std::string(argv[i]) == "--format" && i + 1 < argc) format = argv[i + 1];
+    }
+    if (!asked) return std::nullopt;
+    if (format == "markdown") {
+        std::printf("%s", settingsMarkdown().c_str());
         return 0;
     }
-    try {
-        app.parse(argc, argv);
-    } catch (const CLI::CallForHelp& help) {
-        return app.exit(help);
-    } catch (const CLI::ParseError& error) {
-        std::fprintf(stderr, "hdhair-record: error: %s (see --help)\n", error.what());
+    if (format != "text") {
+        std::fprintf(stderr, "hdhair-record: error: --format must be text or markdown, not '%s'\n", format.c_str());
         return 2;
     }
-    options.readerGiven = app.count("--reader") > 0;
-    options.framesGiven = app.count("--frames") > 0;
+    for (const SettingDescriptor& descriptor : RenderSettings::descriptors())
+        std::printf("%-22s default %-8s %s\n", descriptor.name.c_str(), descriptor.defaultValue.c_str(),
+                    descriptor.description.c_str());
+    return 0;
+}
+
+// run(), with each failure one line and its exit status: 1 for the input,
+// 75 for the machine (out of memory, no GL).
+int runReportingFailures(const Options& options) {
     try {
         return run(options);
     } catch (const std::bad_alloc&) {
@@ -797,4 +830,34 @@ int main(int argc, char** argv) {
         std::fprintf(stderr, "hdhair-record: error: %s\n", error.what());
         return 1;
     }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    Options options;
+    CLI::App app{"Renders a USD stage's hair curves to images, like usdrecord, with hdHair's engine.",
+                 "hdhair-record"};
+    addRenderOptions(app, options);
+    addOutputOptions(app, options);
+    addReferenceOptions(app, options);
+    // Listed in --help; listSettingsIfAsked answers them before parsing.
+    bool listSettings = false;
+    std::string settingsFormat = "text";
+    app.add_flag("--help-settings", listSettings, "List the renderer settings with defaults and exit");
+    app.add_option("--format", settingsFormat,
+                   "--help-settings: text, or markdown (the table of docs/settings.md, which a test keeps equal)")
+        ->capture_default_str();
+    if (std::optional<int> status = listSettingsIfAsked(argc, argv)) return *status;
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::CallForHelp& help) {
+        return app.exit(help);
+    } catch (const CLI::ParseError& error) {
+        std::fprintf(stderr, "hdhair-record: error: %s (see --help)\n", error.what());
+        return 2;
+    }
+    options.readerGiven = app.count("--reader") > 0;
+    options.framesGiven = app.count("--frames") > 0;
+    return runReportingFailures(options);
 }
