@@ -86,13 +86,9 @@ HairStrands readAsset(const std::string& path) {
     throw std::invalid_argument(fmt::format("{}: unknown input format '{}' (reads .tfx, .hair and .obj)", path, ext));
 }
 
-int run(const Options& options) {
-    const Clock::time_point start = Clock::now();
-    if (options.files.size() < 2 && !(options.files.size() == 1 && !options.meshes.empty()))
-        throw std::invalid_argument("give at least one input file and the output .usda (see --help)");
-    const std::string output = options.files.back();
-    if (lowerExtension(output) != ".usda")
-        throw std::invalid_argument(fmt::format("the output '{}' must be a .usda file (the last argument)", output));
+// How the stage is written, from the options; throws std::invalid_argument
+// for a bad one.
+UsdaWriteOptions writeOptions(const Options& options) {
     UsdaWriteOptions write;
     if (options.upAxis != "Y" && options.upAxis != "Z")
         throw std::invalid_argument(fmt::format("--upAxis must be Y or Z, not '{}'", options.upAxis));
@@ -104,10 +100,13 @@ int run(const Options& options) {
     if (!options.color.empty()) write.color = parseTriple(options.color, "--color");
     if (!options.cameraFrom.empty()) write.cameraFrom = parseTriple(options.cameraFrom, "--cameraFrom");
     if (options.followStrands < 0) throw std::invalid_argument("--followStrands must be >= 0");
+    return write;
+}
 
-    std::vector<CurvesInput> inputs;
+// Every .obj (--mesh, and those among the inputs) as a Mesh input; each
+// one's source for the stage's doc.
+std::vector<MeshInput> readMeshes(const Options& options, std::vector<std::string>& sources) {
     std::vector<MeshInput> meshes;
-    std::vector<std::string> sources;
     std::vector<std::string> meshFiles = options.meshes;
     for (size_t i = 0; i + 1 < options.files.size(); ++i)
         if (lowerExtension(options.files[i]) == ".obj") meshFiles.push_back(options.files[i]);
@@ -126,6 +125,13 @@ int run(const Options& options) {
         sources.push_back(fmt::format("{} (mesh, {} faces)", path, mesh.mesh.faceVertexCounts.size()));
         meshes.push_back(std::move(mesh));
     }
+    return meshes;
+}
+
+// Every hair asset among the inputs, thinned to --maxStrands; each one's
+// source for the stage's doc.
+std::vector<CurvesInput> readHair(const Options& options, std::vector<std::string>& sources) {
+    std::vector<CurvesInput> inputs;
     for (size_t i = 0; i + 1 < options.files.size(); ++i) {
         const std::string& path = options.files[i];
         if (lowerExtension(path) == ".obj") continue;
@@ -150,39 +156,57 @@ int run(const Options& options) {
                                       input.strands.strandCount()));
         inputs.push_back(std::move(input));
     }
+    return inputs;
+}
 
-    if (options.followStrands > 0) {
-        Bounds guides;
-        for (const CurvesInput& input : inputs)
-            for (const Float3& p : input.strands.points) guides.add(p);
-        FollowOptions follow;
-        follow.perGuide = options.followStrands;
-        follow.radius = options.followRadius.value_or(0.01f * guides.diagonal());
-        follow.tipSeparation = options.followTipSeparation;
-        for (CurvesInput& input : inputs) {
-            input.strands = addFollowStrands(input.strands, follow);
-            if (options.verbose)
-                std::printf("hdhair-convert: %s: %zu strands with %d follow strands per guide (radius %s)\n",
-                            input.strands.source.c_str(), input.strands.strandCount(), follow.perGuide,
-                            formatNumber(follow.radius).c_str());
-        }
+// --followStrands: strands grown around every guide.
+void addFollowers(const Options& options, std::vector<CurvesInput>& inputs) {
+    Bounds guides;
+    for (const CurvesInput& input : inputs)
+        for (const Float3& p : input.strands.points) guides.add(p);
+    FollowOptions follow;
+    follow.perGuide = options.followStrands;
+    follow.radius = options.followRadius.value_or(0.01f * guides.diagonal());
+    follow.tipSeparation = options.followTipSeparation;
+    for (CurvesInput& input : inputs) {
+        input.strands = addFollowStrands(input.strands, follow);
+        if (options.verbose)
+            std::printf("hdhair-convert: %s: %zu strands with %d follow strands per guide (radius %s)\n",
+                        input.strands.source.c_str(), input.strands.strandCount(), follow.perGuide,
+                        formatNumber(follow.radius).c_str());
     }
+}
 
+// --verbose: what was written.
+void reportWritten(const CurvesUsda& usda, const std::string& output, Clock::time_point start) {
+    for (const WrittenCurves& curves : usda.curves)
+        std::printf("hdhair-convert: %s: %zu strands, %zu points, widths %s\n", curves.path.c_str(), curves.strands,
+                    curves.points, curves.widths.c_str());
+    for (const WrittenMesh& mesh : usda.meshes)
+        std::printf("hdhair-convert: %s: a mesh of %zu faces, %zu points\n", mesh.path.c_str(), mesh.faces,
+                    mesh.points);
+    std::printf("hdhair-convert: wrote %s (%.1f MB) in %.1f ms\n", output.c_str(),
+                double(usda.text.size()) / (1024.0 * 1024.0), millisecondsSince(start));
+}
+
+int run(const Options& options) {
+    const Clock::time_point start = Clock::now();
+    if (options.files.size() < 2 && !(options.files.size() == 1 && !options.meshes.empty()))
+        throw std::invalid_argument("give at least one input file and the output .usda (see --help)");
+    const std::string output = options.files.back();
+    if (lowerExtension(output) != ".usda")
+        throw std::invalid_argument(fmt::format("the output '{}' must be a .usda file (the last argument)", output));
+    UsdaWriteOptions write = writeOptions(options);
+    std::vector<std::string> sources;
+    std::vector<MeshInput> meshes = readMeshes(options, sources);
+    std::vector<CurvesInput> inputs = readHair(options, sources);
+    if (options.followStrands > 0) addFollowers(options, inputs);
     std::string doc = "Converted by hdhair-convert from ";
     for (size_t i = 0; i < sources.size(); ++i) doc += (i ? ", " : "") + sources[i];
     write.doc = doc;
     CurvesUsda usda = buildCurvesUsda(inputs, write, meshes);
     writeFileAtomically(output, usda.text);
-    if (options.verbose) {
-        for (const WrittenCurves& curves : usda.curves)
-            std::printf("hdhair-convert: %s: %zu strands, %zu points, widths %s\n", curves.path.c_str(),
-                        curves.strands, curves.points, curves.widths.c_str());
-        for (const WrittenMesh& mesh : usda.meshes)
-            std::printf("hdhair-convert: %s: a mesh of %zu faces, %zu points\n", mesh.path.c_str(), mesh.faces,
-                        mesh.points);
-        std::printf("hdhair-convert: wrote %s (%.1f MB) in %.1f ms\n", output.c_str(),
-                    double(usda.text.size()) / (1024.0 * 1024.0), millisecondsSince(start));
-    }
+    if (options.verbose) reportWritten(usda, output, start);
     return 0;
 }
 
