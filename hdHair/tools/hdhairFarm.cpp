@@ -136,8 +136,9 @@ int followJob(const FarmJob& job, double pollSeconds, bool wait) {
     }
 }
 
-int submit(SubmitOptions options) {
-    const std::vector<double> frames = parseFrameSpec(options.frames);
+// The submission's checks that need no Slurm: the options, and the
+// arguments as hdhair-record --check reads them. Returns what it printed.
+nlohmann::json checkedSubmission(const SubmitOptions& options, const std::string& record) {
     if (options.chunk < 1) throw std::invalid_argument("--chunk must be 1 or more frames");
     if (options.retries < 0 || options.retries > 10) throw std::invalid_argument("--retries must be 0 to 10");
     if (options.tasksAtOnce < 0) throw std::invalid_argument("--tasksAtOnce must be 0 (no limit) or more");
@@ -145,64 +146,61 @@ int submit(SubmitOptions options) {
         throw std::invalid_argument("no hdhair-record arguments: hdhair-farm submit --frames 1:24 -- stage.usda "
                                     "out.####.exr [options]");
     refuseFarmOwnedArguments(options.recordArguments);
-    const std::string record =
-        options.record.empty() ? (executableFolder() / "hdhair-record").string() : options.record;
-    const nlohmann::json check = checkRecordArguments(record, options);
+    nlohmann::json check = checkRecordArguments(record, options);
     const std::string pattern = check.at("output").get<std::string>();
     if (!hasFramePlaceholder(pattern))
         throw std::invalid_argument("the output '" + pattern + "' has no '#' for the frame number (e.g. "
                                     "out.####.exr): every task would write the same file");
+    return check;
+}
 
+// The job as the options and hdhair-record's check describe it, its frames
+// not yet chosen.
+FarmJob describeJob(const SubmitOptions& options, const std::string& record, const nlohmann::json& check,
+                    const std::vector<double>& frames) {
+    const std::string pattern = check.at("output").get<std::string>();
     FarmJob job;
-    const std::string workingDirectory = fs::current_path().string();
-    job.workingDirectory = workingDirectory;
+    job.workingDirectory = fs::current_path().string();
     job.recordExecutable = fs::absolute(record).lexically_normal().string();
     job.recordArguments = options.recordArguments;
-    job.outputPattern = absoluteIn(workingDirectory, pattern);
-    job.jobFolder = absoluteIn(workingDirectory, options.jobFolder.empty() ? defaultJobFolder(pattern)
-                                                                            : options.jobFolder);
+    job.outputPattern = absoluteIn(job.workingDirectory, pattern);
+    job.jobFolder = absoluteIn(job.workingDirectory, options.jobFolder.empty() ? defaultJobFolder(pattern)
+                                                                               : options.jobFolder);
     job.allFrames = frames;
     job.chunkSize = options.chunk;
     job.imageWidth = check.at("imageWidth").get<int>();
     job.imageHeight = check.at("imageHeight").get<int>();
     job.retries = options.retries;
     job.force = options.force;
+    return job;
+}
 
-    // One job per folder at a time: two would render the same frames.
-    std::optional<FarmJob> previous;
-    if (fs::exists(job.jobFile())) {
-        previous = FarmJob::load(job.jobFolder);
-        if (!previous->latestJobId().empty()) {
-            std::string error;
-            const auto queue = queuedTasks(previous->latestJobId(), error);
-            if (!queue) throw std::runtime_error("cannot ask Slurm about job " + previous->latestJobId() + ": " + error);
-            if (!queue->empty())
-                throw std::invalid_argument("job " + previous->latestJobId() + " still renders into " + job.jobFolder +
-                                            " (hdhair-farm status " + previous->latestJobId() +
-                                            "); wait for it or scancel it");
-        }
-        job.slurmJobIds = previous->slurmJobIds;
-    }
-    for (double frame : frames)
-        if (options.force || !whyFrameIncomplete(job.outputOf(frame), job.imageWidth, job.imageHeight).empty())
-            job.framesToRender.push_back(frame);
-    const size_t complete = frames.size() - job.framesToRender.size();
-    if (job.framesToRender.empty()) {
-        std::fprintf(stderr, "hdhair-farm: all %zu frames are complete in %s; nothing to submit (--force renders them "
-                             "again)\n",
-                     frames.size(), pattern.c_str());
-        return 0;
-    }
+// The job an earlier submission left in the folder, if any; throws while it
+// still renders (one job per folder at a time: two would render the same
+// frames).
+std::optional<FarmJob> previousJob(const FarmJob& job) {
+    if (!fs::exists(job.jobFile())) return std::nullopt;
+    FarmJob previous = FarmJob::load(job.jobFolder);
+    if (previous.latestJobId().empty()) return previous;
+    std::string error;
+    const auto queue = queuedTasks(previous.latestJobId(), error);
+    if (!queue) throw std::runtime_error("cannot ask Slurm about job " + previous.latestJobId() + ": " + error);
+    if (!queue->empty())
+        throw std::invalid_argument("job " + previous.latestJobId() + " still renders into " + job.jobFolder +
+                                    " (hdhair-farm status " + previous.latestJobId() + "); wait for it or scancel it");
+    return previous;
+}
 
-    const bool folderIsNew = !fs::exists(job.jobFolder);
-    for (const char* sub : {"frames", "stats", "logs"}) fs::create_directories(job.jobFolder + "/" + sub);
-    job.save();
+// Submits the job's array to Slurm; when nothing was submitted, leaves the
+// folder as it was before and rethrows.
+std::string submitJobArray(const FarmJob& job, const SubmitOptions& options, const std::optional<FarmJob>& previous,
+                           bool folderIsNew) {
     ArrayJobRequest request;
     request.jobName = "hdhair-farm:" + fs::path(job.jobFolder).filename().string();
     request.tasks = job.taskCount();
     request.tasksAtOnce = options.tasksAtOnce;
     request.logPattern = job.jobFolder + "/logs/task-%a.log";
-    request.workingDirectory = workingDirectory;
+    request.workingDirectory = job.workingDirectory;
     request.taskCommand = "exec " + shellQuoted((executableFolder() / "hdhair-farm").string()) + " task " +
                           shellQuoted(job.jobFolder);
     request.partition = options.partition;
@@ -211,16 +209,39 @@ int submit(SubmitOptions options) {
     request.memory = options.memory;
     request.cpusPerTask = options.cpusPerTask;
     request.extraOptions = options.sbatchOptions;
-    std::string jobId;
     try {
-        jobId = submitArrayJob(request);
+        return submitArrayJob(request);
     } catch (...) {
-        // Nothing was submitted: leave the folder as it was.
         if (previous) previous->save();
         else if (folderIsNew) fs::remove_all(job.jobFolder);
         else fs::remove(job.jobFile());
         throw;
     }
+}
+
+int submit(SubmitOptions options) {
+    const std::vector<double> frames = parseFrameSpec(options.frames);
+    const std::string record =
+        options.record.empty() ? (executableFolder() / "hdhair-record").string() : options.record;
+    const nlohmann::json check = checkedSubmission(options, record);
+    FarmJob job = describeJob(options, record, check, frames);
+    const std::optional<FarmJob> previous = previousJob(job);
+    if (previous) job.slurmJobIds = previous->slurmJobIds;
+    for (double frame : frames)
+        if (options.force || !whyFrameIncomplete(job.outputOf(frame), job.imageWidth, job.imageHeight).empty())
+            job.framesToRender.push_back(frame);
+    const size_t complete = frames.size() - job.framesToRender.size();
+    if (job.framesToRender.empty()) {
+        std::fprintf(stderr, "hdhair-farm: all %zu frames are complete in %s; nothing to submit (--force renders them "
+                             "again)\n",
+                     frames.size(), check.at("output").get<std::string>().c_str());
+        return 0;
+    }
+
+    const bool folderIsNew = !fs::exists(job.jobFolder);
+    for (const char* sub : {"frames", "stats", "logs"}) fs::create_directories(job.jobFolder + "/" + sub);
+    job.save();
+    const std::string jobId = submitJobArray(job, options, previous, folderIsNew);
     job.slurmJobIds.push_back(jobId);
     job.save();
     // The job runs whatever happens here: a registry that cannot be written
