@@ -28,10 +28,8 @@ std::vector<Step> ends(const std::vector<Step>& steps) {
     return kept;
 }
 
-}  // namespace
-
-std::vector<Approximation> accuracyMatrix(bool quick) {
-    std::vector<Approximation> matrix;
+// How strands are composited and in what order.
+void addCompositingApproximations(std::vector<Approximation>& matrix) {
     matrix.push_back({"sortBins", "depth bins of binSorted transparency: order errors within a bin against sort cost",
                       {},
                       ladder("sortBins", {"1", "16", "64", "256", "1024"}, " bins"),
@@ -41,6 +39,9 @@ std::vector<Approximation> accuracyMatrix(bool quick) {
                       {},
                       ladder("transparency", {"opaque", "unsorted", "binSorted", "exact"}, ""),
                       ErrorTrend::Falls});
+}
+
+Approximation tessellationApproximation() {
     // Tolerance and the cap on segments a span move together, as complexity
     // moves them: a tolerance under the cap's reach changes nothing.
     std::vector<Step> tessellation;
@@ -51,12 +52,16 @@ std::vector<Approximation> accuracyMatrix(bool quick) {
                                 {std::string("tessellationTolerance=") + tolerance,
                                  std::string("maxSegmentsPerSpan=") + segments},
                                 std::string(tolerance) == "0.12"});
-    matrix.push_back({"tessellation",
-                      "screen-space tessellation tolerance (and the most segments a span may get): polyline error "
-                      "against segments drawn",
-                      {},
-                      tessellation,
-                      ErrorTrend::Falls});
+    return {"tessellation",
+            "screen-space tessellation tolerance (and the most segments a span may get): polyline error "
+            "against segments drawn",
+            {},
+            tessellation,
+            ErrorTrend::Falls};
+}
+
+// The deep opacity maps: their layers, resolution and tessellation.
+void addShadowApproximations(std::vector<Approximation>& matrix) {
     std::vector<Step> layers = {{"off", {"shadowMode=off"}, false}};
     for (Step& step : ladder("shadowLayers", {"1", "3", "7", "15"}, " layers")) layers.push_back(step);
     matrix.push_back({"shadowLayers",
@@ -81,6 +86,10 @@ std::vector<Approximation> accuracyMatrix(bool quick) {
                       {},
                       ladder("shadowTessellationTolerance", {"2", "0.5", "0.12"}, " texels"),
                       ErrorTrend::Falls});
+}
+
+// Marschner's terms, multiple scattering and how lights are batched.
+void addShadingApproximations(std::vector<Approximation>& matrix) {
     // Single scattering only: the tables' error is the azimuthal terms'.
     matrix.push_back({"marschner:azimuthal",
                       "Marschner's azimuthal terms from 64x64 tables per material, or solved per fragment",
@@ -105,6 +114,10 @@ std::vector<Approximation> accuracyMatrix(bool quick) {
                       {},
                       ladder("lightsPerPass", {"1", "2", "4", "16"}, " lights"),
                       ErrorTrend::Flat});
+}
+
+// How thin strands and edges are sampled across a pixel.
+void addSamplingApproximations(std::vector<Approximation>& matrix) {
     matrix.push_back({"minPixelWidth",
                       "strands thinner than this many pixels drawn this wide with alpha scaled down: coverage "
                       "against aliasing",
@@ -121,6 +134,17 @@ std::vector<Approximation> accuracyMatrix(bool quick) {
                       {},
                       ladder("supersampling", {"1", "2", "3"}, "x"),
                       ErrorTrend::Falls, true, false});
+}
+
+}  // namespace
+
+std::vector<Approximation> accuracyMatrix(bool quick) {
+    std::vector<Approximation> matrix;
+    addCompositingApproximations(matrix);
+    matrix.push_back(tessellationApproximation());
+    addShadowApproximations(matrix);
+    addShadingApproximations(matrix);
+    addSamplingApproximations(matrix);
     if (quick)
         for (Approximation& approximation : matrix) approximation.steps = ends(approximation.steps);
     return matrix;

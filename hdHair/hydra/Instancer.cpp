@@ -63,6 +63,115 @@ bool toMatrices(VtValue const& value, std::vector<GfMatrix4d>* out) {
     return false;
 }
 
+// An instancer's transform primvars, read for one prototype's instances:
+// a value of the wrong type is ignored with a warning.
+class InstancePrimvarReader {
+public:
+    InstancePrimvarReader(SdfPath const& id, std::map<TfToken, VtValue> const& primvars, VtIntArray const& indices)
+        : _id(id), _primvars(primvars), _indices(indices) {}
+
+    // Calls compose(instance, index) for each instance whose index is below
+    // `count`; the others keep the identity for that part, with one warning.
+    template <typename Compose>
+    void forEachInstance(TfToken const& name, size_t count, Compose&& compose) const {
+        if (!_primvars.count(name)) return;
+        size_t missing = 0;
+        for (size_t i = 0; i < _indices.size(); ++i) {
+            int index = _indices[i];
+            if (index < 0 || size_t(index) >= count) {
+                ++missing;
+                continue;
+            }
+            compose(i, size_t(index));
+        }
+        if (missing)
+            TF_WARN("hdHair: %s.%s: %zu instances have no value (%zu given); they use the identity there",
+                    _id.GetText(), name.GetText(), missing, count);
+    }
+
+    std::vector<GfMatrix4d> matrices() const {
+        return converted<GfMatrix4d>(HdInstancerTokens->instanceTransforms, toMatrices, "matrices");
+    }
+
+    std::vector<GfQuatd> rotations() const {
+        return converted<GfQuatd>(HdInstancerTokens->instanceRotations, toQuaternions, "quaternions");
+    }
+
+    // Scales or translations.
+    HdHairFloats vectors(TfToken const& name) const {
+        HdHairFloats floats;
+        VtValue authored = lookup(name);
+        if (authored.IsEmpty()) return floats;
+        if (!HdHairToFloats(authored, &floats) || floats.tupleSize != 3) {
+            TF_WARN("hdHair: %s.%s: expected 3-vectors, got %s; ignored", _id.GetText(), name.GetText(),
+                    authored.GetTypeName().c_str());
+            floats.values.clear();
+        }
+        return floats;
+    }
+
+private:
+    // The primvar `name` as a vector of T (`convert`), warned and empty when
+    // it holds something else.
+    template <typename T, typename Convert>
+    std::vector<T> converted(TfToken const& name, Convert convert, const char* expected) const {
+        std::vector<T> result;
+        VtValue value = lookup(name);
+        if (!value.IsEmpty() && !convert(value, &result))
+            TF_WARN("hdHair: %s.%s: expected %s, got %s; ignored", _id.GetText(), name.GetText(), expected,
+                    value.GetTypeName().c_str());
+        return result;
+    }
+
+    VtValue lookup(TfToken const& name) const {
+        auto found = _primvars.find(name);
+        return found == _primvars.end() ? VtValue() : found->second;
+    }
+
+    SdfPath const& _id;
+    std::map<TfToken, VtValue> const& _primvars;
+    VtIntArray const& _indices;
+};
+
+void applyInstanceMatrices(InstancePrimvarReader const& reader, std::vector<GfMatrix4d>& transforms) {
+    const std::vector<GfMatrix4d> matrices = reader.matrices();
+    reader.forEachInstance(HdInstancerTokens->instanceTransforms, matrices.size(),
+                           [&](size_t i, size_t index) { transforms[i] = matrices[index]; });
+}
+
+void applyScales(InstancePrimvarReader const& reader, std::vector<GfMatrix4d>& transforms) {
+    HdHairFloats scales = reader.vectors(HdInstancerTokens->instanceScales);
+    reader.forEachInstance(HdInstancerTokens->instanceScales, scales.values.size() / 3, [&](size_t i, size_t index) {
+        GfMatrix4d scale(1.0);
+        scale.SetScale(GfVec3d(scales.values[3 * index], scales.values[3 * index + 1], scales.values[3 * index + 2]));
+        transforms[i] = transforms[i] * scale;
+    });
+}
+
+void applyRotations(InstancePrimvarReader const& reader, std::vector<GfMatrix4d>& transforms) {
+    std::vector<GfQuatd> rotations = reader.rotations();
+    reader.forEachInstance(HdInstancerTokens->instanceRotations, rotations.size(), [&](size_t i, size_t index) {
+        GfQuatd q = rotations[index];
+        // A zero quaternion (bad data) would collapse the instance: identity instead.
+        if (q.GetLength() == 0.0 || !std::isfinite(q.GetLength())) return;
+        GfMatrix4d rotate(1.0);
+        rotate.SetRotate(q.GetNormalized());
+        transforms[i] = transforms[i] * rotate;
+    });
+}
+
+void applyTranslations(InstancePrimvarReader const& reader, std::vector<GfMatrix4d>& transforms) {
+    HdHairFloats translations = reader.vectors(HdInstancerTokens->instanceTranslations);
+    reader.forEachInstance(HdInstancerTokens->instanceTranslations, translations.values.size() / 3,
+                           [&](size_t i, size_t index) {
+                               GfMatrix4d translate(1.0);
+                               translate.SetTranslate(GfVec3d(translations.values[3 * index],
+                                                              translations.values[3 * index + 1],
+                                                              translations.values[3 * index + 2]));
+                               transforms[i] = transforms[i] * translate;
+                           });
+}
+
 }  // namespace
 
 HdHairInstancer::HdHairInstancer(HdSceneDelegate* delegate, SdfPath const& id) : HdInstancer(delegate, id) {}
@@ -96,75 +205,11 @@ std::vector<GfMatrix4d> HdHairInstancer::_ComputeLocalTransforms(SdfPath const& 
     // own matrix goes first, then scale, rotation, translation, and the
     // instancer's transform last (UsdGeomPointInstancer's order).
     std::vector<GfMatrix4d> transforms(indices.size(), GfMatrix4d(1.0));
-    auto forEachInstance = [&](TfToken const& name, size_t count, auto&& compose) {
-        if (!_transformPrimvars.count(name)) return;
-        size_t missing = 0;
-        for (size_t i = 0; i < indices.size(); ++i) {
-            int index = indices[i];
-            if (index < 0 || size_t(index) >= count) {
-                ++missing;
-                continue;
-            }
-            compose(i, size_t(index));
-        }
-        if (missing)
-            TF_WARN("hdHair: %s.%s: %zu instances have no value (%zu given); they use the identity there",
-                    id.GetText(), name.GetText(), missing, count);
-    };
-    auto lookup = [&](TfToken const& name) {
-        auto found = _transformPrimvars.find(name);
-        return found == _transformPrimvars.end() ? VtValue() : found->second;
-    };
-
-    std::vector<GfMatrix4d> matrices;
-    VtValue value = lookup(HdInstancerTokens->instanceTransforms);
-    if (!value.IsEmpty() && !toMatrices(value, &matrices))
-        TF_WARN("hdHair: %s.%s: expected matrices, got %s; ignored", id.GetText(),
-                HdInstancerTokens->instanceTransforms.GetText(), value.GetTypeName().c_str());
-    forEachInstance(HdInstancerTokens->instanceTransforms, matrices.size(),
-                    [&](size_t i, size_t index) { transforms[i] = matrices[index]; });
-
-    auto vectors = [&](TfToken const& name) {
-        HdHairFloats floats;
-        VtValue authored = lookup(name);
-        if (authored.IsEmpty()) return floats;
-        if (!HdHairToFloats(authored, &floats) || floats.tupleSize != 3) {
-            TF_WARN("hdHair: %s.%s: expected 3-vectors, got %s; ignored", id.GetText(), name.GetText(),
-                    authored.GetTypeName().c_str());
-            floats.values.clear();
-        }
-        return floats;
-    };
-    HdHairFloats scales = vectors(HdInstancerTokens->instanceScales);
-    forEachInstance(HdInstancerTokens->instanceScales, scales.values.size() / 3, [&](size_t i, size_t index) {
-        GfMatrix4d scale(1.0);
-        scale.SetScale(GfVec3d(scales.values[3 * index], scales.values[3 * index + 1], scales.values[3 * index + 2]));
-        transforms[i] = transforms[i] * scale;
-    });
-
-    std::vector<GfQuatd> rotations;
-    value = lookup(HdInstancerTokens->instanceRotations);
-    if (!value.IsEmpty() && !toQuaternions(value, &rotations))
-        TF_WARN("hdHair: %s.%s: expected quaternions, got %s; ignored", id.GetText(),
-                HdInstancerTokens->instanceRotations.GetText(), value.GetTypeName().c_str());
-    forEachInstance(HdInstancerTokens->instanceRotations, rotations.size(), [&](size_t i, size_t index) {
-        GfQuatd q = rotations[index];
-        // A zero quaternion (bad data) would collapse the instance: identity instead.
-        if (q.GetLength() == 0.0 || !std::isfinite(q.GetLength())) return;
-        GfMatrix4d rotate(1.0);
-        rotate.SetRotate(q.GetNormalized());
-        transforms[i] = transforms[i] * rotate;
-    });
-
-    HdHairFloats translations = vectors(HdInstancerTokens->instanceTranslations);
-    forEachInstance(HdInstancerTokens->instanceTranslations, translations.values.size() / 3,
-                    [&](size_t i, size_t index) {
-                        GfMatrix4d translate(1.0);
-                        translate.SetTranslate(GfVec3d(translations.values[3 * index],
-                                                       translations.values[3 * index + 1],
-                                                       translations.values[3 * index + 2]));
-                        transforms[i] = transforms[i] * translate;
-                    });
+    const InstancePrimvarReader reader(id, _transformPrimvars, indices);
+    applyInstanceMatrices(reader, transforms);
+    applyScales(reader, transforms);
+    applyRotations(reader, transforms);
+    applyTranslations(reader, transforms);
 
     for (GfMatrix4d& transform : transforms) transform = transform * instancerTransform;
     return transforms;

@@ -85,39 +85,23 @@ Image readColor(HdRenderBuffer* buffer) {
     return image;
 }
 
-}  // namespace
-
-UsdImagingRecordResult recordWithUsdImaging(const UsdImagingRecordRequest& request) {
-    // Declared first, so that it outlives the engine: the plugin's render
-    // thread warns until the engine is gone.
-    TfDiagnosticCapture capture([&](const std::string& warning) {
-        if (request.warn) request.warn(warning);
-    });
-    if (!request.pluginPath.empty()) PlugRegistry::GetInstance().RegisterPlugins(request.pluginPath);
-    // Every layer opened, checked and bounded before OpenUSD composes the
-    // stage; held open so that UsdStage::Open reads none of them again.
-    const std::vector<SdfLayerRefPtr> layers =
-        openStageLayers(request.stagePath, [&] { return capture.takeErrors(); });
+// The stage composed from its layers (root layer first), refused for any
+// composition error.
+UsdStageRefPtr composeStage(const UsdImagingRecordRequest& request, const std::vector<SdfLayerRefPtr>& layers,
+                            TfDiagnosticCapture& capture) {
     UsdStageRefPtr stage = UsdStage::Open(layers.front());
     if (!stage) throw InputError(layerOpenFailure(request.stagePath, capture.takeErrors()));
     // Composition errors are errors, as in the embedded reader: a frame
     // with a reference or sublayer silently missing is a wrong picture.
     if (std::string problem = compositionProblem(stage); !problem.empty())
         throw InputError(request.stagePath + ": " + problem);
-    capture.takeErrors();  // said as the composition error above, or nothing
-    capture.release();
-    warnAboutCurveTokens(stage, request.stagePath, [&](const std::string& where, const std::string& message) {
-        if (request.warn) request.warn(where + ": " + message);
-    });
-    UsdTimeCode time = timeCodeOf(request.time);
+    return stage;
+}
 
-    UsdImagingGLEngine::Parameters parameters;
-    parameters.gpuEnabled = false;  // as usdrecord --disableGpu: hdHair renders in its own context
-    UsdImagingGLEngine engine(parameters);
-    if (!engine.SetRendererPlugin(TfToken("HdHairRendererPlugin")))
-        throw std::runtime_error("the HdHair renderer plugin is not available: not in '" + request.pluginPath +
-                                 "' nor on PXR_PLUGINPATH_NAME (set HDHAIR_PLUGIN_RESOURCES to its resources folder)");
-    for (const std::string& assignment : request.settings) {
+// Each NAME=VALUE setting, checked as the embedded path checks it, given to
+// the plugin as a value of its type.
+void applyRendererSettings(UsdImagingGLEngine& engine, const std::vector<std::string>& settings) {
+    for (const std::string& assignment : settings) {
         RenderSettings check;
         check.setFromAssignment(assignment);  // throws the same one-line reasons as the embedded path
         std::string::size_type equals = assignment.find('=');
@@ -132,41 +116,115 @@ UsdImagingRecordResult recordWithUsdImaging(const UsdImagingRecordRequest& reque
         }
         engine.SetRendererSetting(TfToken(name), value);
     }
+}
+
+// The stage's camera at request.camera; returns the image height its
+// apertures give.
+int useStageCamera(const UsdImagingRecordRequest& request, const UsdStageRefPtr& stage, UsdTimeCode time,
+                   UsdImagingGLEngine& engine, UsdImagingRecordResult& result) {
+    UsdGeomCamera camera(stage->GetPrimAtPath(SdfPath(request.camera)));
+    if (!camera) throw InputError(request.stagePath + ": no camera at '" + request.camera + "'");
+    // The embedded reader's checks, worded the same: a lens that cannot
+    // be used is an error naming the prim and attribute. Its warnings
+    // (a clipping range replaced) are the plugin's to give, once.
+    Diagnostics saidByThePlugin;
+    const CameraPrim lens = checkedCamera(cameraPrimAt(camera, time), request.stagePath, saidByThePlugin);
+    const int height = imageHeightFor(request.imageWidth, lens.horizontalAperture, lens.verticalAperture);
+    engine.SetCameraPath(SdfPath(request.camera));
+    result.camera = request.camera;
+    return height;
+}
+
+// hdHair's framing camera, from the stage's bounds as OpenUSD
+// computes them for the purposes drawn; returns the image height.
+int useFramingCamera(const UsdImagingRecordRequest& request, const UsdStageRefPtr& stage, UsdTimeCode time,
+                     UsdImagingGLEngine& engine, UsdImagingRecordResult& result) {
+    TfTokenVector purposes = {UsdGeomTokens->default_};
+    if (request.renderPurpose) purposes.push_back(UsdGeomTokens->render);
+    if (request.proxyPurpose) purposes.push_back(UsdGeomTokens->proxy);
+    if (request.guidePurpose) purposes.push_back(UsdGeomTokens->guide);
+    UsdGeomBBoxCache bboxCache(time, purposes, true);
+    GfRange3d range = bboxCache.ComputeWorldBound(stage->GetPseudoRoot()).ComputeAlignedRange();
+    UpAxis up = UsdGeomGetStageUpAxis(stage) == UsdGeomTokens->z ? UpAxis::Z : UpAxis::Y;
+    glm::dvec3 low(1.0), high(-1.0);
+    if (!range.IsEmpty()) {
+        low = glm::dvec3(range.GetMin()[0], range.GetMin()[1], range.GetMin()[2]);
+        high = glm::dvec3(range.GetMax()[0], range.GetMax()[1], range.GetMax()[2]);
+    }
+    CameraView view = frameBounds(low, high, up, request.imageWidth,
+                                  request.framing);
+    engine.SetCameraState(toGf(view.view), toGf(view.projection));
+    result.camera = std::string("framing camera (") + toString(request.framing) + ")";
+    return view.imageHeight;
+}
+
+UsdImagingGLRenderParams renderParamsFor(const UsdImagingRecordRequest& request, UsdTimeCode time) {
+    UsdImagingGLRenderParams renderParams;
+    renderParams.frame = time;
+    renderParams.complexity = complexityValue(request.complexity);
+    renderParams.showRender = request.renderPurpose;
+    renderParams.showProxy = request.proxyPurpose;
+    renderParams.showGuides = request.guidePurpose;
+    renderParams.clearColor = GfVec4f(0.0f);
+    renderParams.enableLighting = true;
+    return renderParams;
+}
+
+// Until convergence, as usdrecord does (10 ms between renders, growing to
+// 100): the plugin renders on its own thread, and a slow frame takes as
+// long as it takes. It always converges: a frame that fails converges
+// with an error, reported through Tf.
+void renderUntilConverged(UsdImagingGLEngine& engine, const UsdStageRefPtr& stage,
+                          const UsdImagingGLRenderParams& renderParams) {
+    std::chrono::milliseconds pause(10);
+    for (;;) {
+        engine.Render(stage->GetPseudoRoot(), renderParams);
+        if (engine.IsConverged()) break;
+        std::this_thread::sleep_for(pause);
+        pause = std::min(pause + std::chrono::milliseconds(5), std::chrono::milliseconds(100));
+    }
+}
+
+// A string the plugin put in its render stats; empty when there is none.
+std::string statText(const VtDictionary& stats, char const* key) {
+    auto found = stats.find(key);
+    return found != stats.end() && found->second.IsHolding<std::string>() ? found->second.UncheckedGet<std::string>()
+                                                                            : std::string();
+}
+
+}  // namespace
+
+UsdImagingRecordResult recordWithUsdImaging(const UsdImagingRecordRequest& request) {
+    // Declared first, so that it outlives the engine: the plugin's render
+    // thread warns until the engine is gone.
+    TfDiagnosticCapture capture([&](const std::string& warning) {
+        if (request.warn) request.warn(warning);
+    });
+    if (!request.pluginPath.empty()) PlugRegistry::GetInstance().RegisterPlugins(request.pluginPath);
+    // Every layer opened, checked and bounded before OpenUSD composes the
+    // stage; held open so that UsdStage::Open reads none of them again.
+    const std::vector<SdfLayerRefPtr> layers =
+        openStageLayers(request.stagePath, [&] { return capture.takeErrors(); });
+    UsdStageRefPtr stage = composeStage(request, layers, capture);
+    capture.takeErrors();  // said as the composition error above, or nothing
+    capture.release();
+    warnAboutCurveTokens(stage, request.stagePath, [&](const std::string& where, const std::string& message) {
+        if (request.warn) request.warn(where + ": " + message);
+    });
+    UsdTimeCode time = timeCodeOf(request.time);
+
+    UsdImagingGLEngine::Parameters parameters;
+    parameters.gpuEnabled = false;  // as usdrecord --disableGpu: hdHair renders in its own context
+    UsdImagingGLEngine engine(parameters);
+    if (!engine.SetRendererPlugin(TfToken("HdHairRendererPlugin")))
+        throw std::runtime_error("the HdHair renderer plugin is not available: not in '" + request.pluginPath +
+                                 "' nor on PXR_PLUGINPATH_NAME (set HDHAIR_PLUGIN_RESOURCES to its resources folder)");
+    applyRendererSettings(engine, request.settings);
 
     UsdImagingRecordResult result;
-    int width = request.imageWidth, height = 0;
-    if (!request.camera.empty()) {
-        UsdGeomCamera camera(stage->GetPrimAtPath(SdfPath(request.camera)));
-        if (!camera) throw InputError(request.stagePath + ": no camera at '" + request.camera + "'");
-        // The embedded reader's checks, worded the same: a lens that cannot
-        // be used is an error naming the prim and attribute. Its warnings
-        // (a clipping range replaced) are the plugin's to give, once.
-        Diagnostics saidByThePlugin;
-        const CameraPrim lens = checkedCamera(cameraPrimAt(camera, time), request.stagePath, saidByThePlugin);
-        height = imageHeightFor(width, lens.horizontalAperture, lens.verticalAperture);
-        engine.SetCameraPath(SdfPath(request.camera));
-        result.camera = request.camera;
-    } else {
-        // hdHair's framing camera, from the stage's bounds as OpenUSD
-        // computes them for the purposes drawn.
-        TfTokenVector purposes = {UsdGeomTokens->default_};
-        if (request.renderPurpose) purposes.push_back(UsdGeomTokens->render);
-        if (request.proxyPurpose) purposes.push_back(UsdGeomTokens->proxy);
-        if (request.guidePurpose) purposes.push_back(UsdGeomTokens->guide);
-        UsdGeomBBoxCache bboxCache(time, purposes, true);
-        GfRange3d range = bboxCache.ComputeWorldBound(stage->GetPseudoRoot()).ComputeAlignedRange();
-        UpAxis up = UsdGeomGetStageUpAxis(stage) == UsdGeomTokens->z ? UpAxis::Z : UpAxis::Y;
-        glm::dvec3 low(1.0), high(-1.0);
-        if (!range.IsEmpty()) {
-            low = glm::dvec3(range.GetMin()[0], range.GetMin()[1], range.GetMin()[2]);
-            high = glm::dvec3(range.GetMax()[0], range.GetMax()[1], range.GetMax()[2]);
-        }
-        CameraView view = frameBounds(low, high, up, width,
-                                      request.framing);
-        height = view.imageHeight;
-        engine.SetCameraState(toGf(view.view), toGf(view.projection));
-        result.camera = std::string("framing camera (") + toString(request.framing) + ")";
-    }
+    const int width = request.imageWidth;
+    const int height = request.camera.empty() ? useFramingCamera(request, stage, time, engine, result)
+                                              : useStageCamera(request, stage, time, engine, result);
     // Before the engine allocates its render buffers: colour (RGBA, 16
     // bytes a pixel at most) and depth (4), and the copy read back here (16).
     {
@@ -176,40 +234,18 @@ UsdImagingRecordResult recordWithUsdImaging(const UsdImagingRecordRequest& reque
     engine.SetRenderBufferSize(GfVec2i(width, height));
     engine.SetFraming(CameraUtilFraming(GfRect2i(GfVec2i(0, 0), width, height)));
 
-    UsdImagingGLRenderParams renderParams;
-    renderParams.frame = time;
-    renderParams.complexity = complexityValue(request.complexity);
-    renderParams.showRender = request.renderPurpose;
-    renderParams.showProxy = request.proxyPurpose;
-    renderParams.showGuides = request.guidePurpose;
-    renderParams.clearColor = GfVec4f(0.0f);
-    renderParams.enableLighting = true;
-    // Until convergence, as usdrecord does (10 ms between renders, growing to
-    // 100): the plugin renders on its own thread, and a slow frame takes as
-    // long as it takes. It always converges: a frame that fails converges
-    // with an error, reported through Tf.
-    std::chrono::milliseconds pause(10);
-    for (;;) {
-        engine.Render(stage->GetPseudoRoot(), renderParams);
-        if (engine.IsConverged()) break;
-        std::this_thread::sleep_for(pause);
-        pause = std::min(pause + std::chrono::milliseconds(5), std::chrono::milliseconds(100));
-    }
+    renderUntilConverged(engine, stage, renderParamsFor(request, time));
     VtDictionary stats = engine.GetRenderStats();
-    auto text = [&](char const* key) {
-        auto found = stats.find(key);
-        return found != stats.end() && found->second.IsHolding<std::string>() ? found->second.UncheckedGet<std::string>()
-                                                                                : std::string();
-    };
     // A frame the plugin could not render converges with cleared buffers
     // (RenderPass.cpp): an error here, never an empty image.
-    if (std::string error = text("hdHairFrameError"); !error.empty() || text("hdHairShownFrame") == "failed")
+    if (std::string error = statText(stats, "hdHairFrameError");
+        !error.empty() || statText(stats, "hdHairShownFrame") == "failed")
         throw std::runtime_error(error.empty() ? "the HdHair plugin could not render the frame" : error);
     for (const std::string& error : capture.takeErrors())
         if (request.warn) request.warn("OpenUSD: " + error);
     result.color = readColor(engine.GetAovRenderBuffer(HdAovTokens->color));
-    result.frameStatsJson = text("hdHairFrameStats");
-    result.plan = text("hdHairPlan");
+    result.frameStatsJson = statText(stats, "hdHairFrameStats");
+    result.plan = statText(stats, "hdHairPlan");
     return result;
 }
 

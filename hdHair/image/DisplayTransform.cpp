@@ -172,35 +172,30 @@ void DisplayTransform::apply(float* rgba, size_t pixels) const {
     }
 }
 
-DisplayShader DisplayTransform::shader() const {
-    DisplayShader shader;
-    if (mode_ == ColorCorrectionMode::Disabled) {
-        shader.source = "vec4 hdhairDisplay(vec4 color) { return color; }\n";
-        return shader;
+namespace {
+
+// The sRGB mode's shader: the sRGB encoding, after AP1 primaries are taken
+// to Rec.709 when the colour space is ACEScg.
+std::string srgbDisplaySource(bool fromAcesCg) {
+    std::string source = "vec3 hdhairSrgbEncode(vec3 c) {\n"
+                         "    return mix(12.92 * c, 1.055 * pow(max(c, vec3(0.0)), vec3(1.0 / 2.4)) - 0.055,\n"
+                         "               greaterThan(c, vec3(0.0031308)));\n"
+                         "}\n"
+                         "vec4 hdhairDisplay(vec4 color) {\n";
+    if (fromAcesCg) {
+        // GLSL matrices are column-major: column j is kAp1ToRec709[.][j].
+        source += fmt::format(
+            "    color.rgb = mat3({:.8f}, {:.8f}, {:.8f}, {:.8f}, {:.8f}, {:.8f}, {:.8f}, {:.8f}, {:.8f}) * "
+            "color.rgb;\n",
+            kAp1ToRec709[0][0], kAp1ToRec709[1][0], kAp1ToRec709[2][0], kAp1ToRec709[0][1], kAp1ToRec709[1][1],
+            kAp1ToRec709[2][1], kAp1ToRec709[0][2], kAp1ToRec709[1][2], kAp1ToRec709[2][2]);
     }
-    if (mode_ == ColorCorrectionMode::SRGB) {
-        shader.source = "vec3 hdhairSrgbEncode(vec3 c) {\n"
-                        "    return mix(12.92 * c, 1.055 * pow(max(c, vec3(0.0)), vec3(1.0 / 2.4)) - 0.055,\n"
-                        "               greaterThan(c, vec3(0.0031308)));\n"
-                        "}\n"
-                        "vec4 hdhairDisplay(vec4 color) {\n";
-        if (fromAcesCg_) {
-            // GLSL matrices are column-major: column j is kAp1ToRec709[.][j].
-            shader.source += fmt::format(
-                "    color.rgb = mat3({:.8f}, {:.8f}, {:.8f}, {:.8f}, {:.8f}, {:.8f}, {:.8f}, {:.8f}, {:.8f}) * "
-                "color.rgb;\n",
-                kAp1ToRec709[0][0], kAp1ToRec709[1][0], kAp1ToRec709[2][0], kAp1ToRec709[0][1], kAp1ToRec709[1][1],
-                kAp1ToRec709[2][1], kAp1ToRec709[0][2], kAp1ToRec709[1][2], kAp1ToRec709[2][2]);
-        }
-        shader.source += "    return vec4(hdhairSrgbEncode(color.rgb), color.a);\n}\n";
-        return shader;
-    }
-    OCIO::GpuShaderDescRcPtr description = OCIO::GpuShaderDesc::CreateShaderDesc();
-    description->setLanguage(OCIO::GPU_LANGUAGE_GLSL_4_0);
-    description->setFunctionName("hdhairDisplay");
-    description->setResourcePrefix("hdhairOcio");
-    ocio_->processor->getDefaultGPUProcessor()->extractGpuShaderInfo(description);
-    shader.source = description->getShaderText();
+    source += "    return vec4(hdhairSrgbEncode(color.rgb), color.a);\n}\n";
+    return source;
+}
+
+// The shader's 3D LUTs, RGB.
+void add3dTextures(const OCIO::GpuShaderDescRcPtr& description, DisplayShader& shader) {
     for (unsigned i = 0; i < description->getNum3DTextures(); ++i) {
         const char *textureName = nullptr, *samplerName = nullptr;
         unsigned edge = 0;
@@ -215,6 +210,10 @@ DisplayShader DisplayTransform::shader() const {
         texture.values.assign(values, values + size_t(3) * edge * edge * edge);
         shader.textures.push_back(std::move(texture));
     }
+}
+
+// The shader's 1D LUTs, as textures of one or more rows, red or RGB.
+void add2dTextures(const OCIO::GpuShaderDescRcPtr& description, DisplayShader& shader) {
     for (unsigned i = 0; i < description->getNumTextures(); ++i) {
         const char *textureName = nullptr, *samplerName = nullptr;
         unsigned width = 0, height = 0;
@@ -232,6 +231,11 @@ DisplayShader DisplayTransform::shader() const {
         texture.values.assign(values, values + size_t(texture.channels) * texture.width * texture.height);
         shader.textures.push_back(std::move(texture));
     }
+}
+
+// The shader's uniforms, their values as OCIO has them now; those of an
+// unknown type are left out.
+void addUniforms(const OCIO::GpuShaderDescRcPtr& description, DisplayShader& shader) {
     for (unsigned i = 0; i < description->getNumUniforms(); ++i) {
         OCIO::GpuShaderDesc::UniformData data;
         DisplayShader::Uniform uniform;
@@ -265,6 +269,29 @@ DisplayShader DisplayTransform::shader() const {
         }
         shader.uniforms.push_back(std::move(uniform));
     }
+}
+
+}  // namespace
+
+DisplayShader DisplayTransform::shader() const {
+    DisplayShader shader;
+    if (mode_ == ColorCorrectionMode::Disabled) {
+        shader.source = "vec4 hdhairDisplay(vec4 color) { return color; }\n";
+        return shader;
+    }
+    if (mode_ == ColorCorrectionMode::SRGB) {
+        shader.source = srgbDisplaySource(fromAcesCg_);
+        return shader;
+    }
+    OCIO::GpuShaderDescRcPtr description = OCIO::GpuShaderDesc::CreateShaderDesc();
+    description->setLanguage(OCIO::GPU_LANGUAGE_GLSL_4_0);
+    description->setFunctionName("hdhairDisplay");
+    description->setResourcePrefix("hdhairOcio");
+    ocio_->processor->getDefaultGPUProcessor()->extractGpuShaderInfo(description);
+    shader.source = description->getShaderText();
+    add3dTextures(description, shader);
+    add2dTextures(description, shader);
+    addUniforms(description, shader);
     return shader;
 }
 

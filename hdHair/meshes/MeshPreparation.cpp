@@ -128,17 +128,12 @@ int affordableRefineLevel(const MeshTopology& topology, int wanted, size_t maxTr
     return level;
 }
 
-PreparedMesh prepareMesh(const MeshPrim& prim, int defaultRefineLevel, Diagnostics& diagnostics) {
-    PreparedMesh prepared;
-    prepared.path = prim.path;
-    prepared.authoredFaces = prim.faceVertexCounts.size();
-    if (std::string problem = transformProblem(prim.path, prim.worldTransform); !problem.empty()) {
-        diagnostics.warn(prim.path, problem);
-        return prepared;
-    }
-    const MeshTopology topology = checkMeshTopology(prim, diagnostics);
-    prepared.scheme = topology.scheme;
+namespace {
 
+// The prim's refine level (or the default), lowered until the refined mesh
+// fits kMaxMeshTriangles, with a warning when it had to be.
+int refineLevelFor(const MeshPrim& prim, const MeshTopology& topology, int defaultRefineLevel,
+                   Diagnostics& diagnostics) {
     int level = prim.refineLevel >= 0 ? prim.refineLevel : defaultRefineLevel;
     level = topology.scheme == SubdivisionScheme::None ? 0 : std::clamp(level, 0, kMaxMeshRefineLevel);
     const int wanted = level;
@@ -148,35 +143,35 @@ PreparedMesh prepareMesh(const MeshPrim& prim, int defaultRefineLevel, Diagnosti
                                                 "to level {} instead",
                                                 wanted, refinedTriangleCount(topology, wanted), kMaxMeshTriangles,
                                                 level));
+    return level;
+}
 
-    const ResolvedPrimvar color =
-        resolveMeshPrimvar(prim, topology, "displayColor", kFallbackDisplayColor, diagnostics);
-    // Meshes are opaque occluders: the opacity is checked like any primvar,
-    // and a translucent one is said to be drawn opaque.
+// Meshes are opaque occluders: the opacity is checked like any primvar,
+// and a translucent one is said to be drawn opaque.
+void checkOpacity(const MeshPrim& prim, const MeshTopology& topology, Diagnostics& diagnostics) {
     const ResolvedPrimvar opacity =
         resolveMeshPrimvar(prim, topology, "displayOpacity", kFallbackDisplayOpacity, diagnostics);
     const auto leastOpacity = std::min_element(opacity.values.begin(), opacity.values.end());
     if (leastOpacity != opacity.values.end() && *leastOpacity < 1.0f)
         diagnostics.warn(prim.path + ".primvars:displayOpacity",
                          fmt::format("opacity down to {}: hdHair draws meshes opaque", *leastOpacity));
+}
 
-    std::vector<std::vector<int>> channels;
-    std::vector<float> faceVaryingValues;
-    if (color.interpolation == Interpolation::FaceVarying)
-        channels.push_back(faceVaryingChannel(topology, color, faceVaryingValues));
-    const MeshRefinement refined(topology, level, channels, prim.path, diagnostics);
-    prepared.refineLevel = refined.level();
-    const std::vector<glm::vec3> colors = cornerColors(topology, refined, color, faceVaryingValues);
+std::vector<glm::vec3> vertexNormals(const MeshRefinement& refined) {
     std::vector<glm::vec3> normals = faceWeightedNormals(refined);
     if (refined.onLimitSurface()) {
         // The limit normal, where the limit tangents give one.
         for (size_t v = 0; v < normals.size(); ++v)
             if (refined.limitNormals()[v] != glm::vec3(0.0f)) normals[v] = refined.limitNormals()[v];
     }
+    return normals;
+}
 
-    // World space; a mirroring transform turns counter-clockwise faces
-    // clockwise, so their corners are taken in reverse.
-    const glm::dmat4& toWorld = prim.worldTransform;
+// World space; a mirroring transform turns counter-clockwise faces
+// clockwise, so their corners are taken in reverse.
+void addWorldTriangles(const glm::dmat4& toWorld, const MeshTopology& topology, const MeshRefinement& refined,
+                       const std::vector<glm::vec3>& normals, const std::vector<glm::vec3>& colors,
+                       std::vector<MeshVertex>& vertices) {
     const glm::dmat3 normalToWorld = glm::transpose(glm::inverse(glm::dmat3(toWorld)));
     const bool mirrored = glm::determinant(glm::dmat3(toWorld)) < 0.0;
     std::vector<glm::vec3> worldPoints(refined.points().size());
@@ -206,16 +201,49 @@ PreparedMesh prepareMesh(const MeshPrim& prim, int defaultRefineLevel, Diagnosti
                                  ? triangleNormal
                                  : unitOr(normalToWorld * glm::dvec3(objectNormal), triangleNormal);
                 out.color = colors[corner + size_t(j)];
-                prepared.vertices.push_back(out);
+                vertices.push_back(out);
             }
         }
         corner += size_t(n);
     }
+}
+
+void computeBounds(PreparedMesh& prepared) {
     for (const MeshVertex& vertex : prepared.vertices) {
         const bool first = prepared.boundsMin.x > prepared.boundsMax.x;
         prepared.boundsMin = first ? vertex.position : glm::min(prepared.boundsMin, vertex.position);
         prepared.boundsMax = first ? vertex.position : glm::max(prepared.boundsMax, vertex.position);
     }
+}
+
+}  // namespace
+
+PreparedMesh prepareMesh(const MeshPrim& prim, int defaultRefineLevel, Diagnostics& diagnostics) {
+    PreparedMesh prepared;
+    prepared.path = prim.path;
+    prepared.authoredFaces = prim.faceVertexCounts.size();
+    if (std::string problem = transformProblem(prim.path, prim.worldTransform); !problem.empty()) {
+        diagnostics.warn(prim.path, problem);
+        return prepared;
+    }
+    const MeshTopology topology = checkMeshTopology(prim, diagnostics);
+    prepared.scheme = topology.scheme;
+    const int level = refineLevelFor(prim, topology, defaultRefineLevel, diagnostics);
+
+    const ResolvedPrimvar color =
+        resolveMeshPrimvar(prim, topology, "displayColor", kFallbackDisplayColor, diagnostics);
+    checkOpacity(prim, topology, diagnostics);
+
+    std::vector<std::vector<int>> channels;
+    std::vector<float> faceVaryingValues;
+    if (color.interpolation == Interpolation::FaceVarying)
+        channels.push_back(faceVaryingChannel(topology, color, faceVaryingValues));
+    const MeshRefinement refined(topology, level, channels, prim.path, diagnostics);
+    prepared.refineLevel = refined.level();
+    const std::vector<glm::vec3> colors = cornerColors(topology, refined, color, faceVaryingValues);
+    const std::vector<glm::vec3> normals = vertexNormals(refined);
+    addWorldTriangles(prim.worldTransform, topology, refined, normals, colors, prepared.vertices);
+    computeBounds(prepared);
     return prepared;
 }
 

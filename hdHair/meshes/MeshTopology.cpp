@@ -196,12 +196,9 @@ std::vector<bool> repairPoints(const MeshPrim& prim, MeshTopology& topology, Dia
     return bad;
 }
 
-}  // namespace
-
-const char* toString(SubdivisionScheme scheme) { return kSchemes[static_cast<size_t>(scheme)]; }
-
-MeshTopology checkMeshTopology(const MeshPrim& prim, Diagnostics& diagnostics) {
-    MeshTopology topology;
+// The subdivision options, each an authored token; returns whether the faces
+// wind leftHanded.
+bool readSubdivisionOptions(const MeshPrim& prim, MeshTopology& topology, Diagnostics& diagnostics) {
     auto at = [&](const char* attribute) { return prim.path + "." + attribute; };
     topology.scheme = parseToken(prim.subdivisionScheme, kSchemes, SubdivisionScheme::CatmullClark,
                                  at("subdivisionScheme"), diagnostics);
@@ -212,40 +209,43 @@ MeshTopology checkMeshTopology(const MeshPrim& prim, Diagnostics& diagnostics) {
                                       diagnostics);
     topology.triangles = parseToken(prim.triangleSubdivisionRule, kTriangleRules, TriangleSubdivision::CatmullClark,
                                     at("triangleSubdivisionRule"), diagnostics);
-    const bool leftHanded = parseToken(prim.orientation, kOrientations, 0, at("orientation"), diagnostics) == 1;
+    return parseToken(prim.orientation, kOrientations, 0, at("orientation"), diagnostics) == 1;
+}
 
-    topology.points = prim.points;
-    topology.authoredFaceCount = prim.faceVertexCounts.size();
-    topology.authoredPointCount = prim.points.size();
-    topology.authoredCornerCount = prim.faceVertexIndices.size();
-
-    // Faces: each takes its count of indices in order. Faces with fewer than
-    // 3 vertices, past the end of the indices, or naming a point that does
-    // not exist are left out; the others keep their authored numbers.
+// What readFaces left out, for one warning per problem.
+struct FaceProblems {
     Tally tooFew, outOfRange, negative;
     size_t missing = 0, firstMissing = 0;
-    uint64_t corner = 0;
+    uint64_t corner = 0;  // the faceVertexIndices the authored counts use
+};
+
+// Faces: each takes its count of indices in order. Faces with fewer than
+// 3 vertices, past the end of the indices, or naming a point that does
+// not exist are left out; the others keep their authored numbers.
+FaceProblems readFaces(const MeshPrim& prim, bool leftHanded, MeshTopology& topology) {
+    FaceProblems problems;
+    uint64_t& corner = problems.corner;
     const uint64_t indexCount = prim.faceVertexIndices.size();
     for (size_t face = 0; face < prim.faceVertexCounts.size(); ++face) {
         const int n = prim.faceVertexCounts[face];
         if (n < 0) {
-            negative.add(face);
+            problems.negative.add(face);
             continue;
         }
         const uint64_t begin = corner;
         corner += uint64_t(n);
         if (corner > indexCount) {
-            if (missing++ == 0) firstMissing = face;
+            if (problems.missing++ == 0) problems.firstMissing = face;
             continue;
         }
         if (n < 3) {
-            tooFew.add(face);
+            problems.tooFew.add(face);
             continue;
         }
         const int* indices = prim.faceVertexIndices.data() + begin;
         if (std::any_of(indices, indices + n,
                         [&](int v) { return v < 0 || size_t(v) >= prim.points.size(); })) {
-            outOfRange.add(face);
+            problems.outOfRange.add(face);
             continue;
         }
         topology.faceVertexCounts.push_back(n);
@@ -258,7 +258,17 @@ MeshTopology checkMeshTopology(const MeshPrim& prim, Diagnostics& diagnostics) {
             topology.authoredCorner.push_back(int(begin) + k);
         }
     }
-    const std::string faces = at("faceVertexCounts");
+    return problems;
+}
+
+void reportFaceProblems(const MeshPrim& prim, const FaceProblems& problems, Diagnostics& diagnostics) {
+    const std::string faces = prim.path + ".faceVertexCounts";
+    const std::string indices = prim.path + ".faceVertexIndices";
+    const uint64_t indexCount = prim.faceVertexIndices.size();
+    const Tally& negative = problems.negative;
+    const Tally& tooFew = problems.tooFew;
+    const Tally& outOfRange = problems.outOfRange;
+    const size_t missing = problems.missing;
     if (negative.count > 0)
         diagnostics.warn(faces, fmt::format("{} {} a negative vertex count (first: face {}); not drawn", negative.count,
                                             plural(negative.count, "face has", "faces have"), negative.first));
@@ -268,19 +278,20 @@ MeshTopology checkMeshTopology(const MeshPrim& prim, Diagnostics& diagnostics) {
     if (missing > 0)
         diagnostics.warn(faces, fmt::format("the faces need {} faceVertexIndices, found {}; the last {} {} (from face "
                                             "{}) not drawn",
-                                            corner, indexCount, missing, plural(missing, "face is", "faces are"),
-                                            firstMissing));
-    else if (corner < indexCount)
-        diagnostics.warn(at("faceVertexIndices"),
-                         fmt::format("{} indices, {} more than the faces use; the rest are ignored", indexCount,
-                                     indexCount - corner));
+                                            problems.corner, indexCount, missing,
+                                            plural(missing, "face is", "faces are"), problems.firstMissing));
+    else if (problems.corner < indexCount)
+        diagnostics.warn(indices, fmt::format("{} indices, {} more than the faces use; the rest are ignored",
+                                              indexCount, indexCount - problems.corner));
     if (outOfRange.count > 0)
-        diagnostics.warn(at("faceVertexIndices"),
+        diagnostics.warn(indices,
                          fmt::format("{} {} a point outside the {} points (first: face {}); not drawn", outOfRange.count,
                                      plural(outOfRange.count, "face names", "faces name"), prim.points.size(),
                                      outOfRange.first));
+}
 
-    // Holes: authored face numbers, mapped to the kept faces.
+// Holes: authored face numbers, mapped to the kept faces.
+void readHoles(const MeshPrim& prim, MeshTopology& topology, Diagnostics& diagnostics) {
     topology.hole.assign(topology.faceCount(), false);
     std::vector<int> keptIndex(prim.faceVertexCounts.size(), -1);
     for (size_t f = 0; f < topology.faceCount(); ++f) keptIndex[size_t(topology.authoredFace[f])] = int(f);
@@ -294,11 +305,15 @@ MeshTopology checkMeshTopology(const MeshPrim& prim, Diagnostics& diagnostics) {
         if (keptIndex[size_t(face)] >= 0) topology.hole[size_t(keptIndex[size_t(face)])] = true;
     }
     if (badHole.count > 0)
-        diagnostics.warn(at("holeIndices"),
+        diagnostics.warn(prim.path + ".holeIndices",
                          fmt::format("{} {} outside the {} faces (first: holeIndices[{}]); ignored", badHole.count,
                                      plural(badHole.count, "hole is", "holes are"), keptIndex.size(), badHole.first));
+}
 
-    const std::vector<bool> badPoint = repairPoints(prim, topology, diagnostics);
+// Faces using a repaired point become holes; faces of no area are warned
+// about.
+void checkFaceAreas(const MeshPrim& prim, const std::vector<bool>& badPoint, MeshTopology& topology,
+                    Diagnostics& diagnostics) {
     size_t first = 0;
     Tally zeroArea;
     double extent = 0.0;
@@ -318,15 +333,39 @@ MeshTopology checkMeshTopology(const MeshPrim& prim, Diagnostics& diagnostics) {
             zeroArea.add(size_t(topology.authoredFace[f]));
     }
     if (zeroArea.count > 0)
-        diagnostics.warn(faces, fmt::format("{} {} no area (first: face {}); {} no pixels and no normal",
-                                            zeroArea.count, plural(zeroArea.count, "face has", "faces have"),
-                                            zeroArea.first, plural(zeroArea.count, "it covers", "they cover")));
+        diagnostics.warn(prim.path + ".faceVertexCounts",
+                         fmt::format("{} {} no area (first: face {}); {} no pixels and no normal", zeroArea.count,
+                                     plural(zeroArea.count, "face has", "faces have"), zeroArea.first,
+                                     plural(zeroArea.count, "it covers", "they cover")));
+}
 
+void checkLoopTriangles(const MeshPrim& prim, MeshTopology& topology, Diagnostics& diagnostics) {
     if (topology.scheme == SubdivisionScheme::Loop &&
         std::any_of(topology.faceVertexCounts.begin(), topology.faceVertexCounts.end(), [](int n) { return n != 3; })) {
-        diagnostics.warn(at("subdivisionScheme"), "loop subdivision needs triangles only; drawn as polygons (none)");
+        diagnostics.warn(prim.path + ".subdivisionScheme",
+                         "loop subdivision needs triangles only; drawn as polygons (none)");
         topology.scheme = SubdivisionScheme::None;
     }
+}
+
+}  // namespace
+
+const char* toString(SubdivisionScheme scheme) { return kSchemes[static_cast<size_t>(scheme)]; }
+
+MeshTopology checkMeshTopology(const MeshPrim& prim, Diagnostics& diagnostics) {
+    MeshTopology topology;
+    const bool leftHanded = readSubdivisionOptions(prim, topology, diagnostics);
+
+    topology.points = prim.points;
+    topology.authoredFaceCount = prim.faceVertexCounts.size();
+    topology.authoredPointCount = prim.points.size();
+    topology.authoredCornerCount = prim.faceVertexIndices.size();
+
+    reportFaceProblems(prim, readFaces(prim, leftHanded, topology), diagnostics);
+    readHoles(prim, topology, diagnostics);
+    const std::vector<bool> badPoint = repairPoints(prim, topology, diagnostics);
+    checkFaceAreas(prim, badPoint, topology, diagnostics);
+    checkLoopTriangles(prim, topology, diagnostics);
     readCreases(prim, topology, diagnostics);
     readCorners(prim, topology, diagnostics);
     return topology;

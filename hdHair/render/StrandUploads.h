@@ -68,6 +68,11 @@ private:
         uint64_t firstControl = 0, controlCount = 0;
         uint32_t slot = 0;
     };
+    void dropUndrawnPrims(const std::vector<DrawnPrim>& prims);
+    void placePrim(size_t index, const DrawnPrim& prim, StrandUploadPlan& plan);
+    uint32_t takeSlot();
+    void repack(const std::vector<DrawnPrim>& prims, StrandUploadPlan& plan);
+
     std::map<std::string, Resident> resident_;
     uint64_t end_ = 0;         // one past the last allocated segment
     uint64_t controlEnd_ = 0;  // and control point

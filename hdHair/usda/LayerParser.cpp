@@ -173,6 +173,10 @@ private:
         return parseTyped(scalar, scalar != typeName, what);
     }
     Value parseGeneric(const std::string& what);
+    Value identifierValue(const Token& t, const std::string& what);
+    Value parseGenericTuple(const std::string& what);
+    Value parseGenericList(const Token& open, const std::string& what);
+    static Value arrayOrList(std::vector<Value> elements);
     Value parseDictionary(const std::string& what);
     Value parseMetadataValue(const std::string& key, const std::string& what);
     template <class ReadItem>
@@ -208,6 +212,25 @@ private:
     void parsePrim(PrimSpec& parent, const std::string& parentPath);
     void parsePrimBody(PrimSpec& spec, const std::string& path, const Token& open);
     void parseProperty(PrimSpec& spec, const std::string& primPath);
+    // What may come before a property's type: a list op and 'custom',
+    // 'uniform', 'varying' or 'config'.
+    struct PropertyQualifiers {
+        bool isCustom = false;
+        bool isUniform = false;
+        ListOpKind op = ListOpKind::Explicit;
+    };
+    bool parsePropertyQualifiers(PropertyQualifiers& qualifiers, const std::string& primPath);
+    void parseReorderStatement(const std::string& primPath);
+    struct AttributeType {
+        std::string scalar;
+        std::string typeName;  // with "[]" for an array
+        bool isArray = false;
+    };
+    AttributeType parseAttributeType(const std::string& primPath);
+    std::string parseAttributeName(const std::string& typeName);
+    void parseAttributeField(AttributeSpec& attr, const std::string& name, const AttributeType& type, ListOpKind op,
+                             const std::string& owner);
+    void parseAttributeMetadata(AttributeSpec& attr, const std::string& owner);
     void parseRelationship(PrimSpec& spec, const std::string& primPath, const Token& first, ListOpKind op,
                            bool isCustom);
     void parseVariantSet(PrimSpec& spec, const std::string& primPath);
@@ -435,72 +458,89 @@ Value Parser::parseGeneric(const std::string& what) {
             return value;
         case TokenKind::Identifier:
             next();
-            if (t.text == "true" || t.text == "false") {
-                value.typeName = "bool";
-                value.numbers.push_back(t.text == "true" ? 1.0 : 0.0);
-            } else if (t.text == "None") {
-                value.isBlocked = true;
-            } else if (t.text == "inf" || t.text == "nan") {
-                value.typeName = "double";
-                value.numbers.push_back(number(t, what, false));
-            } else {
-                value.typeName = "token";
-                value.strings.emplace_back(t.text);
-            }
-            return value;
+            return identifierValue(t, what);
         case TokenKind::Punct:
             break;
         case TokenKind::End:
             fail(t, "expected a value for " + what + found(t));
     }
     if (t.is('{')) return parseDictionary(what);
-    if (t.is('(')) {
-        next();
-        value.typeName = "tuple";
-        parseItemsUntil(')', "in a tuple in ", what, [&] {
-            if (peek().is('(')) {
-                Value inner = parseGeneric(what);
-                value.numbers.insert(value.numbers.end(), inner.numbers.begin(), inner.numbers.end());
-            } else {
-                value.numbers.push_back(number(next(), what, false));
-            }
-        });
-        value.tupleSize = std::max<int>(1, static_cast<int>(value.numbers.size()));
-        return value;
-    }
-    if (t.is('[')) {
-        next();
-        std::vector<Value> elements;
-        parseItemsUntil(']', "in a list in ", what, [&] {
-            if (peek().kind == TokenKind::End) {
-                fail(peek(), "expected ']' to close the list opened at " + at(t) + " in " + what + found(peek()));
-            }
-            elements.push_back(parseGeneric(what));
-        });
-        value.isArray = true;
-        // A homogeneous list becomes an array of that type; anything else a "list".
-        bool sameType = !elements.empty();
-        for (const Value& e : elements) {
-            if (e.typeName != elements.front().typeName || e.isBlocked || e.isDictionary() || e.isArray ||
-                e.typeName == "list" || e.numbers.size() != elements.front().numbers.size()) {
-                sameType = false;
-            }
-        }
-        if (sameType) {
-            const Value& first = elements.front();
-            value.typeName = first.typeName + "[]";
-            value.tupleSize = first.isStringType() ? 1 : std::max<int>(1, static_cast<int>(first.numbers.size()));
-            for (Value& e : elements) {
-                value.numbers.insert(value.numbers.end(), e.numbers.begin(), e.numbers.end());
-                for (std::string& s : e.strings) value.strings.push_back(std::move(s));
-            }
-        } else {
-            value.typeName = "list";
-            value.items = std::move(elements);
-        }
-        return value;
-    }
+    if (t.is('(')) return parseGenericTuple(what);
+    if (t.is('[')) return parseGenericList(t, what);
     fail(t, "expected a value for " + what + found(t));
+}
+
+// An untyped identifier: a bool, None, inf or nan, or else a token.
+Value Parser::identifierValue(const Token& t, const std::string& what) {
+    Value value;
+    if (t.text == "true" || t.text == "false") {
+        value.typeName = "bool";
+        value.numbers.push_back(t.text == "true" ? 1.0 : 0.0);
+    } else if (t.text == "None") {
+        value.isBlocked = true;
+    } else if (t.text == "inf" || t.text == "nan") {
+        value.typeName = "double";
+        value.numbers.push_back(number(t, what, false));
+    } else {
+        value.typeName = "token";
+        value.strings.emplace_back(t.text);
+    }
+    return value;
+}
+
+// An untyped tuple, nested tuples flattened into its numbers.
+Value Parser::parseGenericTuple(const std::string& what) {
+    Value value;
+    next();
+    value.typeName = "tuple";
+    parseItemsUntil(')', "in a tuple in ", what, [&] {
+        if (peek().is('(')) {
+            Value inner = parseGeneric(what);
+            value.numbers.insert(value.numbers.end(), inner.numbers.begin(), inner.numbers.end());
+        } else {
+            value.numbers.push_back(number(next(), what, false));
+        }
+    });
+    value.tupleSize = std::max<int>(1, static_cast<int>(value.numbers.size()));
+    return value;
+}
+
+Value Parser::parseGenericList(const Token& open, const std::string& what) {
+    next();
+    std::vector<Value> elements;
+    parseItemsUntil(']', "in a list in ", what, [&] {
+        if (peek().kind == TokenKind::End) {
+            fail(peek(), "expected ']' to close the list opened at " + at(open) + " in " + what + found(peek()));
+        }
+        elements.push_back(parseGeneric(what));
+    });
+    return arrayOrList(std::move(elements));
+}
+
+Value Parser::arrayOrList(std::vector<Value> elements) {
+    Value value;
+    value.isArray = true;
+    // A homogeneous list becomes an array of that type; anything else a "list".
+    bool sameType = !elements.empty();
+    for (const Value& e : elements) {
+        if (e.typeName != elements.front().typeName || e.isBlocked || e.isDictionary() || e.isArray ||
+            e.typeName == "list" || e.numbers.size() != elements.front().numbers.size()) {
+            sameType = false;
+        }
+    }
+    if (sameType) {
+        const Value& first = elements.front();
+        value.typeName = first.typeName + "[]";
+        value.tupleSize = first.isStringType() ? 1 : std::max<int>(1, static_cast<int>(first.numbers.size()));
+        for (Value& e : elements) {
+            value.numbers.insert(value.numbers.end(), e.numbers.begin(), e.numbers.end());
+            for (std::string& s : e.strings) value.strings.push_back(std::move(s));
+        }
+    } else {
+        value.typeName = "list";
+        value.items = std::move(elements);
+    }
+    return value;
 }
 
 Value Parser::parseDictionary(const std::string& what) {
@@ -860,107 +900,132 @@ void Parser::parsePrimBody(PrimSpec& spec, const std::string& path, const Token&
 
 void Parser::parseProperty(PrimSpec& spec, const std::string& primPath) {
     const Token first = peek();
-    bool isCustom = false;
-    bool isUniform = false;
-    ListOpKind op = ListOpKind::Explicit;
-    while (true) {
-        const Token& t = peek();
-        bool isListOp = false;
-        ListOpKind kind = listOpOf(t, isListOp);
-        if (isListOp) {
-            op = kind;
-            next();
-            if (kind == ListOpKind::Reorder && (peek().isIdentifier("nameChildren") || peek().isIdentifier("properties"))) {
-                const Token what = next();
-                expectPunct('=', "after 'reorder " + std::string(what.text) + "'");
-                parseStringList("'reorder " + std::string(what.text) + "' in prim <" + primPath + ">");
-                endStatement("'reorder " + std::string(what.text) + "'");
-                return;
-            }
-        } else if (t.isIdentifier("custom")) {
-            isCustom = true;
-            next();
-        } else if (t.isIdentifier("uniform")) {
-            isUniform = true;
-            next();
-        } else if (t.isIdentifier("varying") || t.isIdentifier("config")) {
-            next();
-        } else {
-            break;
-        }
-    }
+    PropertyQualifiers qualifiers;
+    if (!parsePropertyQualifiers(qualifiers, primPath)) return;
     if (peek().isIdentifier("rel")) {
-        parseRelationship(spec, primPath, first, op, isCustom);
+        parseRelationship(spec, primPath, first, qualifiers.op, qualifiers.isCustom);
         return;
     }
-    const Token typeToken = peek();
-    if (typeToken.kind != TokenKind::Identifier) {
-        fail(typeToken, "expected an attribute type or 'rel' in prim <" + primPath + ">" + found(typeToken));
-    }
-    next();
-    std::string typeName(typeToken.text);
-    if (tupleSizeOf(typeName) == 0 || typeName == "path") {
-        fail(typeToken, "unknown attribute type '" + typeName + "'");
-    }
-    const std::string scalar = typeName;
-    bool isArray = false;
-    if (peek().is('[')) {
-        next();
-        expectPunct(']', "after '" + scalar + "['");
-        isArray = true;
-        typeName += "[]";
-    }
-    const Token nameToken = peek();
-    if (nameToken.kind != TokenKind::Identifier) {
-        fail(nameToken, "expected an attribute name after type '" + typeName + "'" + found(nameToken));
-    }
-    next();
-    const std::string name(nameToken.text);
+    const AttributeType type = parseAttributeType(primPath);
+    const std::string name = parseAttributeName(type.typeName);
     const std::string owner = "attribute '" + name + "'";
     AttributeSpec& attr = spec.attributes[name];
     if (attr.name.empty()) {
         attr.name = name;
         attr.location = location(first);
     }
-    attr.typeName = typeName;
-    if (scalar == "asset") attr.assetDirectory = directory_;
-    attr.isCustom = attr.isCustom || isCustom;
-    attr.isUniform = attr.isUniform || isUniform;
+    attr.typeName = type.typeName;
+    if (type.scalar == "asset") attr.assetDirectory = directory_;
+    attr.isCustom = attr.isCustom || qualifiers.isCustom;
+    attr.isUniform = attr.isUniform || qualifiers.isUniform;
 
     if (peek().is('.')) {
-        next();
-        const Token field = peek();
-        if (field.isIdentifier("timeSamples")) {
-            next();
-            expectPunct('=', "after '" + name + ".timeSamples'");
-            attr.timeSamples = parseTimeSamples(scalar, isArray, owner);
-            attr.hasTimeSamples = true;
-        } else if (field.isIdentifier("connect")) {
-            next();
-            expectPunct('=', "after '" + name + ".connect'");
-            attr.connections.set(op, parsePathList("'" + name + ".connect'"));
-        } else if (field.isIdentifier("spline")) {
-            fail(field, "'" + name + ".spline': spline animation is not supported by the embedded reader");
-        } else {
-            fail(field, "expected 'timeSamples' or 'connect' after '" + name + ".'" + found(field));
-        }
+        parseAttributeField(attr, name, type, qualifiers.op, owner);
     } else if (peek().is('=')) {
         next();
-        attr.defaultValue = parseTyped(scalar, isArray, owner);
+        attr.defaultValue = parseTyped(type.scalar, type.isArray, owner);
     } else if (!peek().is('(') && !atStatementEnd()) {
         fail(peek(), "expected '=' or '(' after attribute name '" + name + "'" + found(peek()));
     }
-    if (peek().is('(')) {
-        parseMetadataList(owner, [&](const Token& key, ListOpKind) {
-            if (key.kind == TokenKind::String) {
-                next();
-                attr.metadata["comment"] = stringValue(Tokenizer::decodeString(key));
-                return;
-            }
-            handlePropertyMetadata(attr.metadata, std::string(key.text), owner);
-        });
-    }
+    if (peek().is('(')) parseAttributeMetadata(attr, owner);
     endStatement(owner);
+}
+
+// Returns false when the statement was a whole 'reorder nameChildren' or
+// 'reorder properties', not a property.
+bool Parser::parsePropertyQualifiers(PropertyQualifiers& qualifiers, const std::string& primPath) {
+    while (true) {
+        const Token& t = peek();
+        bool isListOp = false;
+        ListOpKind kind = listOpOf(t, isListOp);
+        if (isListOp) {
+            qualifiers.op = kind;
+            next();
+            if (kind == ListOpKind::Reorder && (peek().isIdentifier("nameChildren") || peek().isIdentifier("properties"))) {
+                parseReorderStatement(primPath);
+                return false;
+            }
+        } else if (t.isIdentifier("custom")) {
+            qualifiers.isCustom = true;
+            next();
+        } else if (t.isIdentifier("uniform")) {
+            qualifiers.isUniform = true;
+            next();
+        } else if (t.isIdentifier("varying") || t.isIdentifier("config")) {
+            next();
+        } else {
+            return true;
+        }
+    }
+}
+
+void Parser::parseReorderStatement(const std::string& primPath) {
+    const Token what = next();
+    expectPunct('=', "after 'reorder " + std::string(what.text) + "'");
+    parseStringList("'reorder " + std::string(what.text) + "' in prim <" + primPath + ">");
+    endStatement("'reorder " + std::string(what.text) + "'");
+}
+
+Parser::AttributeType Parser::parseAttributeType(const std::string& primPath) {
+    const Token typeToken = peek();
+    if (typeToken.kind != TokenKind::Identifier) {
+        fail(typeToken, "expected an attribute type or 'rel' in prim <" + primPath + ">" + found(typeToken));
+    }
+    next();
+    AttributeType type;
+    type.typeName = std::string(typeToken.text);
+    if (tupleSizeOf(type.typeName) == 0 || type.typeName == "path") {
+        fail(typeToken, "unknown attribute type '" + type.typeName + "'");
+    }
+    type.scalar = type.typeName;
+    if (peek().is('[')) {
+        next();
+        expectPunct(']', "after '" + type.scalar + "['");
+        type.isArray = true;
+        type.typeName += "[]";
+    }
+    return type;
+}
+
+std::string Parser::parseAttributeName(const std::string& typeName) {
+    const Token nameToken = peek();
+    if (nameToken.kind != TokenKind::Identifier) {
+        fail(nameToken, "expected an attribute name after type '" + typeName + "'" + found(nameToken));
+    }
+    next();
+    return std::string(nameToken.text);
+}
+
+// '<name>.timeSamples = ...' or '<name>.connect = ...'.
+void Parser::parseAttributeField(AttributeSpec& attr, const std::string& name, const AttributeType& type,
+                                 ListOpKind op, const std::string& owner) {
+    next();
+    const Token field = peek();
+    if (field.isIdentifier("timeSamples")) {
+        next();
+        expectPunct('=', "after '" + name + ".timeSamples'");
+        attr.timeSamples = parseTimeSamples(type.scalar, type.isArray, owner);
+        attr.hasTimeSamples = true;
+    } else if (field.isIdentifier("connect")) {
+        next();
+        expectPunct('=', "after '" + name + ".connect'");
+        attr.connections.set(op, parsePathList("'" + name + ".connect'"));
+    } else if (field.isIdentifier("spline")) {
+        fail(field, "'" + name + ".spline': spline animation is not supported by the embedded reader");
+    } else {
+        fail(field, "expected 'timeSamples' or 'connect' after '" + name + ".'" + found(field));
+    }
+}
+
+void Parser::parseAttributeMetadata(AttributeSpec& attr, const std::string& owner) {
+    parseMetadataList(owner, [&](const Token& key, ListOpKind) {
+        if (key.kind == TokenKind::String) {
+            next();
+            attr.metadata["comment"] = stringValue(Tokenizer::decodeString(key));
+            return;
+        }
+        handlePropertyMetadata(attr.metadata, std::string(key.text), owner);
+    });
 }
 
 void Parser::parseRelationship(PrimSpec& spec, const std::string& primPath, const Token& first, ListOpKind op,
