@@ -85,7 +85,7 @@ MeasuredRow measure(Renderer& renderer, Scene& scene, const CameraView& camera, 
     MeasuredRow row;
     if (settings.values().domeLighting == DomeLightingMode::Srbf) {
         RenderResult first = renderer.render(scene, camera, settings, diagnostics);
-        for (const PlannedDome& dome : first.plan.domes) row.fitError = dome.fitError;
+        for (const PlannedDome& dome : first.plan.recipe().lighting.domes) row.fitError = dome.fitError;
     }
     std::vector<double> milliseconds;
     bool forth = true;

@@ -6,8 +6,8 @@
 #include <glm/matrix.hpp>
 
 #include "hdHair/plan/CameraView.h"
-#include "hdHair/plan/FrameRecipe.h"
-#include "hdHair/plan/RenderSettings.h"
+#include "hdHair/plan/SceneSummary.h"
+#include "hdHair/plan/SettingValues.h"
 #include "hdHair/scene/Scene.h"
 
 namespace hdhair {
@@ -31,6 +31,31 @@ std::vector<std::pair<size_t, size_t>> lightBatches(size_t count, size_t perPass
     return batches;
 }
 
+// The stage's own lights (at most kMaxLights, in path order), apart from
+// the host's camera light and, when domes are lights of their own
+// (addDomeLights), the domes.
+struct StageLights {
+    std::vector<const LightPrim*> lights;
+    const LightPrim* hostCameraLight = nullptr;
+    size_t overCap = 0;
+};
+
+StageLights stageLightsOf(const Scene& scene, bool domesAsLights) {
+    StageLights stage;
+    for (const auto& [path, entry] : scene.lights()) {
+        if (entry.prim->hostCameraLight) {
+            if (!stage.hostCameraLight && entry.prim->visible) stage.hostCameraLight = entry.prim.get();
+        } else if (domesAsLights && entry.prim->type == LightType::Dome) {
+            continue;
+        } else if (stage.lights.size() < kMaxLights) {
+            stage.lights.push_back(entry.prim.get());
+        } else {
+            stage.overCap += 1;
+        }
+    }
+    return stage;
+}
+
 }  // namespace
 
 ShadingLight cameraLightOf(const CameraView& camera, bool castsShadow) {
@@ -44,49 +69,42 @@ bool usesCameraLight(CameraLightSetting setting, bool stageHasLight, bool anythi
            (setting == CameraLightSetting::On || (setting == CameraLightSetting::Auto && !stageHasLight));
 }
 
-void planLights(FrameRecipe& recipe, const Scene& scene, const RenderSettings& settings, const CameraView& camera,
-                const StrandSummary& strands, const MeshSummary& meshes, const std::vector<DomeEnvironment>& domes) {
-    const SettingValues& values = settings.values();
+LightPlan planLights(const Scene& scene, const SettingValues& settings, const CameraView& camera,
+                     const StrandSummary& strands, const MeshSummary& meshes,
+                     const std::vector<DomeEnvironment>& domes) {
+    LightPlan plan;
     // domeLighting=srbf or sampled: domes are SRBF lights and a uniform term,
     // or sampled distant lights (DomeLighting.h), not toShadingLights' flat
     // ambient.
-    const bool domesAsLights = values.domeLighting != DomeLightingMode::Ambient;
-    std::vector<const LightPrim*> stageLights;
-    const LightPrim* hostCameraLight = nullptr;
-    for (const auto& [path, entry] : scene.lights()) {
-        if (entry.prim->hostCameraLight) {
-            if (!hostCameraLight && entry.prim->visible) hostCameraLight = entry.prim.get();
-        } else if (domesAsLights && entry.prim->type == LightType::Dome) {
-            continue;  // addDomeLights below
-        } else if (stageLights.size() < kMaxLights) {
-            stageLights.push_back(entry.prim.get());
-        } else {
-            recipe.lightsOverCap += 1;
-        }
-    }
-    recipe.lights = toShadingLights(stageLights);
+    const bool domesAsLights = settings.domeLighting != DomeLightingMode::Ambient;
+    plan.domesSampled = settings.domeLighting == DomeLightingMode::Sampled;
+    const StageLights stage = stageLightsOf(scene, domesAsLights);
+    plan.overCap = stage.overCap;
+    plan.lights = toShadingLights(stage.lights);
     if (domesAsLights)
-        recipe.domes = addDomeLights(scene, domes, values.domeShadowLights, recipe.lights, recipe.shadows.sharedMaps);
+        plan.domes = addDomeLights(scene, domes, settings.domeShadowLights, plan.lights, plan.sharedMaps);
     // Meshes are lit unless the shadingModel setting asks for flat
     // displayColor (hair prims may still choose their own model).
-    recipe.meshesLit = meshes.meshes > 0 && values.shadingModel != ShadingModel::Flat;
-    recipe.flatShading = !strands.anyLit && !recipe.meshesLit;
+    plan.meshesLit = meshes.meshes > 0 && settings.shadingModel != ShadingModel::Flat;
+    plan.flatShading = !strands.anyLit && !plan.meshesLit;
 
-    const bool stageHasLight = !recipe.lights.lights.empty() || glm::length(recipe.lights.ambient) > 0.0f ||
-                               glm::length(recipe.lights.uniformDome) > 0.0f;
-    recipe.cameraLight = usesCameraLight(values.cameraLight, stageHasLight, !recipe.flatShading);
-    if (recipe.cameraLight)
+    const bool stageHasLight = !plan.lights.lights.empty() || glm::length(plan.lights.ambient) > 0.0f ||
+                               glm::length(plan.lights.uniformDome) > 0.0f;
+    plan.cameraLight = usesCameraLight(settings.cameraLight, stageHasLight, !plan.flatShading);
+    if (plan.cameraLight)
         for (const ShadingLight& light :
-             cameraLightsFor(camera, hostCameraLight, values.cameraLightShadows == CameraLightShadows::On))
-            recipe.lights.lights.push_back(light);
+             cameraLightsFor(camera, stage.hostCameraLight, settings.cameraLightShadows == CameraLightShadows::On))
+            plan.lights.lights.push_back(light);
     // Light colours (and colour temperatures) are linear Rec.709, as every
     // authored colour: shading happens in the rendering space.
-    const glm::mat3 toRenderingSpace = rec709To(settings.renderingSpace());
-    for (ShadingLight& light : recipe.lights.lights) light.scale = toRenderingSpace * light.scale;
-    recipe.lights.ambient = toRenderingSpace * recipe.lights.ambient;
-    recipe.lights.uniformDome = toRenderingSpace * recipe.lights.uniformDome;
-    recipe.lightBatches =
-        lightBatches(recipe.flatShading ? 0 : recipe.lights.lights.size(), size_t(values.lightsPerPass));
+    plan.renderingSpace = settings.renderingSpace;
+    const glm::mat3 toRenderingSpace = rec709To(plan.renderingSpace);
+    for (ShadingLight& light : plan.lights.lights) light.scale = toRenderingSpace * light.scale;
+    plan.lights.ambient = toRenderingSpace * plan.lights.ambient;
+    plan.lights.uniformDome = toRenderingSpace * plan.lights.uniformDome;
+    plan.lightsPerPass = size_t(settings.lightsPerPass);
+    plan.batches = lightBatches(plan.flatShading ? 0 : plan.lights.lights.size(), plan.lightsPerPass);
+    return plan;
 }
 
 }  // namespace hdhair

@@ -6,9 +6,13 @@
 // draw of everything: the "lightBatch k" passes).
 
 #include <cstddef>
+#include <map>
 #include <string>
+#include <utility>
 #include <vector>
 
+#include "hdHair/image/ColorSpaces.h"
+#include "hdHair/plan/DomeLighting.h"
 #include "hdHair/plan/SettingTokens.h"
 #include "hdHair/shading/ShadingLight.h"
 
@@ -16,10 +20,9 @@ namespace hdhair {
 
 struct CameraView;
 struct DomeEnvironment;
-struct FrameRecipe;
 struct MeshSummary;
-class RenderSettings;
 class Scene;
+struct SettingValues;
 struct StrandSummary;
 
 // The most stage lights a frame shades; more are left out, in path order
@@ -35,10 +38,38 @@ bool usesCameraLight(CameraLightSetting setting, bool stageHasLight, bool anythi
 // hdHair's camera light for `camera`: a distant light from the eye.
 ShadingLight cameraLightOf(const CameraView& camera, bool castsShadow);
 
-// Sets the recipe's lights, domes (and the SRBF lights' shared maps),
-// cameraLight, flatShading, meshesLit, lightBatches and lightsOverCap.
+// The lights a frame shades with, and in which passes: the first planner,
+// which the shadows' (ShadowPlanner.h) reads.
+struct LightPlan {
+    ShadingLights lights;  // the stage's lights, plus the camera light when used
+    // The space their colours are in, and the frame is shaded in
+    // (renderingSpace); the frame converts to Rec.709 from it.
+    RenderingSpace renderingSpace = RenderingSpace::LinearRec709;
+    bool cameraLight = false;  // the last of `lights` is the camera light
+    bool flatShading = false;  // every prim flat: no lights needed
+    bool meshesLit = false;    // meshes shaded with the lights (Lambert), else displayColor unlit
+    // Light passes: [begin, end) ranges of `lights.lights`, at most
+    // lightsPerPass each; always at least one (ambient and unlit shading
+    // need a pass too).
+    std::vector<std::pair<size_t, size_t>> batches;
+    size_t lightsPerPass = 4;
+    // The domes as domeLighting=srbf shades them (empty with ambient).
+    std::vector<PlannedDome> domes;
+    // SRBF lights without a map of their own that read another light's
+    // (DomeLighting.h): light index -> the index of the light whose map.
+    std::map<size_t, size_t> sharedMaps;
+    // Stage lights beyond kMaxLights, left out of the frame.
+    size_t overCap = 0;
+    // domeLighting=sampled: the domes are sampled distant lights, the
+    // reference the SRBF path is measured against, which must not shade a
+    // light unshadowed (ShadowPlanner.h).
+    bool domesSampled = false;
+};
+
+// The lights of a frame, in the rendering space (settings.renderingSpace).
 // domes: the visible domes as the renderer fitted them (frameDomeEnvironments).
-void planLights(FrameRecipe& recipe, const Scene& scene, const RenderSettings& settings, const CameraView& camera,
-                const StrandSummary& strands, const MeshSummary& meshes, const std::vector<DomeEnvironment>& domes);
+LightPlan planLights(const Scene& scene, const SettingValues& settings, const CameraView& camera,
+                     const StrandSummary& strands, const MeshSummary& meshes,
+                     const std::vector<DomeEnvironment>& domes);
 
 }  // namespace hdhair

@@ -16,24 +16,24 @@ namespace hdhair {
 namespace {
 
 // Where the frame's depth comes from on each path (and, blended, its ids).
-std::string depthSource(const FrameRecipe& plan) {
-    if (plan.transparency == TransparencyPath::Opaque) return "depth: the depth buffer";
-    if (plan.compositesFromLists())
+std::string depthSource(const FrameRecipe& recipe) {
+    if (recipe.transparency.path == TransparencyPath::Opaque) return "depth: the depth buffer";
+    if (recipe.compositesFromLists())
         return fmt::format("depth and ids: the nearest listed fragment with alpha >= {}", kNearestStrandMinAlpha);
     return fmt::format("depth: the nearest fragment with alpha >= {}, min-blended", kNearestStrandMinAlpha);
 }
 
 // Ids need a pass of their own only where blending draws strands in an
 // order that is not nearest-last (integer images cannot be min-blended).
-FramePass idsPass(const FrameRecipe& plan, bool idsRequested, bool anyStrands, bool anyMeshes) {
+FramePass idsPass(const FrameRecipe& recipe, bool idsRequested, bool anyStrands, bool anyMeshes) {
     FramePass ids{PassKind::Ids, "ids", {ResourceKind::Strands, ResourceKind::Depth}, {ResourceKind::Ids}, false, ""};
     if (!idsRequested) {
         ids.reason = "no ids asked for";
     } else if (!anyStrands) {
         ids.reason = anyMeshes ? "no visible curves: the meshes pass writes the ids" : "no visible curves: ids are -1 everywhere";
-    } else if (plan.transparency == TransparencyPath::Opaque) {
+    } else if (recipe.transparency.path == TransparencyPath::Opaque) {
         ids.reason = "the strand pass writes them, with depth";
-    } else if (plan.compositesFromLists()) {
+    } else if (recipe.compositesFromLists()) {
         ids.reason = "the fragment lists' resolve writes them, with depth";
     } else {
         ids.wanted = true;
@@ -46,9 +46,9 @@ FramePass idsPass(const FrameRecipe& plan, bool idsRequested, bool anyStrands, b
 
 // What the strand and light-batch passes read: the strands, and the draw
 // order when they are drawn bin sorted.
-std::vector<FrameResource> strandReads(const FrameRecipe& plan, std::vector<FrameResource> more) {
+std::vector<FrameResource> strandReads(const FrameRecipe& recipe, std::vector<FrameResource> more) {
     std::vector<FrameResource> reads{ResourceKind::Strands};
-    if (plan.drawsSorted()) reads.push_back(ResourceKind::DrawOrder);
+    if (recipe.drawsSorted()) reads.push_back(ResourceKind::DrawOrder);
     reads.insert(reads.end(), more.begin(), more.end());
     return reads;
 }
@@ -69,8 +69,8 @@ void applyMapDecision(FramePass& pass, const PlannedShadow& shadow) {
 bool assignedNoMap(const PlannedShadow& shadow) { return shadow.assigned && shadow.slot < 0; }
 
 // The passes that build light `shadow`'s map, wanted or not with the reason.
-void addShadowPasses(FrameGraph& graph, const RenderPlan& plan, size_t index, bool anyStrands) {
-    const ShadowPlan& shadows = plan.shadows;
+void addShadowPasses(FrameGraph& graph, const FrameRecipe& recipe, size_t index, bool anyStrands) {
+    const ShadowPlan& shadows = recipe.shadows;
     const PlannedShadow& shadow = shadows.lights[index];
     auto add = [&](FramePass pass) {
         applyMapDecision(pass, shadow);
@@ -93,7 +93,7 @@ void addShadowPasses(FrameGraph& graph, const RenderPlan& plan, size_t index, bo
         wanted = true;
         why = fmt::format("{} light view, {}x{}", shadow.view.orthographic ? "orthographic" : "perspective",
                           shadows.resolution, shadows.resolution);
-        if (plan.flatShading) flat = "; every prim is flat-shaded, so no pass reads lights or their shadows";
+        if (recipe.lighting.flatShading) flat = "; every prim is flat-shaded, so no pass reads lights or their shadows";
     }
     const std::string& key = shadow.key;
     if (shadows.mode == ShadowMode::Reference) {
@@ -134,31 +134,31 @@ const FrameResource kConvolvedOpacity{ResourceKind::ConvolvedOpacity};
 
 // The shadow maps light batch `batch` reads: those of its lights that have
 // one, and the mip chain when its SRBF lights read through it.
-std::vector<FrameResource> batchShadowReads(const RenderPlan& plan, size_t batch) {
+std::vector<FrameResource> batchShadowReads(const FrameRecipe& recipe, size_t batch) {
     std::vector<FrameResource> reads;
-    if (plan.shadows.mode == ShadowMode::Off) return reads;
+    if (recipe.shadows.mode == ShadowMode::Off) return reads;
     bool srbfMapRead = false;
-    for (size_t light = plan.lightBatches[batch].first; light < plan.lightBatches[batch].second; ++light) {
-        int shadow = plan.shadows.shadowOf(light);
-        if (shadow < 0 || !plan.shadows.lights[size_t(shadow)].view.valid ||
-            assignedNoMap(plan.shadows.lights[size_t(shadow)]))
+    for (size_t light = recipe.lighting.batches[batch].first; light < recipe.lighting.batches[batch].second; ++light) {
+        int shadow = recipe.shadows.shadowOf(light);
+        if (shadow < 0 || !recipe.shadows.lights[size_t(shadow)].view.valid ||
+            assignedNoMap(recipe.shadows.lights[size_t(shadow)]))
             continue;
-        srbfMapRead = srbfMapRead || plan.lights.lights[light].isSrbf();
-        const FrameResource map = plan.shadows.resourceOf(size_t(shadow));
+        srbfMapRead = srbfMapRead || recipe.lighting.lights.lights[light].isSrbf();
+        const FrameResource map = recipe.shadows.resourceOf(size_t(shadow));
         // SRBF lights share maps (ShadowPlan::sharedMaps): each read once.
         if (std::find(reads.begin(), reads.end(), map) != reads.end()) continue;
         reads.push_back(map);
-        if (plan.shadows.meshesCast) reads.push_back(plan.shadows.meshResourceOf(size_t(shadow)));
+        if (recipe.shadows.meshesCast) reads.push_back(recipe.shadows.meshResourceOf(size_t(shadow)));
     }
     // Its SRBF lights that read a map read it through the mip chain (which
     // "opacityMipmaps" makes whenever an SRBF light has a map).
-    if (plan.shadows.convolvedOpacity && srbfMapRead) reads.push_back(kConvolvedOpacity);
+    if (recipe.shadows.convolvedOpacity && srbfMapRead) reads.push_back(kConvolvedOpacity);
     return reads;
 }
 
 // upload, meshUpload and sort: the CPU's strands and meshes to the GPU,
 // and the bin sort's draw order.
-void addUploadPasses(FrameGraph& graph, const RenderPlan& plan, const StrandSummary& strands,
+void addUploadPasses(FrameGraph& graph, const FrameRecipe& recipe, const StrandSummary& strands,
                      const MeshSummary& meshes, const std::string& noMeshes) {
     const bool anyStrands = strands.segments > 0, anyMeshes = meshes.meshes > 0;
     graph.input(ResourceKind::PreparedStrands);
@@ -173,31 +173,35 @@ void addUploadPasses(FrameGraph& graph, const RenderPlan& plan, const StrandSumm
                                                        "the last frame",
                                                        meshes.meshes, meshes.triangles)
                                          : "the meshes on the GPU are current: nothing to send"});
-    const bool sorted = plan.drawsSorted() && anyStrands;
-    graph.add(FramePass{PassKind::Sort, "sort", {ResourceKind::PreparedStrands}, {ResourceKind::DrawOrder}, sorted,
+    const bool sorted = recipe.drawsSorted() && anyStrands;
+    graph.add(FramePass{PassKind::Sort,
+                        "sort",
+                        {ResourceKind::PreparedStrands},
+                        {ResourceKind::DrawOrder},
+                        sorted,
                         sorted ? fmt::format("{} segments into {} depth bins on the CPU, O(n)", strands.segments,
-                                             plan.sortBins)
-                        : plan.strandRaster == StrandRaster::Compute
+                                             recipe.transparency.sortBins)
+                        : recipe.strandRaster.rasteriser == StrandRaster::Compute
                             ? "no bin sorting: the compute rasteriser's lists are sorted per pixel"
                             : "no bin sorting on this path"});
 }
 
 // Every shadow map's passes, then the mip chain that averages them when an
 // SRBF light reads through it.
-void addShadowMapPasses(FrameGraph& graph, const RenderPlan& plan, bool anyStrands) {
-    for (size_t shadow = 0; shadow < plan.shadows.lights.size(); ++shadow)
-        addShadowPasses(graph, plan, shadow, anyStrands);
-    if (!plan.shadows.convolvedOpacity) return;
+void addShadowMapPasses(FrameGraph& graph, const FrameRecipe& recipe, bool anyStrands) {
+    for (size_t shadow = 0; shadow < recipe.shadows.lights.size(); ++shadow)
+        addShadowPasses(graph, recipe, shadow, anyStrands);
+    if (!recipe.shadows.convolvedOpacity) return;
     // After every map it averages: the chain covers the whole array.
     // Wanted exactly when a batch reads the chain: an SRBF light has a
     // map (batchShadowReads); no strands, no valid light views.
     FramePass mipmaps{PassKind::OpacityMipmaps, "opacityMipmaps", {}, {kConvolvedOpacity}, true, ""};
     size_t lobes = 0;
-    for (size_t index = 0; index < plan.shadows.lights.size(); ++index) {
-        const PlannedShadow& shadow = plan.shadows.lights[index];
+    for (size_t index = 0; index < recipe.shadows.lights.size(); ++index) {
+        const PlannedShadow& shadow = recipe.shadows.lights[index];
         if (!shadow.view.valid || assignedNoMap(shadow)) continue;
-        mipmaps.reads.push_back(plan.shadows.resourceOf(index));
-        lobes += plan.lights.lights[shadow.light].isSrbf() ? 1 : 0;
+        mipmaps.reads.push_back(recipe.shadows.resourceOf(index));
+        lobes += recipe.lighting.lights.lights[shadow.light].isSrbf() ? 1 : 0;
     }
     mipmaps.wanted = lobes > 0;
     mipmaps.reason = mipmaps.wanted ? fmt::format("the opacity layers of {} SRBF light map(s) averaged into a mip "
@@ -209,8 +213,8 @@ void addShadowMapPasses(FrameGraph& graph, const RenderPlan& plan, bool anyStran
 }
 
 // The meshes pass: opaque, before the strands, with the lights of batch 1.
-FramePass meshesPass(const std::vector<FrameResource>& frameImages, const RenderPlan& plan, const MeshSummary& meshes,
-                     bool idsRequested, const std::string& noMeshes) {
+FramePass meshesPass(const std::vector<FrameResource>& frameImages, const FrameRecipe& recipe,
+                     const MeshSummary& meshes, bool idsRequested, const std::string& noMeshes) {
     std::vector<FrameResource> reads{ResourceKind::MeshGeometry};
     reads.insert(reads.end(), frameImages.begin(), frameImages.end());
     FramePass pass{PassKind::Meshes, "meshes", reads, frameImages, meshes.meshes > 0, noMeshes};
@@ -218,108 +222,116 @@ FramePass meshesPass(const std::vector<FrameResource>& frameImages, const Render
     const std::string levels = meshes.minRefineLevel == meshes.maxRefineLevel
                                    ? fmt::format("refine level {}", meshes.minRefineLevel)
                                    : fmt::format("refine levels {}-{}", meshes.minRefineLevel, meshes.maxRefineLevel);
-    pass.reason = fmt::format("{} mesh(es), {} triangles ({}), opaque, {}; drawn before the strands: depth "
-                              "{}written, strands behind them hidden",
-                              meshes.meshes, meshes.triangles, levels,
-                              plan.meshesLit ? "Lambert under the lights" : "flat displayColor",
-                              idsRequested ? "and ids " : "");
+    pass.reason = fmt::format(
+        "{} mesh(es), {} triangles ({}), opaque, {}; drawn before the strands: depth "
+        "{}written, strands behind them hidden",
+        meshes.meshes, meshes.triangles, levels,
+        recipe.lighting.meshesLit ? "Lambert under the lights" : "flat displayColor", idsRequested ? "and ids " : "");
     return pass;
 }
 
 // How the strands are shaded, for the strand pass's reason.
-std::string shadingDescription(const RenderPlan& plan, const StrandSummary& strands, size_t lightsPerPass) {
-    if (plan.flatShading) return "flat displayColor";
+std::string shadingDescription(const FrameRecipe& recipe, const StrandSummary& strands) {
+    if (recipe.lighting.flatShading) return "flat displayColor";
     std::string models = strands.shadingModels.empty() ? std::string("kajiyaKay") : strands.shadingModels;
     if (strands.perPointPrims > 0)
         models += fmt::format(" (per-curve/vertex parameters on {} prim(s))", strands.perPointPrims);
     if (strands.analyticPrims > 0)
         models += fmt::format(" (Marschner azimuthal terms per fragment on {} prim(s))", strands.analyticPrims);
     // The camera light, when used, is the last light.
-    const std::string cameraLight =
-        !plan.cameraLight || plan.lights.lights.empty() ? ""
-        : plan.lights.lights.back().castsShadow ? " incl. the camera light"
-                                                 : " incl. the camera light, which casts no shadow (cameraLightShadows)";
-    std::string shading = fmt::format("{}, {} light(s){}", models, plan.lights.lights.size(), cameraLight);
-    for (const PlannedDome& dome : plan.domes) shading += "; " + dome.describe(lightsPerPass);
-    if (!plan.shadows.sampling.empty()) shading += "; " + plan.shadows.sampling;
+    const std::string cameraLight = !recipe.lighting.cameraLight || recipe.lighting.lights.lights.empty() ? ""
+                                    : recipe.lighting.lights.lights.back().castsShadow
+                                        ? " incl. the camera light"
+                                        : " incl. the camera light, which casts no shadow (cameraLightShadows)";
+    std::string shading = fmt::format("{}, {} light(s){}", models, recipe.lighting.lights.lights.size(), cameraLight);
+    for (const PlannedDome& dome : recipe.lighting.domes)
+        shading += "; " + dome.describe(recipe.lighting.lightsPerPass);
+    if (!recipe.shadows.sampling.empty()) shading += "; " + recipe.shadows.sampling;
     for (const std::string& material : strands.multipleScattering) shading += "; multiple scattering on " + material;
-    if (strands.dualScatteringMaterials > 0 && plan.shadows.mode == ShadowMode::Off)
+    if (strands.dualScatteringMaterials > 0 && recipe.shadows.mode == ShadowMode::Off)
         shading += " (shadowMode=off: every light reaches every fibre, so only the local back scattering adds)";
     return shading;
 }
 
 // The strand pass: the strands with the lights of batch 1 and their shadows.
-FramePass strandsPass(const RenderPlan& plan, const StrandSummary& strands, bool idsRequested, size_t lightsPerPass) {
+FramePass strandsPass(const FrameRecipe& recipe, const StrandSummary& strands, bool idsRequested) {
     // The strand pass writes ids itself where it can keep the nearest
     // fragment's (opaque, and exact's resolve).
     std::vector<FrameResource> writes{ResourceKind::Color, ResourceKind::Depth};
-    if (idsRequested && (plan.transparency == TransparencyPath::Opaque || plan.compositesFromLists()))
+    if (idsRequested && (recipe.transparency.path == TransparencyPath::Opaque || recipe.compositesFromLists()))
         writes.push_back(ResourceKind::Ids);
     std::vector<FrameResource> inPlace = writes;
-    for (const FrameResource& shadow : batchShadowReads(plan, 0)) inPlace.push_back(shadow);
+    for (const FrameResource& shadow : batchShadowReads(recipe, 0)) inPlace.push_back(shadow);
     const bool anyStrands = strands.segments > 0;
-    const std::string multisampling =
-        plan.msaaSamples > 0 ? fmt::format(", {}x MSAA", plan.msaaSamples) : std::string();
-    return FramePass{PassKind::Strands, "strands", strandReads(plan, inPlace), writes, anyStrands,
-                     anyStrands ? fmt::format("{} segments, {}: {}{}; {}; {}; {}", strands.segments,
-                                              toString(plan.transparency), plan.transparencyReason, multisampling,
-                                              plan.strandRasterReason, shadingDescription(plan, strands, lightsPerPass),
-                                              depthSource(plan))
-                                : "no visible curves: background only"};
+    const std::string multisampling = recipe.transparency.msaaSamples > 0
+                                          ? fmt::format(", {}x MSAA", recipe.transparency.msaaSamples)
+                                          : std::string();
+    return FramePass{
+        PassKind::Strands,
+        "strands",
+        strandReads(recipe, inPlace),
+        writes,
+        anyStrands,
+        anyStrands ? fmt::format("{} segments, {}: {}{}; {}; {}; {}", strands.segments,
+                                 toString(recipe.transparency.path), recipe.transparency.reason, multisampling,
+                                 recipe.strandRaster.reason, shadingDescription(recipe, strands), depthSource(recipe))
+                   : "no visible curves: background only"};
 }
 
 // "lightBatch k" for every batch after the first: what the first drew,
 // again, with its own lights and their shadows.
-void addLightBatchPasses(FrameGraph& graph, const RenderPlan& plan, bool anyStrands, bool anyMeshes,
-                         size_t lightsPerPass) {
+void addLightBatchPasses(FrameGraph& graph, const FrameRecipe& recipe, bool anyStrands, bool anyMeshes) {
     const std::string drawnAgain = anyStrands && anyMeshes ? "the meshes and the strands"
                                    : anyMeshes                ? "the meshes"
                                                               : "the strands";
-    const size_t lightCount = plan.lightBatches.back().second;
-    for (size_t batch = 1; batch < plan.lightBatches.size(); ++batch) {
+    const size_t lightCount = recipe.lighting.batches.back().second;
+    for (size_t batch = 1; batch < recipe.lighting.batches.size(); ++batch) {
         std::vector<FrameResource> reads;
         if (anyMeshes) reads.push_back(ResourceKind::MeshGeometry);
         reads.push_back(ResourceKind::Color);
-        for (const FrameResource& shadow : batchShadowReads(plan, batch)) reads.push_back(shadow);
-        FramePass lights{PassKind::LightBatch, fmt::format("lightBatch {}", batch + 1),
-                         anyStrands ? strandReads(plan, reads) : reads, {ResourceKind::Color},
+        for (const FrameResource& shadow : batchShadowReads(recipe, batch)) reads.push_back(shadow);
+        FramePass lights{PassKind::LightBatch,
+                         fmt::format("lightBatch {}", batch + 1),
+                         anyStrands ? strandReads(recipe, reads) : reads,
+                         {ResourceKind::Color},
                          anyStrands || anyMeshes,
                          fmt::format("lights {}-{} of {} (lightsPerPass {}): {} again, colour added, alpha counted "
                                      "once",
-                                     plan.lightBatches[batch].first + 1, plan.lightBatches[batch].second, lightCount,
-                                     lightsPerPass, drawnAgain)};
+                                     recipe.lighting.batches[batch].first + 1, recipe.lighting.batches[batch].second,
+                                     lightCount, recipe.lighting.lightsPerPass, drawnAgain)};
         lights.subject = batch;
         graph.add(lights);
     }
 }
 
 // The frame's passes, from the recipe (the pass list in RenderPlan.h).
-void buildFrameGraph(RenderPlan& plan, const Scene& scene, const StrandSummary& strands, const MeshSummary& meshes,
-                     bool idsRequested, bool displayOnGpu, size_t lightsPerPass) {
-    FrameGraph& graph = plan.graph;
+FrameGraph buildFrameGraph(const FrameRecipe& recipe, const Scene& scene, const StrandSummary& strands,
+                           const MeshSummary& meshes, bool idsRequested, bool displayOnGpu) {
+    FrameGraph graph;
     const bool anyStrands = strands.segments > 0, anyMeshes = meshes.meshes > 0;
     // Why the mesh passes are off, when they are.
     const std::string noMeshes = scene.meshes().empty() ? "no meshes" : "no visible meshes";
     std::vector<std::string> lights;
-    for (const PlannedShadow& shadow : plan.shadows.lights) lights.push_back(shadow.key);
+    for (const PlannedShadow& shadow : recipe.shadows.lights) lights.push_back(shadow.key);
     graph.nameLights(std::move(lights));
-    addUploadPasses(graph, plan, strands, meshes, noMeshes);
-    addShadowMapPasses(graph, plan, anyStrands);
+    addUploadPasses(graph, recipe, strands, meshes, noMeshes);
+    addShadowMapPasses(graph, recipe, anyStrands);
 
     std::vector<FrameResource> frameImages{ResourceKind::Color, ResourceKind::Depth};
     if (idsRequested) frameImages.push_back(ResourceKind::Ids);
     graph.add(FramePass{PassKind::Clear, "clear", {}, frameImages, true,
                         "the frame's images, empty (transparent black, depth 1, ids -1)"});
-    graph.add(meshesPass(frameImages, plan, meshes, idsRequested, noMeshes));
-    graph.add(strandsPass(plan, strands, idsRequested, lightsPerPass));
-    graph.add(idsPass(plan, idsRequested, anyStrands, anyMeshes));
+    graph.add(meshesPass(frameImages, recipe, meshes, idsRequested, noMeshes));
+    graph.add(strandsPass(recipe, strands, idsRequested));
+    graph.add(idsPass(recipe, idsRequested, anyStrands, anyMeshes));
     // Light batches add onto the frame's resolved colour, and readback reads
     // it: a multisampled frame is resolved once, here.
-    graph.add(FramePass{PassKind::Resolve, "resolve", frameImages, frameImages, plan.msaaSamples > 0,
-                        plan.msaaSamples > 0 ? fmt::format("{} samples a pixel averaged (depth and ids: one sample)",
-                                                           plan.msaaSamples)
-                                             : "no multisampling"});
-    addLightBatchPasses(graph, plan, anyStrands, anyMeshes, lightsPerPass);
+    graph.add(FramePass{
+        PassKind::Resolve, "resolve", frameImages, frameImages, recipe.transparency.msaaSamples > 0,
+        recipe.transparency.msaaSamples > 0
+            ? fmt::format("{} samples a pixel averaged (depth and ids: one sample)", recipe.transparency.msaaSamples)
+            : "no multisampling"});
+    addLightBatchPasses(graph, recipe, anyStrands, anyMeshes);
 
     graph.add(FramePass{PassKind::Readback, "readback", frameImages, {ResourceKind::Aovs}, true, "the frame's images to the CPU"});
     graph.output(ResourceKind::Aovs);
@@ -328,48 +340,18 @@ void buildFrameGraph(RenderPlan& plan, const Scene& scene, const StrandSummary& 
                                      : "no display image asked of the GPU (display transforms run on the CPU)"});
     if (displayOnGpu) graph.output(ResourceKind::DisplayImage);
     graph.compile();
-}
-
-// The explicit setting that asks for bin-sorted or unsorted transparency by
-// name, as "NAME=VALUE", or empty. Only values other than the defaults
-// count: a Hydra host echoes a default back as if it were set
-// (HdHairRenderDelegate::GetEngineSettings drops those), so an explicit
-// transparency=binSorted or sortBins=256 cannot be told from no choice on
-// every path, and counts on none.
-std::string binSortingAskedFor(const RenderSettings& settings) {
-    const SettingValues& values = settings.values();
-    if (settings.isExplicitlySet("transparency") && values.transparency == TransparencyPath::Unsorted)
-        return "transparency=unsorted";
-    if (settings.isExplicitlySet("sortBins") && values.sortBins != RenderSettings().values().sortBins)
-        return fmt::format("sortBins={}", values.sortBins);
-    return "";
-}
-
-// Copies the renderer's decisions into the planned shadows, before the
-// graph is built from them.
-void assignShadowMaps(ShadowPlan& shadows, const ShadowMapAssignment& assignment) {
-    if (assignment.maps.size() != shadows.lights.size())
-        throw std::logic_error("shadow map assignment: one decision per planned shadow expected");
-    shadows.capacity = assignment.capacity;
-    for (size_t i = 0; i < shadows.lights.size(); ++i) {
-        if (!assignment.maps[i]) continue;
-        PlannedShadow& shadow = shadows.lights[i];
-        shadow.assigned = true;
-        shadow.slot = assignment.maps[i]->slot;
-        shadow.rebuild = assignment.maps[i]->rebuild;
-        shadow.reason = assignment.maps[i]->reason;
-    }
+    return graph;
 }
 
 }  // namespace
 
 nlohmann::json RenderPlan::toJson(const std::vector<double>& passMilliseconds) const {
-    return graph.toJson(passMilliseconds);
+    return graph_.toJson(passMilliseconds);
 }
 
 bool RenderPlan::shadowUsed(size_t shadow) const {
-    const FrameResource resource = shadows.resourceOf(shadow);
-    for (const FramePass& pass : graph.passes())
+    const FrameResource resource = recipe_.shadows.resourceOf(shadow);
+    for (const FramePass& pass : graph_.passes())
         if (pass.enabled && std::find(pass.reads.begin(), pass.reads.end(), resource) != pass.reads.end())
             return true;
     return false;
@@ -378,16 +360,10 @@ bool RenderPlan::shadowUsed(size_t shadow) const {
 RenderPlan makeRenderPlan(const Scene& scene, const RenderSettings& settings, const CameraView& camera,
                           const StrandSummary& strands, const MeshSummary& meshes,
                           const std::vector<DomeEnvironment>& domes, const PlanRequest& request) {
-    RenderPlan plan;
-    planLights(plan, scene, settings, camera, strands, meshes, domes);
-    planShadows(plan, settings, strands, meshes.meshes > 0);
-    if (request.shadowMaps) assignShadowMaps(plan.shadows, *request.shadowMaps);
-    planTransparency(plan, settings.values(), strands, request.fallbacks);
-    planStrandRaster(plan, settings.values(), strands, binSortingAskedFor(settings), request.fallbacks);
-    plan.specializeShaders = settings.values().specializeShaders;
-    buildFrameGraph(plan, scene, strands, meshes, request.idsRequested, request.displayOnGpu,
-                    size_t(settings.values().lightsPerPass));
-    return plan;
+    FrameRecipe recipe =
+        makeFrameRecipe(scene, settings, camera, strands, meshes, domes, request.fallbacks, request.shadowMaps);
+    FrameGraph graph = buildFrameGraph(recipe, scene, strands, meshes, request.idsRequested, request.displayOnGpu);
+    return RenderPlan(std::move(recipe), std::move(graph));
 }
 
 RenderPlan makeRenderPlan(const Scene& scene, const RenderSettings& settings, const CameraView& camera,

@@ -1,14 +1,15 @@
 #pragma once
 // Which passes a frame runs, decided per scene before any GL work: only the
 // effects a scene calls for are simulated, and what is off costs nothing.
-// The planners decide the frame's recipe (FrameRecipe.h); the plan is that
-// recipe with the FrameGraph built from it (FrameGraph.h): each pass with its
+// The planners decide the frame's recipe (FrameRecipe.h); the plan holds that
+// recipe and the FrameGraph built from it (FrameGraph.h): each pass with its
 // kind, what it reads and writes and the reason it runs or not, printed by
 // --explain and kept, with each pass's time, in --stats.
 
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <nlohmann/json_fwd.hpp>
@@ -48,32 +49,26 @@ struct CameraView;
 // maps' slots come in with it (ShadowMapAssignment), and what a pass finds
 // the plan could not know (lists over their memory) makes the Renderer plan
 // the frame again (FrameFallback.h), never edit this one.
-struct RenderPlan : FrameRecipe {
-    FrameGraph graph;
+class RenderPlan {
+public:
+    RenderPlan() = default;
+    RenderPlan(FrameRecipe recipe, FrameGraph graph) : recipe_(std::move(recipe)), graph_(std::move(graph)) {}
 
-    bool isEnabled(PassKind kind, size_t subject = 0) const { return graph.isEnabled(kind, subject); }
-    bool isEnabled(const std::string& label) const { return graph.isEnabled(label); }
+    const FrameRecipe& recipe() const { return recipe_; }
+    const FrameGraph& graph() const { return graph_; }
+
+    bool isEnabled(PassKind kind, size_t subject = 0) const { return graph_.isEnabled(kind, subject); }
+    bool isEnabled(const std::string& label) const { return graph_.isEnabled(label); }
     // Whether an enabled pass reads shadow `shadow`'s map.
     bool shadowUsed(size_t shadow) const;
 
-    std::string describe() const { return graph.describe(); }  // for --explain
+    std::string describe() const { return graph_.describe(); }  // for --explain
     // With the time each pass took, by index (FrameScheduler), when known.
     nlohmann::json toJson(const std::vector<double>& passMilliseconds = {}) const;
-};
 
-// The renderer's decision for each planned shadow (ShadowPlan::lights) whose
-// map an enabled pass of the provisional plan reads (ShadowMapCache): its
-// slot, and whether its passes rebuild it or it is kept from an earlier
-// frame (an input of the graph then; its passes do not run). A shadow with
-// slot -1 and a reason has no map: it shades unshadowed.
-struct ShadowMapAssignment {
-    struct Map {
-        int slot = -1;
-        bool rebuild = true;
-        std::string reason;
-    };
-    std::vector<std::optional<Map>> maps;  // per planned shadow; empty: not decided (nothing reads it)
-    int capacity = 0;                      // slots the map storage must hold
+private:
+    FrameRecipe recipe_;
+    FrameGraph graph_;
 };
 
 // What a frame asks of its plan besides the scene and the settings.

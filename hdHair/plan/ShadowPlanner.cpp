@@ -3,13 +3,15 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 
 #include <fmt/format.h>
 
 #include "hdHair/gl/LightViewRaster.h"
 #include "hdHair/plan/DeepOpacityLayers.h"
-#include "hdHair/plan/FrameRecipe.h"
-#include "hdHair/plan/RenderSettings.h"
+#include "hdHair/plan/LightPlanner.h"
+#include "hdHair/plan/SceneSummary.h"
+#include "hdHair/plan/SettingValues.h"
 
 namespace hdhair {
 
@@ -104,54 +106,97 @@ void planStrandLines(PlannedShadow& shadow, const ShadowPlan& shadows, ShadowStr
                              sumBytes / (1024.0 * 1024.0), shadows.memoryMB);
 }
 
+// The shadow settings, as a plan without lights.
+ShadowPlan shadowSettings(const SettingValues& settings) {
+    ShadowPlan shadows;
+    shadows.mode = settings.shadowMode;
+    shadows.layers = settings.shadowLayers;
+    shadows.boundaries = deepOpacityLayerBoundaries(shadows.layers, settings.shadowLayerSpacing);
+    shadows.layerDepth = settings.shadowLayerDepth;
+    shadows.bilinear = settings.shadowFilter == ShadowFilter::Bilinear;
+    shadows.samplingSetting = settings.shadowSampling;
+    shadows.resolution = settings.shadowMapResolution;
+    shadows.minPixelWidth = settings.minPixelWidth;
+    shadows.tessellationTolerance = settings.shadowTessellationTolerance;
+    shadows.tessellation = settings.tessellation;
+    shadows.pixelsPerSegment = settings.pixelsPerSegment;
+    shadows.maxSegmentsPerSpan = settings.maxSegmentsPerSpan;
+    shadows.strandLinesSetting = settings.shadowStrandLines;
+    shadows.rasterSetting = settings.strandRaster;
+    shadows.memoryMB = settings.shadowMemoryMB;
+    return shadows;
+}
+
+// A light view fitted to the casters for `shadow`, while shadowMemoryMB
+// holds another map (`mapped` so far); past that, why it has none.
+void fitView(PlannedShadow& shadow, const ShadingLight& light, ShadowPlan& shadows, const StrandSummary& strands,
+             size_t& mapped) {
+    if (mapped < shadows.maxMaps) {
+        shadow.view = fitShadowLightView(light, strands.casters, shadows.resolution);
+        mapped += shadow.view.valid ? 1 : 0;
+        return;
+    }
+    shadow.view.valid = false;
+    shadow.overBudget = true;
+    shadow.view.fallback = fmt::format("shadowMemoryMB={} holds {} maps of {}x{} texels", shadows.memoryMB,
+                                       shadows.maxMaps, shadows.resolution, shadows.resolution);
+    shadows.overBudget += 1;
+}
+
+// domeLighting=sampled is the reference the SRBF path's shadows are
+// measured against (DomeLighting.h): it must not shade lights unshadowed,
+// so a frame that draws shadows with more casting lights than maps fits is
+// a settings error, not a warning.
+void checkSampledDomesShadowed(const ShadowPlan& shadows, const LightPlan& lights, const StrandSummary& strands) {
+    if (shadows.overBudget == 0 || !lights.domesSampled || lights.flatShading || strands.segments == 0) return;
+    throw std::invalid_argument(
+        fmt::format("domeLighting=sampled: {} lights cast shadows, more than the {} maps shadowMemoryMB={} holds at "
+                    "shadowMapResolution={} ({} would be drawn unshadowed); lower domeSampledLights or "
+                    "shadowMapResolution, or raise shadowMemoryMB",
+                    shadows.lights.size(), shadows.maxMaps, shadows.memoryMB, shadows.resolution, shadows.overBudget));
+}
+
+// Copies the renderer's decisions into the planned shadows.
+void assignShadowMaps(ShadowPlan& shadows, const ShadowMapAssignment& assignment) {
+    if (assignment.maps.size() != shadows.lights.size())
+        throw std::logic_error("shadow map assignment: one decision per planned shadow expected");
+    shadows.capacity = assignment.capacity;
+    for (size_t i = 0; i < shadows.lights.size(); ++i) {
+        if (!assignment.maps[i]) continue;
+        PlannedShadow& shadow = shadows.lights[i];
+        shadow.assigned = true;
+        shadow.slot = assignment.maps[i]->slot;
+        shadow.rebuild = assignment.maps[i]->rebuild;
+        shadow.reason = assignment.maps[i]->reason;
+    }
+}
+
 }  // namespace
 
-void planShadows(FrameRecipe& recipe, const RenderSettings& settings, const StrandSummary& strands, bool anyMeshes) {
-    const SettingValues& values = settings.values();
-    ShadowPlan& shadows = recipe.shadows;
-    shadows.mode = values.shadowMode;
-    shadows.layers = values.shadowLayers;
-    shadows.boundaries = deepOpacityLayerBoundaries(shadows.layers, values.shadowLayerSpacing);
-    shadows.layerDepth = values.shadowLayerDepth;
-    shadows.bilinear = values.shadowFilter == ShadowFilter::Bilinear;
-    shadows.samplingSetting = values.shadowSampling;
-    shadows.resolution = values.shadowMapResolution;
-    shadows.minPixelWidth = values.minPixelWidth;
-    shadows.tessellationTolerance = values.shadowTessellationTolerance;
-    shadows.tessellation = values.tessellation;
-    shadows.pixelsPerSegment = values.pixelsPerSegment;
-    shadows.maxSegmentsPerSpan = values.maxSegmentsPerSpan;
-    shadows.strandLinesSetting = values.shadowStrandLines;
-    shadows.rasterSetting = values.strandRaster;
-    shadows.memoryMB = values.shadowMemoryMB;
+ShadowPlan planShadows(const LightPlan& lights, const SettingValues& settings, const StrandSummary& strands,
+                       bool anyMeshes, const std::optional<ShadowMapAssignment>& assignment) {
+    ShadowPlan shadows = shadowSettings(settings);
+    shadows.sharedMaps = lights.sharedMaps;
     shadows.meshesCast = anyMeshes && shadows.mode != ShadowMode::Off;
     shadows.maxMaps = shadowMapBudget(shadows.resolution, shadows.layers, shadows.memoryMB);
     size_t mapped = 0;
-    for (size_t i = 0; i < recipe.lights.lights.size(); ++i) {
-        const ShadingLight& light = recipe.lights.lights[i];
+    for (size_t i = 0; i < lights.lights.lights.size(); ++i) {
+        const ShadingLight& light = lights.lights.lights[i];
         if (!light.castsShadow) continue;
         PlannedShadow shadow;
         shadow.light = i;
         shadow.key = light.path.empty() ? "camera light" : light.path;
-        if (shadows.mode != ShadowMode::Off) {
-            if (mapped < shadows.maxMaps) {
-                shadow.view = fitShadowLightView(light, strands.casters, shadows.resolution);
-                mapped += shadow.view.valid ? 1 : 0;
-            } else {
-                shadow.view.valid = false;
-                shadow.overBudget = true;
-                shadow.view.fallback = fmt::format("shadowMemoryMB={} holds {} maps of {}x{} texels", shadows.memoryMB,
-                                                   shadows.maxMaps, shadows.resolution, shadows.resolution);
-                shadows.overBudget += 1;
-            }
-        }
+        if (shadows.mode != ShadowMode::Off) fitView(shadow, light, shadows, strands, mapped);
         planStrandLines(shadow, shadows, shadows.strandLinesSetting, strands.casters.maxWidth);
         shadows.lights.push_back(std::move(shadow));
     }
+    checkSampledDomesShadowed(shadows, lights, strands);
     planShadowSampling(shadows, shadows.samplingSetting, strands);
-    if (shadows.mode == ShadowMode::DeepOpacity && values.domeShadowFilter == DomeShadowFilter::Mipmap)
-        for (size_t i = 0; i < recipe.lights.lights.size() && !shadows.convolvedOpacity; ++i)
-            shadows.convolvedOpacity = recipe.lights.lights[i].isSrbf() && shadows.shadowOf(i) >= 0;
+    if (shadows.mode == ShadowMode::DeepOpacity && settings.domeShadowFilter == DomeShadowFilter::Mipmap)
+        for (size_t i = 0; i < lights.lights.lights.size() && !shadows.convolvedOpacity; ++i)
+            shadows.convolvedOpacity = lights.lights.lights[i].isSrbf() && shadows.shadowOf(i) >= 0;
+    if (assignment) assignShadowMaps(shadows, *assignment);
+    return shadows;
 }
 
 size_t shadowMapBudget(int resolution, int layers, int memoryMB) {

@@ -9,6 +9,7 @@
 
 #include <cstddef>
 #include <map>
+#include <optional>
 #include <string>
 #include <tuple>
 #include <vector>
@@ -19,8 +20,8 @@
 
 namespace hdhair {
 
-struct FrameRecipe;
-class RenderSettings;
+struct LightPlan;
+struct SettingValues;
 struct StrandSummary;
 
 // shadowSampling: vertex shadows' points at most this many texels of the
@@ -35,10 +36,10 @@ constexpr double kMaxStrandLineTexels = 1.5;
 
 // A light that casts shadows (ShadingLight::castsShadow) in this frame.
 struct PlannedShadow {
-    size_t light = 0;       // index into FrameRecipe::lights.lights
+    size_t light = 0;       // index into LightPlan::lights.lights
     std::string key;        // the light's path, or "camera light"
     ShadowLightView view;   // not valid: no map, the light shades unshadowed (view.fallback says why)
-    // The renderer's decision for its map (ShadowMapAssignment, RenderPlan.h),
+    // The renderer's decision for its map (ShadowMapAssignment, below),
     // copied in when the plan is made: never changed while the frame runs.
     bool assigned = false;  // decided: the plan the frame runs
     int slot = -1;          // where its map lives (gl::ShadowMapStorage); -1: no map
@@ -87,7 +88,7 @@ struct ShadowPlan {
     ShadowStrandLines strandLinesSetting = ShadowStrandLines::Auto;
     StrandRasterSetting rasterSetting = StrandRasterSetting::Auto;  // strandRaster: who draws the light views' lines
     int memoryMB = 1024;           // shadowMemoryMB
-    int capacity = 0;              // map slots the storage holds (set by the renderer)
+    int capacity = 0;              // map slots the storage holds (ShadowMapAssignment)
     std::vector<PlannedShadow> lights;
     // Casting lights left without a map because shadowMemoryMB holds only
     // `maxMaps` (shadowMapBudget); they shade unshadowed.
@@ -103,7 +104,7 @@ struct ShadowPlan {
     bool meshesCast = false;
     FrameResource meshResourceOf(size_t shadow) const { return {ResourceKind::MeshDepth, shadow}; }
     // SRBF lights without a map of their own that read another light's
-    // (DomeLighting.h): light index -> the index of the light whose map.
+    // (LightPlan::sharedMaps): light index -> the index of the light whose map.
     std::map<size_t, size_t> sharedMaps;
     // domeShadowFilter=mipmap and some SRBF light reads a map: the
     // "opacityMipmaps" pass averages the opacity layers into a mip chain,
@@ -137,10 +138,30 @@ struct ShadowPlan {
 // layers) and within GL 4.5's guaranteed 2048 array layers.
 size_t shadowMapBudget(int resolution, int layers, int memoryMB);
 
-// Sets recipe.shadows from the settings and a planned shadow for every
-// light of recipe.lights that casts one (its view fitted to the casters, or
-// why it cannot be). The lights are planned first (LightPlanner.h): which
-// SRBF lights share a map is theirs to say.
-void planShadows(FrameRecipe& recipe, const RenderSettings& settings, const StrandSummary& strands, bool anyMeshes);
+// The renderer's decision for each planned shadow (ShadowPlan::lights) whose
+// map an enabled pass of the provisional plan reads (ShadowMapCache): its
+// slot, and whether its passes rebuild it or it is kept from an earlier
+// frame (an input of the graph then; its passes do not run). A shadow with
+// slot -1 and a reason has no map: it shades unshadowed.
+struct ShadowMapAssignment {
+    struct Map {
+        int slot = -1;
+        bool rebuild = true;
+        std::string reason;
+    };
+    std::vector<std::optional<Map>> maps;  // per planned shadow; empty: not decided (nothing reads it)
+    int capacity = 0;                      // slots the map storage must hold
+};
+
+// The shadows of the lights `lights` planned: the settings, and a planned
+// shadow for every light that casts one (its view fitted to the casters, or
+// why it cannot be). Which SRBF lights share a map is the lights' to say.
+// With `assignment` (the renderer's decision for each map) the plan draws
+// its maps; without it, it is provisional: it says which maps are read.
+// Throws std::invalid_argument when domeLighting=sampled has more shadowed
+// lights than shadowMemoryMB holds maps: the reference must not shade a
+// light unshadowed.
+ShadowPlan planShadows(const LightPlan& lights, const SettingValues& settings, const StrandSummary& strands,
+                       bool anyMeshes, const std::optional<ShadowMapAssignment>& assignment);
 
 }  // namespace hdhair

@@ -7,8 +7,9 @@
 #include <fmt/format.h>
 
 #include "hdHair/plan/FrameFallback.h"
-#include "hdHair/plan/FrameRecipe.h"
+#include "hdHair/plan/SceneSummary.h"
 #include "hdHair/plan/SettingValues.h"
+#include "hdHair/plan/TransparencyPlanner.h"
 
 namespace hdhair {
 
@@ -28,8 +29,8 @@ struct AutoRule {
 // the hardware rasteriser into the same per-pixel lists, one resolve
 // compositing both, when the prims within the rule hold at least half the
 // frame's segments. Otherwise the frame keeps the hardware.
-void planByPrim(FrameRecipe& recipe, const StrandSummary& strands, const AutoRule& rule) {
-    std::string& why = recipe.strandRasterReason;
+void planByPrim(StrandRasterPlan& plan, const StrandSummary& strands, const AutoRule& rule) {
+    std::string& why = plan.reason;
     // Summaries made without per-prim figures count as one prim.
     std::vector<StrandSummary::PrimRaster> prims = strands.prims;
     if (prims.empty()) prims.push_back({strands.maxProjectedWidthPixels, strands.segments, 0.0});
@@ -64,12 +65,12 @@ void planByPrim(FrameRecipe& recipe, const StrandSummary& strands, const AutoRul
                                     ? fmt::format("may project {:.2f} px wide", widestOther)
                                     : fmt::format("cover about {:.1f} px a span", coveredOther);
     if (others == 0) {
-        recipe.strandRaster = StrandRaster::Compute;
+        plan.rasteriser = StrandRaster::Compute;
         why = fmt::format("compute: the strands {} ({})", thinAs, ruleText);
     } else if (thinSegments > 0 && thinSegments >= otherSegments) {
-        recipe.strandRaster = StrandRaster::Compute;
-        recipe.listedByHardware.clear();
-        for (const StrandSummary::PrimRaster& prim : prims) recipe.listedByHardware.push_back(!withinRule(prim));
+        plan.rasteriser = StrandRaster::Compute;
+        plan.listedByHardware.clear();
+        for (const StrandSummary::PrimRaster& prim : prims) plan.listedByHardware.push_back(!withinRule(prim));
         why = fmt::format("compute for {} of {} prims ({} of {} segments), whose strands {}; the hardware rasteriser "
                           "lists the {} other prim(s), whose strands {}, into the same lists ({})",
                           prims.size() - others, prims.size(), thinSegments, thinSegments + otherSegments, thinAs,
@@ -94,14 +95,14 @@ uint64_t expectedFragments(const StrandSummary& strands) {
 
 }  // namespace
 
-void planStrandRaster(FrameRecipe& recipe, const SettingValues& settings, const StrandSummary& strands,
-                      const std::string& approximationAskedFor, const FrameFallbacks& fallbacks) {
+StrandRasterPlan planStrandRaster(const TransparencyPlan& transparency, const SettingValues& settings,
+                                  const StrandSummary& strands, const std::string& approximationAskedFor,
+                                  const FrameFallbacks& fallbacks) {
+    StrandRasterPlan plan;
     const StrandRasterSetting requested = settings.strandRaster;
-    std::string& why = recipe.strandRasterReason;
-    recipe.strandRaster = StrandRaster::Hardware;
-    recipe.strandRasterMemoryMB = settings.strandRasterMemoryMB;
-    recipe.listedByHardware.clear();
-    if (recipe.transparency == TransparencyPath::Opaque) {
+    std::string& why = plan.reason;
+    plan.memoryMB = settings.strandRasterMemoryMB;
+    if (transparency.path == TransparencyPath::Opaque) {
         why = "hardware: the opaque path draws depth-tested ribbons, with nothing to composite";
     } else if (fallbacks.computeListsOverBudget) {
         why = fmt::format("hardware: the compute rasteriser's lists were over strandRasterMemoryMB={}",
@@ -114,18 +115,19 @@ void planStrandRaster(FrameRecipe& recipe, const SettingValues& settings, const 
     } else if (requested == StrandRasterSetting::Hardware) {
         why = "hardware: strandRaster=hardware";
     } else if (requested == StrandRasterSetting::Compute) {
-        recipe.strandRaster = StrandRaster::Compute;
+        plan.rasteriser = StrandRaster::Compute;
         why = "compute: strandRaster=compute";
-    } else if (!approximationAskedFor.empty() && recipe.transparency != TransparencyPath::Exact) {
+    } else if (!approximationAskedFor.empty() && transparency.path != TransparencyPath::Exact) {
         why = fmt::format("hardware: {} is set, and the compute rasteriser composites exactly, without bins "
                           "(strandRaster=auto)",
                           approximationAskedFor);
     } else {
-        planByPrim(recipe, strands, {settings.strandRasterMaxPixelWidth, settings.strandRasterMaxFragmentsPerSpan});
+        planByPrim(plan, strands, {settings.strandRasterMaxPixelWidth, settings.strandRasterMaxFragmentsPerSpan});
     }
-    if (recipe.strandRaster == StrandRaster::Compute)
+    if (plan.rasteriser == StrandRaster::Compute)
         why += ", spans cut, rasterised and shaded in compute, composited from per-pixel lists sorted by depth";
-    recipe.expectedFragments = expectedFragments(strands);
+    plan.expectedFragments = expectedFragments(strands);
+    return plan;
 }
 
 }  // namespace hdhair

@@ -3,48 +3,51 @@
 #include <fmt/format.h>
 
 #include "hdHair/plan/FrameFallback.h"
-#include "hdHair/plan/FrameRecipe.h"
+#include "hdHair/plan/SceneSummary.h"
 #include "hdHair/plan/SettingValues.h"
 
 namespace hdhair {
 
-void planTransparency(FrameRecipe& recipe, const SettingValues& settings, const StrandSummary& strands,
-                      const FrameFallbacks& fallbacks) {
+TransparencyPlan planTransparency(const SettingValues& settings, const StrandSummary& strands,
+                                  const FrameFallbacks& fallbacks) {
+    TransparencyPlan plan;
     const TransparencyPath requested = settings.transparency;
     const double threshold = settings.minPixelWidth;
     const bool needsBlending = !strands.allOpaque || strands.minProjectedWidthPixels < threshold;
-    std::string& why = recipe.transparencyReason;
+    std::string& why = plan.reason;
     if (requested == TransparencyPath::Opaque) {
-        recipe.transparency = TransparencyPath::Opaque;
+        plan.path = TransparencyPath::Opaque;
         why = "transparency=opaque: opacity and sub-pixel coverage ignored";
     } else if (!needsBlending) {
-        recipe.transparency = TransparencyPath::Opaque;
+        plan.path = TransparencyPath::Opaque;
         why = fmt::format("every strand is opaque and at least {:.2f} px wide (>= minPixelWidth {}): no blending "
                           "or sorting needed",
                           strands.minProjectedWidthPixels, threshold);
     } else if (requested == TransparencyPath::Exact && fallbacks.exactListsOverBudget) {
-        recipe.transparency = TransparencyPath::BinSorted;
-        recipe.sortBins = kFallbackSortBins;
-        why = fmt::format("exact fell back: its fragment lists were over exactMemoryMB={}, so {} bins, drawn far to "
-                          "near with pre-multiplied blending",
-                          settings.exactMemoryMB, recipe.sortBins);
+        plan.path = TransparencyPath::BinSorted;
+        plan.sortBins = kFallbackSortBins;
+        why = fmt::format(
+            "exact fell back: its fragment lists were over exactMemoryMB={}, so {} bins, drawn far to "
+            "near with pre-multiplied blending",
+            settings.exactMemoryMB, plan.sortBins);
     } else if (requested == TransparencyPath::Exact) {
-        recipe.transparency = TransparencyPath::Exact;
+        plan.path = TransparencyPath::Exact;
         why = "per-pixel fragment lists sorted by depth (exact)";
     } else if (requested == TransparencyPath::Unsorted) {
-        recipe.transparency = TransparencyPath::Unsorted;
+        plan.path = TransparencyPath::Unsorted;
         why = "pre-multiplied blending in authored order, unsorted";
     } else {
-        recipe.transparency = TransparencyPath::BinSorted;
-        recipe.sortBins = uint32_t(settings.sortBins);
-        why = fmt::format("{} bins, drawn far to near with pre-multiplied blending", recipe.sortBins);
+        plan.path = TransparencyPath::BinSorted;
+        plan.sortBins = uint32_t(settings.sortBins);
+        why = fmt::format("{} bins, drawn far to near with pre-multiplied blending", plan.sortBins);
     }
-    if (recipe.transparency != TransparencyPath::Opaque)
+    if (plan.path != TransparencyPath::Opaque)
         why += fmt::format(" ({}; thinnest strand {:.2f} px)", strands.allOpaque ? "opaque strands" : "translucent strands",
                            strands.minProjectedWidthPixels);
-    if (recipe.transparency == TransparencyPath::Opaque) recipe.msaaSamples = settings.msaaSamples;
-    recipe.exactMemoryMB = settings.exactMemoryMB;
-    recipe.exactOverflowFails = settings.exactOverflow == ExactOverflow::Fail;
+    if (plan.path == TransparencyPath::Opaque) plan.msaaSamples = settings.msaaSamples;
+    plan.exactMemoryMB = settings.exactMemoryMB;
+    plan.exactOverflowFails = settings.exactOverflow == ExactOverflow::Fail;
+    return plan;
 }
 
 }  // namespace hdhair

@@ -70,7 +70,7 @@ struct CyclesLighting {
 
 // The visible lights of `scene` in Cycles' units, in the rendering space.
 // `addCameraLight`: the frame uses hdHair's camera light (a stage without
-// lights, RenderPlan::cameraLight); it becomes a sun at the camera, casting
+// lights, LightPlan::cameraLight); it becomes a sun at the camera, casting
 // shadows with `cameraLightShadows` as hdHair's does. Problems
 // that change the picture (a cone Cycles cannot make, a dome texture format
 // other than latlong) warn through `diagnostics`, naming the light.

@@ -39,9 +39,9 @@ void touch(FrameContext& context, const FrameResource& resource, Access access) 
     };
     const bool reads = access != Access::Write, writes = access != Access::Read;
     if ((reads && !declares(pass.reads)) || (writes && !declares(pass.writes)))
-        throw std::logic_error(fmt::format("frame graph: pass '{}' {} '{}', which it does not declare",
-                                           pass.name, reads && !declares(pass.reads) ? "reads" : "writes",
-                                           context.plan.graph.nameOf(resource)));
+        throw std::logic_error(fmt::format("frame graph: pass '{}' {} '{}', which it does not declare", pass.name,
+                                           reads && !declares(pass.reads) ? "reads" : "writes",
+                                           context.plan.graph().nameOf(resource)));
 }
 
 // The frame's images a pass draws into: colour and depth, and the ids when
@@ -58,11 +58,12 @@ void touchFrameImages(FrameContext& context, const gl::RenderTarget& target, Acc
 // the first batch only, so that summing batches counts it once. An SRBF
 // light is kind 2 (lightVector.w), its bandwidth in lightScale.w.
 gl::LightUniforms lightUniforms(const RenderPlan& plan, size_t batch) {
+    const FrameRecipe& recipe = plan.recipe();
     gl::LightUniforms uniforms;
-    auto [begin, end] = plan.lightBatches[batch];
+    auto [begin, end] = recipe.lighting.batches[batch];
     size_t count = end - begin;
     for (size_t i = 0; i < count; ++i) {
-        const ShadingLight& light = plan.lights.lights[begin + i];
+        const ShadingLight& light = recipe.lighting.lights.lights[begin + i];
         const float kind = light.isSrbf() ? 2.0f : light.isLocal ? 1.0f : 0.0f;
         uniforms.lightVector[i] = glm::vec4(light.directionOrPosition, kind);
         uniforms.lightScale[i] = glm::vec4(light.scale, light.srbfBandwidth);
@@ -72,8 +73,8 @@ gl::LightUniforms lightUniforms(const RenderPlan& plan, size_t batch) {
     uniforms.lightCount = glm::ivec4(int(count), int(batch), 0, 0);
     // w: 0 a flat ambient term (domeLighting=ambient, or no dome), 1 the
     // uniform dome's analytic response (srbf), which shades from the tables.
-    const bool uniformDome = glm::length(plan.lights.uniformDome) > 0.0f;
-    const glm::vec3 dome = uniformDome ? plan.lights.uniformDome : plan.lights.ambient;
+    const bool uniformDome = glm::length(recipe.lighting.lights.uniformDome) > 0.0f;
+    const glm::vec3 dome = uniformDome ? recipe.lighting.lights.uniformDome : recipe.lighting.lights.ambient;
     uniforms.ambient = batch == 0 ? glm::vec4(dome, uniformDome ? 1.0f : 0.0f) : glm::vec4(0.0f);
     return uniforms;
 }
@@ -83,7 +84,7 @@ void sortAndSend(FrameContext& context) {
     touch(context, ResourceKind::DrawOrder, Access::Write);
     const CameraView& camera = *context.inputs.camera;
     binSortSegments(context.inputs.sortSpans, camera.position(), camera.forward(),
-                    context.plan.sortBins, context.drawOrder);
+                    context.plan.recipe().transparency.sortBins, context.drawOrder);
     // Once a frame: every light batch draws with the same order. The pass
     // makes its order buffer without naming it; it is the draw order's.
     const gl::GpuMemoryUse use("drawOrder");
@@ -137,11 +138,11 @@ void meshUpload(FrameContext& context) {
 // lookups are taken per point when the plan says so (shadowSampling). Each
 // set the frame uses is named once in the stats.
 gl::ShadingFeatures strandFeatures(FrameContext& context, size_t batch, bool ids) {
-    const RenderPlan& plan = context.plan;
-    gl::ShadingFeatures features = !plan.specializeShaders ? gl::ShadingFeatures::all()
-                                   : ids                   ? gl::ShadingFeatures()
-                                           : batchShadingFeatures(plan, batch, context.inputs.materialFeatures);
-    if (plan.shadows.perVertex && !ids) features.setVertexShadowLights(batchVertexShadowLights(plan, batch));
+    const FrameRecipe& recipe = context.plan.recipe();
+    gl::ShadingFeatures features = !recipe.execution.specializeShaders ? gl::ShadingFeatures::all()
+                                   : ids                               ? gl::ShadingFeatures()
+                                         : batchShadingFeatures(recipe, batch, context.inputs.materialFeatures);
+    if (recipe.shadows.perVertex && !ids) features.setVertexShadowLights(batchVertexShadowLights(recipe, batch));
     std::vector<std::string>& named = context.result.stats.strandShaders;
     const std::string name = features.describe();
     if (std::find(named.begin(), named.end(), name) == named.end()) named.push_back(name);
@@ -160,7 +161,7 @@ gl::ShadingFeatures bindBatchInputs(FrameContext& context, gl::RenderTarget& tar
     resources.shadowMaps.bindForLookup();
     resources.shadowReference.bindForLookup();
     const gl::LightUniforms lights = lightUniforms(context.plan, batch);
-    const gl::ShadowUniforms shadows = batchShadowUniforms(context.plan, batch);
+    const gl::ShadowUniforms shadows = batchShadowUniforms(context.plan.recipe(), batch);
     const gl::ShadingFeatures features = strandFeatures(context, batch, false);
     resources.strandPass.setUniforms(context.inputs.frame, lights, shadows, features);
     return features;
@@ -170,9 +171,10 @@ gl::ShadingFeatures bindBatchInputs(FrameContext& context, gl::RenderTarget& tar
 // uniforms name them by slot: each planned shadow's map (and the meshes'
 // depth beside it), and the mip chain when an SRBF light reads through it.
 void touchBatchShadows(FrameContext& context, size_t batch) {
-    const ShadowPlan& shadows = context.plan.shadows;
-    const gl::ShadowUniforms uniforms = batchShadowUniforms(context.plan, batch);
-    const auto [begin, end] = context.plan.lightBatches[batch];
+    const FrameRecipe& recipe = context.plan.recipe();
+    const ShadowPlan& shadows = recipe.shadows;
+    const gl::ShadowUniforms uniforms = batchShadowUniforms(context.plan.recipe(), batch);
+    const auto [begin, end] = recipe.lighting.batches[batch];
     for (size_t entry = 0; entry < end - begin && entry < size_t(gl::kMaxLightsPerPass); ++entry) {
         const int slot = int(uniforms.lightMap[entry].x);
         if (slot < 0) continue;
@@ -181,7 +183,7 @@ void touchBatchShadows(FrameContext& context, size_t batch) {
             touch(context, shadows.resourceOf(shadow), Access::Read);
             if (shadows.meshesCast) touch(context, shadows.meshResourceOf(shadow), Access::Read);
         }
-        if (shadows.convolvedOpacity && context.plan.lights.lights[begin + entry].isSrbf())
+        if (shadows.convolvedOpacity && recipe.lighting.lights.lights[begin + entry].isSrbf())
             touch(context, ResourceKind::ConvolvedOpacity, Access::Read);
     }
 }
@@ -192,9 +194,9 @@ void drawMeshes(FrameContext& context, gl::RenderTarget& target, size_t batch) {
     touch(context, ResourceKind::MeshGeometry, Access::Read);
     touchFrameImages(context, target, Access::Update, true);
     bindBatchInputs(context, target, batch);
-    context.resources.meshPass.draw(context.resources.meshes, context.inputs.meshes.draws,
-                                    context.inputs.frame.viewProjection,
-                                    context.plan.meshesLit ? gl::MeshShading::Lit : gl::MeshShading::Unlit);
+    context.resources.meshPass.draw(
+        context.resources.meshes, context.inputs.meshes.draws, context.inputs.frame.viewProjection,
+        context.plan.recipe().lighting.meshesLit ? gl::MeshShading::Lit : gl::MeshShading::Unlit);
 }
 
 void clear(FrameContext& context) {
@@ -202,7 +204,7 @@ void clear(FrameContext& context) {
     // Blended frames take their depth from the strand pass's min-blended
     // nearest depth (or the exact resolve), not from the depth buffer.
     const gl::RenderTargetImages images{context.inputs.idsRequested,
-                                        context.plan.transparency != TransparencyPath::Opaque,
+                                        context.plan.recipe().transparency.path != TransparencyPath::Opaque,
                                         context.inputs.samples};
     context.target = &context.resources.frameTarget(camera.imageWidth, camera.imageHeight, images);
     touch(context, ResourceKind::Color, Access::Write);
@@ -275,10 +277,12 @@ void reportLists(FrameContext& context, uint64_t fragments, size_t batch) {
 // Who lists each drawn prim's segments: the compute rasteriser, but for the
 // prims the plan gives the hardware rasteriser (into the same lists).
 gl::ListedSegments listedSegments(const RenderPlan& plan, const StrandUploadPlan& uploads) {
-    if (!plan.mixesRasterisers()) return {{}, uploads.drawRanges};
+    const FrameRecipe& recipe = plan.recipe();
+    if (!recipe.strandRaster.mixesRasterisers()) return {{}, uploads.drawRanges};
     gl::ListedSegments segments;
     for (size_t prim = 0; prim < uploads.ranges.size(); ++prim)
-        (plan.listedByHardware.at(prim) ? segments.hardware : segments.compute).push_back(uploads.ranges[prim]);
+        (recipe.strandRaster.listedByHardware.at(prim) ? segments.hardware : segments.compute)
+            .push_back(uploads.ranges[prim]);
     return {gl::joinedRanges(segments.hardware), gl::joinedRanges(segments.compute)};
 }
 
@@ -310,9 +314,10 @@ void listStrands(FrameContext& context, gl::RenderTarget& target, size_t batch, 
     touchFrameImages(context, target, Access::Update, true);  // the resolve writes depth and ids
     const size_t capacity = compute ? inputs.computeRasterCapacity : inputs.fragmentListCapacity;
     const uint64_t fragments = resources.fragmentLists.render(
-        resources.strands, compute ? listedSegments(plan, inputs.uploads) : gl::ListedSegments{inputs.uploads.drawRanges, {}},
-        camera.imageWidth, camera.imageHeight, capacity, plan.expectedFragments, inputs.frame.maxSegmentsPerSpan,
-        target.images().ids, features, compute ? target.depthTexture() : 0, filling);
+        resources.strands,
+        compute ? listedSegments(plan, inputs.uploads) : gl::ListedSegments{inputs.uploads.drawRanges, {}},
+        camera.imageWidth, camera.imageHeight, capacity, plan.recipe().strandRaster.expectedFragments,
+        inputs.frame.maxSegmentsPerSpan, target.images().ids, features, compute ? target.depthTexture() : 0, filling);
     if (resources.fragmentLists.stopped()) return;
     if (fragments <= capacity) return reportLists(context, fragments, batch);
     context.result.stats.fragments = fragments;
@@ -320,14 +325,15 @@ void listStrands(FrameContext& context, gl::RenderTarget& target, size_t batch, 
         context.diagnostics.warn(
             "render", fmt::format("the compute rasteriser needs {} MB for {} fragments, more than "
                                   "strandRasterMemoryMB={}; drawn by the hardware rasteriser instead",
-                                  fragmentListMB(fragments), fragments, plan.strandRasterMemoryMB));
+                                  fragmentListMB(fragments), fragments, plan.recipe().strandRaster.memoryMB));
         return fallBack(context, FrameFallback::Kind::ComputeListsOverBudget,
                         "compute -> hardware rasteriser: fragment lists over strandRasterMemoryMB");
     }
-    const std::string needed = fmt::format("exact transparency needs {} MB for {} fragments, more than "
-                                           "exactMemoryMB={}",
-                                           fragmentListMB(fragments), fragments, plan.exactMemoryMB);
-    if (plan.exactOverflowFails) {
+    const std::string needed = fmt::format(
+        "exact transparency needs {} MB for {} fragments, more than "
+        "exactMemoryMB={}",
+        fragmentListMB(fragments), fragments, plan.recipe().transparency.exactMemoryMB);
+    if (plan.recipe().transparency.exactOverflowFails) {
         context.failure = needed + " (exactOverflow=fail: raise exactMemoryMB or lower supersampling)";
         context.stopped = true;
         return;
@@ -343,16 +349,18 @@ void listStrands(FrameContext& context, gl::RenderTarget& target, size_t batch, 
 // and resolved (compute rasteriser, exact transparency), or drawn blended
 // or opaque by the hardware.
 void drawStrands(FrameContext& context, gl::RenderTarget& target, size_t batch) {
-    const RenderPlan& plan = context.plan;
+    const FrameRecipe& recipe = context.plan.recipe();
     touch(context, ResourceKind::Strands, Access::Read);
     touchBatchShadows(context, batch);
     const gl::ShadingFeatures features = bindBatchInputs(context, target, batch);
-    if (plan.strandRaster == StrandRaster::Compute) return listStrands(context, target, batch, features, true);
-    if (plan.transparency == TransparencyPath::Exact) return listStrands(context, target, batch, features, false);
+    if (recipe.strandRaster.rasteriser == StrandRaster::Compute)
+        return listStrands(context, target, batch, features, true);
+    if (recipe.transparency.path == TransparencyPath::Exact)
+        return listStrands(context, target, batch, features, false);
     const bool ordered = context.inputs.frame.orderedDraw != 0;
     if (ordered) touch(context, ResourceKind::DrawOrder, Access::Read);
     // Blended, the ids are the ids pass's; opaque, the depth test keeps them here.
-    const bool opaque = plan.transparency == TransparencyPath::Opaque;
+    const bool opaque = recipe.transparency.path == TransparencyPath::Opaque;
     touchFrameImages(context, target, Access::Update, opaque);
     drawStrandPieces(context, ordered, opaque ? gl::StrandBlending::Opaque : gl::StrandBlending::PremultipliedOver);
 }
@@ -385,7 +393,7 @@ void lightBatch(FrameContext& context, size_t batch) {
 }
 
 void prepareShadowMaps(FrameContext& context) {
-    const ShadowPlan& shadows = context.plan.shadows;
+    const ShadowPlan& shadows = context.plan.recipe().shadows;
     context.resources.shadowMaps.ensure(shadows.resolution, (shadows.layers + 3) / 4, std::max(shadows.capacity, 1),
                                         shadows.convolvedOpacity);
 }
@@ -408,9 +416,9 @@ void hairShadowMap(FrameContext& context, size_t shadow, PassKind kind) {
     }
     prepareShadowMaps(context);
     FrameResources& resources = context.resources;
-    const gl::FrameUniforms view = lightViewFrameUniforms(context.plan, shadow, context.inputs.frame);
-    const gl::ShadowUniforms uniforms = lightShadowUniforms(context.plan, shadow);
-    const gl::LightViewStrands drawn = lightViewStrands(context.plan.shadows.lights[shadow]);
+    const gl::FrameUniforms view = lightViewFrameUniforms(context.plan.recipe(), shadow, context.inputs.frame);
+    const gl::ShadowUniforms uniforms = lightShadowUniforms(context.plan.recipe(), shadow);
+    const gl::LightViewStrands drawn = lightViewStrands(context.plan.recipe().shadows.lights[shadow]);
     if (kind == PassKind::ShadowDepth)
         resources.shadowMapPass.renderDepth(resources.shadowMaps, resources.strands, context.inputs.uploads.drawRanges,
                                             view, uniforms, drawn);
@@ -433,14 +441,14 @@ void meshShadow(FrameContext& context, size_t shadow) {
     FrameResources& resources = context.resources;
     resources.shadowMapPass.renderMeshDepth(resources.shadowMaps, resources.meshPass, resources.meshes,
                                             context.inputs.meshes.draws,
-                                            lightViewFrameUniforms(context.plan, shadow, context.inputs.frame),
-                                            lightShadowUniforms(context.plan, shadow));
+                                            lightViewFrameUniforms(context.plan.recipe(), shadow, context.inputs.frame),
+                                            lightShadowUniforms(context.plan.recipe(), shadow));
 }
 
 // "opacityMipmaps": the mip chain of every map (ShadowMapStorage says why
 // all at once).
 void opacityMipmaps(FrameContext& context) {
-    const ShadowPlan& shadows = context.plan.shadows;
+    const ShadowPlan& shadows = context.plan.recipe().shadows;
     for (size_t shadow = 0; shadow < shadows.lights.size(); ++shadow)
         if (shadows.isMapped(shadows.lights[shadow])) touch(context, shadows.resourceOf(shadow), Access::Read);
     touch(context, ResourceKind::ConvolvedOpacity, Access::Write);
@@ -450,18 +458,19 @@ void opacityMipmaps(FrameContext& context) {
 
 // "shadowFragments L": every fragment of light L's view (shadowMode=reference).
 void shadowFragments(FrameContext& context, size_t shadow) {
+    const FrameRecipe& recipe = context.plan.recipe();
     touch(context, ResourceKind::Strands, Access::Read);
     touch(context, {ResourceKind::ShadowFragments, shadow}, Access::Write);
     FrameResources& resources = context.resources;
-    const PlannedShadow& planned = context.plan.shadows.lights[shadow];
-    resources.shadowReference.ensure(context.plan.shadows.resolution, std::max(context.plan.shadows.capacity, 1));
+    const PlannedShadow& planned = recipe.shadows.lights[shadow];
+    resources.shadowReference.ensure(recipe.shadows.resolution, std::max(recipe.shadows.capacity, 1));
     if (!context.shadowPoolEmptied) resources.shadowReference.reset();
     context.shadowPoolEmptied = true;
     bool written = false;
-    const uint64_t nodes = resources.shadowReference.render(
-        resources.strands, context.inputs.uploads.drawRanges,
-        lightViewFrameUniforms(context.plan, shadow, context.inputs.frame), lightShadowUniforms(context.plan, shadow),
-        &written);
+    const uint64_t nodes =
+        resources.shadowReference.render(resources.strands, context.inputs.uploads.drawRanges,
+                                         lightViewFrameUniforms(context.plan.recipe(), shadow, context.inputs.frame),
+                                         lightShadowUniforms(context.plan.recipe(), shadow), &written);
     if (written) return;
     const std::string needed = fmt::format("shadowMode=reference needs {} MB of light-view fragments, more than one "
                                            "GL storage block holds",

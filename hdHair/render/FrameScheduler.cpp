@@ -5,13 +5,13 @@
 namespace hdhair {
 
 void runFrameGraph(FrameContext& context, gl::PassTiming timing) {
-    const std::vector<FramePass>& passes = context.plan.graph.passes();
+    const std::vector<FramePass>& passes = context.plan.graph().passes();
     gl::PassTimer timer(timing, passes.size());
     for (size_t i = 0; i < passes.size(); ++i) {
         if (!passes[i].enabled) continue;
         if (stopRequested(context) && !runsWhenStopped(passes[i])) {
             if (std::optional<size_t> shadow = shadowMapBuiltBy(passes[i]))
-                context.unbuiltShadowMaps.push_back(context.plan.shadows.lights[*shadow].key);
+                context.unbuiltShadowMaps.push_back(context.plan.recipe().shadows.lights[*shadow].key);
             continue;
         }
         timer.begin(i, isCpuPass(passes[i]));

@@ -51,7 +51,7 @@ struct RenderStats {
     std::string strandRaster;     // who rasterised the camera's strands: hardware, compute, or compute+hardware (auto, per prim)
     uint64_t fragments = 0;       // strand fragments, when known (exact transparency and the compute rasteriser count them)
     // The plan's estimate of them, which sizes a first frame's list storage
-    // (FrameRecipe::expectedFragments; 0 unknown).
+    // (StrandRasterPlan::expectedFragments; 0 unknown).
     uint64_t expectedFragments = 0;
     // With fragment lists: the 16-pixel tiles of the image that held
     // fragments (the resolve covers only those), of all the image's tiles.

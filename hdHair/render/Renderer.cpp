@@ -59,26 +59,23 @@ double millisecondsSince(Clock::time_point start) {
     return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
 }
 
-gl::FrameUniforms frameUniforms(const CameraView& camera, const RenderSettings& settings, const RenderPlan& plan) {
+gl::FrameUniforms frameUniforms(const CameraView& camera, const FrameRecipe& recipe) {
     gl::FrameUniforms frame;
     frame.viewProjection = glm::mat4(camera.projection * camera.view);
     frame.cameraPosition = glm::vec4(glm::vec3(camera.position()), camera.orthographic ? 0.0f : 1.0f);
     frame.cameraForward = glm::vec4(glm::vec3(camera.forward()), 0.0f);
     frame.viewportSize = glm::vec2(float(camera.imageWidth), float(camera.imageHeight));
-    frame.pixelsPerSegment = float(settings.values().pixelsPerSegment);
-    frame.tessellationTolerance =
-        settings.values().tessellation == Tessellation::ScreenError ? float(settings.values().tessellationTolerance) : 0.0f;
-    frame.maxSegmentsPerSpan = float(settings.values().maxSegmentsPerSpan);
+    frame.pixelsPerSegment = float(recipe.tessellation.pixelsPerSegment);
+    frame.tessellationTolerance = float(recipe.tessellation.tolerance);
+    frame.maxSegmentsPerSpan = float(recipe.tessellation.maxSegmentsPerSpan);
     frame.pixelsPerUnit = float(camera.pixelsPerUnit());
-    bool opaque = plan.transparency == TransparencyPath::Opaque;
-    // The opaque path draws true widths; every blended path applies coverage.
-    frame.minPixelWidth = opaque ? 0.0f : float(settings.values().minPixelWidth);
-    frame.drawMode = opaque ? 0 : 1;
-    frame.orderedDraw = plan.drawsSorted() ? 1 : 0;
+    frame.minPixelWidth = float(recipe.tessellation.minPixelWidth);
+    frame.drawMode = recipe.transparency.path == TransparencyPath::Opaque ? 0 : 1;
+    frame.orderedDraw = recipe.drawsSorted() ? 1 : 0;
     frame.nearestStrandMinAlpha = kNearestStrandMinAlpha;
-    const glm::mat3 toRec709 = glm::inverse(rec709To(settings.renderingSpace()));
+    const glm::mat3 toRec709 = glm::inverse(rec709To(recipe.lighting.renderingSpace));
     for (int column = 0; column < 3; ++column) frame.colorToRec709[column] = glm::vec4(toRec709[column], 0.0f);
-    frame.shadowSegmentLength = float(plan.shadows.vertexSegmentLength);
+    frame.shadowSegmentLength = float(recipe.shadows.vertexSegmentLength);
     return frame;
 }
 
@@ -331,9 +328,10 @@ MeshUpload Renderer::meshUpload(const Scene& scene, MeshSummary& summary) {
 }
 
 ShadowMapAssignment Renderer::decideShadowMaps(const RenderPlan& plan, const StrandSummary& summary,
-                                               const RenderSettings& settings, const FrameFallbacks& fallbacks,
-                                               Diagnostics& diagnostics, RenderStats& stats) {
-    const ShadowPlan& shadows = plan.shadows;
+                                               const FrameFallbacks& fallbacks, Diagnostics& diagnostics,
+                                               RenderStats& stats) {
+    const FrameRecipe& recipe = plan.recipe();
+    const ShadowPlan& shadows = recipe.shadows;
     ShadowMapAssignment assignment;
     assignment.maps.resize(shadows.lights.size());
     std::vector<ShadowMapRequest> requests;
@@ -341,9 +339,10 @@ ShadowMapAssignment Renderer::decideShadowMaps(const RenderPlan& plan, const Str
     for (size_t i = 0; i < shadows.lights.size(); ++i) {
         const PlannedShadow& shadow = shadows.lights[i];
         // The camera light, when used, is the last light.
-        const bool followsCamera = plan.cameraLight && shadow.light + 1 == plan.lights.lights.size();
-        if (shadows.mode != ShadowMode::Off && !plan.flatShading && summary.segments > 0 && !shadow.view.valid &&
-            !shadow.overBudget)
+        const bool followsCamera =
+            recipe.lighting.cameraLight && shadow.light + 1 == recipe.lighting.lights.lights.size();
+        if (shadows.mode != ShadowMode::Off && !recipe.lighting.flatShading && summary.segments > 0 &&
+            !shadow.view.valid && !shadow.overBudget)
             diagnostics.warn(shadow.key, "no shadows from this light: " + shadow.view.fallback);
         if (!plan.shadowUsed(i)) continue;
         if (auto unbuildable = fallbacks.unbuildableShadows.find(shadow.key);
@@ -354,16 +353,8 @@ ShadowMapAssignment Renderer::decideShadowMaps(const RenderPlan& plan, const Str
         requests.push_back({shadow.key, shadow.view, followsCamera});
         requested.push_back(i);
     }
-    const bool shadowsDrawn = shadows.overBudget > 0 && !plan.flatShading && summary.segments > 0;
-    // The reference must not shade lights unshadowed: it is what the SRBF
-    // path's shadows are measured against (DomeLighting.h).
-    if (shadowsDrawn && settings.values().domeLighting == DomeLightingMode::Sampled)
-        throw std::invalid_argument(fmt::format(
-            "domeLighting=sampled: {} lights cast shadows, more than the {} maps shadowMemoryMB={} holds at "
-            "shadowMapResolution={} ({} would be drawn unshadowed); lower domeSampledLights or "
-            "shadowMapResolution, or raise shadowMemoryMB",
-            shadows.lights.size(), shadows.maxMaps, shadows.memoryMB, shadows.resolution,
-            shadows.overBudget));
+    // domeLighting=sampled throws over budget when it is planned (planShadows).
+    const bool shadowsDrawn = shadows.overBudget > 0 && !recipe.lighting.flatShading && summary.segments > 0;
     if (shadowsDrawn)
         diagnostics.warn("render", fmt::format("{} lights cast shadows, more than the {} maps shadowMemoryMB={} holds "
                                                "at shadowMapResolution={}; the last {} in path order shade "
@@ -626,16 +617,16 @@ Renderer::GatheredFrame Renderer::gatherFrame(const Scene& scene, const CameraVi
     return frame;
 }
 
-std::optional<FrameFallback> Renderer::runFrame(FrameInputs& inputs, RenderResult& result,
-                                               const RenderSettings& settings, Diagnostics& diagnostics,
-                                               const FrameControl& control) {
+std::optional<FrameFallback> Renderer::runFrame(FrameInputs& inputs, RenderResult& result, Diagnostics& diagnostics,
+                                                const FrameControl& control) {
     RenderStats& stats = result.stats;
-    const DrawBatching drawBatching = settings.values().drawBatching;
+    const ExecutionPlan& execution = result.plan.recipe().execution;
+    const DrawBatching drawBatching = execution.batching;
     const gl::PatchBatching batching = drawBatching == DrawBatching::Auto
                                            ? gl::PatchBatching::forDriver(glThread_->contextDescription())
                                            : gl::PatchBatching::forced(drawBatching == DrawBatching::On);
     stats.drawBatching = batching.describe();
-    const gl::PassTiming timing = settings.values().passTimings ? passTiming_ : gl::PassTiming::Off;
+    const gl::PassTiming timing = execution.passTimings ? passTiming_ : gl::PassTiming::Off;
     stats.passTiming = gl::toString(timing);
     for (const auto& [path, cached] : curves_) {
         stats.cpuBytes["preparedCurves"] += cached.prepared ? cached.prepared->heldBytes() : 0;
@@ -648,7 +639,7 @@ std::optional<FrameFallback> Renderer::runFrame(FrameInputs& inputs, RenderResul
     std::vector<double> passMilliseconds;
     const bool stopped = glThread_->run([&] {
         resources_->strands.setBatching(batching);
-        inputs.samples = std::min(result.plan.msaaSamples, resources_->maxSamples);
+        inputs.samples = std::min(result.plan.recipe().transparency.msaaSamples, resources_->maxSamples);
         FrameContext context{inputs, result.plan, *resources_, diagnostics, result, {}, nullptr, false, {}};
         context.cancellation = control.cancellation;
         context.strandPieceSegments = control.strandPieceSegments;
@@ -681,17 +672,17 @@ std::optional<FrameFallback> Renderer::runFrame(FrameInputs& inputs, RenderResul
 
 void Renderer::reportFrame(const Scene& scene, const CameraView& camera, const RenderSettings& settings,
                            const GatheredFrame& frame, Diagnostics& diagnostics, RenderResult& result) {
-    const RenderPlan& plan = result.plan;
+    const FrameRecipe& recipe = result.plan.recipe();
     RenderStats& stats = result.stats;
-    if (plan.lightsOverCap > 0)
+    if (recipe.lighting.overCap > 0)
         diagnostics.warn("render", fmt::format("the stage has {} lights, more than the {} a frame shades; the last {} "
                                                "in path order are left out",
-                                               scene.lights().size(), kMaxLights, plan.lightsOverCap));
+                                               scene.lights().size(), kMaxLights, recipe.lighting.overCap));
     replaceNonFinitePixels(result, diagnostics);
-    if (frame.inputs.samples < plan.msaaSamples)
+    if (frame.inputs.samples < recipe.transparency.msaaSamples)
         diagnostics.warn("render", fmt::format("msaaSamples={} is more than this GL driver offers; using {}",
-                                               plan.msaaSamples, frame.inputs.samples));
-    stats.lightPasses = plan.lightBatches.size();
+                                               recipe.transparency.msaaSamples, frame.inputs.samples));
+    stats.lightPasses = recipe.lighting.batches.size();
     stats.uploadedSegments = frame.inputs.uploads.writtenSegments;
     stats.imageWidth = camera.imageWidth;
     stats.imageHeight = camera.imageHeight;
@@ -701,9 +692,10 @@ void Renderer::reportFrame(const Scene& scene, const CameraView& camera, const R
     stats.curves = frame.curves;
     stats.segments = frame.strands.segments;
     stats.meshTriangles = frame.meshes.triangles;
-    stats.transparency = toString(plan.transparency);
-    stats.strandRaster = plan.mixesRasterisers() ? "compute+hardware" : toString(plan.strandRaster);
-    stats.expectedFragments = plan.expectedFragments;
+    stats.transparency = toString(recipe.transparency.path);
+    stats.strandRaster =
+        recipe.strandRaster.mixesRasterisers() ? "compute+hardware" : toString(recipe.strandRaster.rasteriser);
+    stats.expectedFragments = recipe.strandRaster.expectedFragments;
     stats.glRenderer = glDescription();
     stats.glDevice = glDevice();
     stats.settings = settings.toJson();
@@ -721,7 +713,7 @@ RenderPlan Renderer::planFrame(const Scene& scene, const CameraView& camera, con
     // A preview leaves the shadow maps to the full frames.
     if (control.preview) return provisional;
     PlanRequest withMaps = request;
-    withMaps.shadowMaps = decideShadowMaps(provisional, frame.strands, settings, request.fallbacks, diagnostics, stats);
+    withMaps.shadowMaps = decideShadowMaps(provisional, frame.strands, request.fallbacks, diagnostics, stats);
     return makeRenderPlan(scene, settings, camera, frame.strands, frame.meshes, frame.domes, withMaps);
 }
 
@@ -760,12 +752,12 @@ RenderResult Renderer::renderSamples(const Scene& scene, const CameraView& camer
         Diagnostics replanning;
         Diagnostics& planning = result.abandonedPlans.empty() ? diagnostics : replanning;
         result.plan = planFrame(scene, camera, settings, frame, request, control, planning, result.stats);
-        inputs.frame = frameUniforms(camera, settings, result.plan);
-        inputs.fragmentListCapacity = size_t(result.plan.exactMemoryMB) * 1024 * 1024 / gl::kFragmentNodeBytes;
-        inputs.computeRasterCapacity =
-            size_t(result.plan.strandRasterMemoryMB) * 1024 * 1024 / gl::kFragmentNodeBytes;
+        const FrameRecipe& recipe = result.plan.recipe();
+        inputs.frame = frameUniforms(camera, recipe);
+        inputs.fragmentListCapacity = size_t(recipe.transparency.exactMemoryMB) * 1024 * 1024 / gl::kFragmentNodeBytes;
+        inputs.computeRasterCapacity = size_t(recipe.strandRaster.memoryMB) * 1024 * 1024 / gl::kFragmentNodeBytes;
         const size_t passesBefore = result.stats.passes.size();
-        const std::optional<FrameFallback> fallback = runFrame(inputs, result, settings, diagnostics, control);
+        const std::optional<FrameFallback> fallback = runFrame(inputs, result, diagnostics, control);
         if (!fallback) break;
         if (!request.fallbacks.add(*fallback))
             throw std::logic_error("a frame pass reported a fallback its plan had already made: " + fallback->reason);

@@ -113,8 +113,8 @@ private:
     // The plan's passes on the GL thread. Throws FrameCancelled, or
     // std::runtime_error when the frame failed (exactOverflow=fail).
     // Returns what a pass found that makes the plan impossible, if one did.
-    std::optional<FrameFallback> runFrame(FrameInputs& inputs, RenderResult& result, const RenderSettings& settings,
-                                          Diagnostics& diagnostics, const FrameControl& control);
+    std::optional<FrameFallback> runFrame(FrameInputs& inputs, RenderResult& result, Diagnostics& diagnostics,
+                                          const FrameControl& control);
     // The frame's warnings and statistics.
     void reportFrame(const Scene& scene, const CameraView& camera, const RenderSettings& settings,
                      const GatheredFrame& frame, Diagnostics& diagnostics, RenderResult& result);
@@ -158,8 +158,7 @@ private:
     // for the maps an enabled pass of the provisional plan reads; the lights
     // an earlier attempt could not build a map for get none.
     ShadowMapAssignment decideShadowMaps(const RenderPlan& provisional, const StrandSummary& summary,
-                                         const RenderSettings& settings, const FrameFallbacks& fallbacks,
-                                         Diagnostics& diagnostics, RenderStats& stats);
+                                         const FrameFallbacks& fallbacks, Diagnostics& diagnostics, RenderStats& stats);
     // The plan a frame runs, made whole before it runs: a provisional plan
     // says which shadow maps are read, the shadow map cache decides them, and
     // the plan is made again with them (a preview draws no maps).

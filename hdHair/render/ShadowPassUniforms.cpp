@@ -41,31 +41,31 @@ void setEntry(gl::ShadowUniforms& uniforms, int entry, const ShadowPlan& shadows
 
 }  // namespace
 
-gl::ShadowUniforms batchShadowUniforms(const RenderPlan& plan, size_t batch) {
-    gl::ShadowUniforms uniforms = common(plan.shadows);
-    auto [begin, end] = plan.lightBatches[batch];
+gl::ShadowUniforms batchShadowUniforms(const FrameRecipe& recipe, size_t batch) {
+    gl::ShadowUniforms uniforms = common(recipe.shadows);
+    auto [begin, end] = recipe.lighting.batches[batch];
     for (size_t light = begin; light < end && light - begin < size_t(gl::kMaxLightsPerPass); ++light) {
-        const int shadow = plan.shadows.shadowOf(light);
-        if (shadow >= 0) setEntry(uniforms, int(light - begin), plan.shadows, plan.shadows.lights[size_t(shadow)]);
+        const int shadow = recipe.shadows.shadowOf(light);
+        if (shadow >= 0) setEntry(uniforms, int(light - begin), recipe.shadows, recipe.shadows.lights[size_t(shadow)]);
     }
     return uniforms;
 }
 
-gl::ShadowUniforms lightShadowUniforms(const RenderPlan& plan, size_t shadow) {
-    gl::ShadowUniforms uniforms = common(plan.shadows);
-    setEntry(uniforms, 0, plan.shadows, plan.shadows.lights[shadow]);
+gl::ShadowUniforms lightShadowUniforms(const FrameRecipe& recipe, size_t shadow) {
+    gl::ShadowUniforms uniforms = common(recipe.shadows);
+    setEntry(uniforms, 0, recipe.shadows, recipe.shadows.lights[shadow]);
     return uniforms;
 }
 
-gl::FrameUniforms lightViewFrameUniforms(const RenderPlan& plan, size_t shadow, const gl::FrameUniforms& camera) {
-    const ShadowLightView& view = plan.shadows.lights[shadow].view;
+gl::FrameUniforms lightViewFrameUniforms(const FrameRecipe& recipe, size_t shadow, const gl::FrameUniforms& camera) {
+    const ShadowLightView& view = recipe.shadows.lights[shadow].view;
     gl::FrameUniforms frame = camera;
     frame.viewProjection = glm::mat4(view.projection * view.view);
     frame.cameraPosition = glm::vec4(glm::vec3(view.eye), view.orthographic ? 0.0f : 1.0f);
     frame.cameraForward = glm::vec4(glm::vec3(view.forward), 0.0f);
     frame.viewportSize = glm::vec2(float(view.resolution));
     frame.pixelsPerUnit = float(view.pixelsPerUnit);
-    frame.minPixelWidth = float(plan.shadows.minPixelWidth);
+    frame.minPixelWidth = float(recipe.shadows.minPixelWidth);
     frame.drawMode = 1;
     frame.orderedDraw = 0;
     // The levels follow the light's texels, not the camera's pixels
@@ -80,7 +80,7 @@ gl::FrameUniforms lightViewFrameUniforms(const RenderPlan& plan, size_t shadow, 
     // needs fewer segments than that, and does not change when only the
     // camera moves. The light views read no shadows: their spans are not cut
     // for vertex shadows either.
-    if (frame.tessellationTolerance > 0.0f) frame.tessellationTolerance = float(plan.shadows.tessellationTolerance);
+    if (frame.tessellationTolerance > 0.0f) frame.tessellationTolerance = float(recipe.shadows.tessellationTolerance);
     frame.shadowSegmentLength = 0.0f;
     return frame;
 }

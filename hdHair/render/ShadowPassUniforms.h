@@ -4,18 +4,17 @@
 // passes (entry 0), and the frame uniforms of a light's view.
 
 #include "hdHair/gl/UniformBlocks.h"
-#include "hdHair/plan/RenderPlan.h"
+#include "hdHair/plan/FrameRecipe.h"
 
 namespace hdhair {
 
-gl::ShadowUniforms batchShadowUniforms(const RenderPlan& plan, size_t batch);
-gl::ShadowUniforms lightShadowUniforms(const RenderPlan& plan, size_t shadow);
+gl::ShadowUniforms batchShadowUniforms(const FrameRecipe& recipe, size_t batch);
+gl::ShadowUniforms lightShadowUniforms(const FrameRecipe& recipe, size_t shadow);
 
 // The camera's frame seen from a light: its settings kept, the light's
 // projection, eye and pixels (which the tessellation levels follow: the
 // tolerance is in the map's texels), ribbons facing the light, the coverage
-// rule at plan.shadows.minPixelWidth, unordered.
-gl::FrameUniforms lightViewFrameUniforms(const RenderPlan& plan, size_t shadow, const gl::FrameUniforms& camera);
-
+// rule at recipe.shadows.minPixelWidth, unordered.
+gl::FrameUniforms lightViewFrameUniforms(const FrameRecipe& recipe, size_t shadow, const gl::FrameUniforms& camera);
 
 }  // namespace hdhair

@@ -12,8 +12,8 @@ namespace hdhair {
 namespace {
 
 // The lights a batch's draw reads: its range, at most a pass's worth.
-std::pair<size_t, size_t> batchLights(const RenderPlan& plan, size_t batch) {
-    const auto [begin, end] = plan.lightBatches[batch];
+std::pair<size_t, size_t> batchLights(const FrameRecipe& recipe, size_t batch) {
+    const auto [begin, end] = recipe.lighting.batches[batch];
     return {begin, std::min(end, begin + size_t(gl::kMaxLightsPerPass))};
 }
 
@@ -36,17 +36,19 @@ gl::ShadingFeatures materialShadingFeatures(const std::vector<HairMaterial>& mat
     return features;
 }
 
-gl::ShadingFeatures batchShadingFeatures(const RenderPlan& plan, size_t batch, const gl::ShadingFeatures& materials) {
+gl::ShadingFeatures batchShadingFeatures(const FrameRecipe& recipe, size_t batch,
+                                         const gl::ShadingFeatures& materials) {
     using gl::ShadingFeature;
     gl::ShadingFeatures features;
     features.add(ShadingFeature::Shade).add(materials);
-    if (batch == 0 && glm::length(plan.lights.uniformDome) > 0.0f) features.add(ShadingFeature::UniformDome);
-    const ShadowPlan& shadows = plan.shadows;
-    const auto [begin, end] = batchLights(plan, batch);
+    if (batch == 0 && glm::length(recipe.lighting.lights.uniformDome) > 0.0f) features.add(ShadingFeature::UniformDome);
+    const ShadowPlan& shadows = recipe.shadows;
+    const auto [begin, end] = batchLights(recipe, batch);
     for (size_t light = begin; light < end; ++light) {
-        const bool srbf = plan.lights.lights[light].isSrbf();
+        const bool srbf = recipe.lighting.lights.lights[light].isSrbf();
         if (srbf) features.add(ShadingFeature::SrbfLights);
-        else if (plan.lights.lights[light].isLocal) features.add(ShadingFeature::LocalLights);
+        else if (recipe.lighting.lights.lights[light].isLocal)
+            features.add(ShadingFeature::LocalLights);
         const int shadow = shadows.shadowOf(light);
         if (shadow < 0 || !shadows.isMapped(shadows.lights[size_t(shadow)])) continue;
         if (shadows.mode == ShadowMode::Reference) {
@@ -63,10 +65,10 @@ gl::ShadingFeatures batchShadingFeatures(const RenderPlan& plan, size_t batch, c
     return features;
 }
 
-int batchVertexShadowLights(const RenderPlan& plan, size_t batch) {
-    const ShadowPlan& shadows = plan.shadows;
+int batchVertexShadowLights(const FrameRecipe& recipe, size_t batch) {
+    const ShadowPlan& shadows = recipe.shadows;
     if (shadows.mode != ShadowMode::DeepOpacity) return 0;
-    const auto [begin, end] = batchLights(plan, batch);
+    const auto [begin, end] = batchLights(recipe, batch);
     int looked = 0;
     for (size_t light = begin; light < end; ++light) {
         const int shadow = shadows.shadowOf(light);

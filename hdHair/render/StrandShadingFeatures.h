@@ -9,8 +9,8 @@
 #include <vector>
 
 #include "hdHair/gl/ShadingFeatures.h"
+#include "hdHair/plan/FrameRecipe.h"
 #include "hdHair/plan/HairMaterial.h"
-#include "hdHair/plan/RenderPlan.h"
 
 namespace hdhair {
 
@@ -26,11 +26,11 @@ gl::ShadingFeatures materialShadingFeatures(const std::vector<HairMaterial>& mat
 // its lookup: deep opacity with the plan's layer count compiled in, or the
 // reference's fragment lists; the meshes' depth, the bilinear filter, and an
 // SRBF light's widening (mip chain or taps) as planned.
-gl::ShadingFeatures batchShadingFeatures(const RenderPlan& plan, size_t batch, const gl::ShadingFeatures& materials);
+gl::ShadingFeatures batchShadingFeatures(const FrameRecipe& recipe, size_t batch, const gl::ShadingFeatures& materials);
 
 // How many of batch `batch`'s lights vertex shadows look up: up to the last
 // that reads a deep opacity map (0: none; reference shadows are always
 // looked up per fragment).
-int batchVertexShadowLights(const RenderPlan& plan, size_t batch);
+int batchVertexShadowLights(const FrameRecipe& recipe, size_t batch);
 
 }  // namespace hdhair

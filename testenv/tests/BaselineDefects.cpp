@@ -160,7 +160,7 @@ std::vector<BaselineDefect> defectsThatApply(const Scene& scene, const StageRend
     const std::vector<VisiblePrim> prims = visiblePrims(scene);
     std::vector<BaselineDefect> defects;
 
-    if (baselinePlan.transparency == TransparencyPath::BinSorted &&
+    if (baselinePlan.recipe().transparency.path == TransparencyPath::BinSorted &&
         strandsOverlapOnScreen(prims, camera, settings.getFloat("minPixelWidth"))) {
         defects.push_back(settingsDefect("sorting off (transparency=unsorted)", {"transparency=unsorted"}));
     }

@@ -43,9 +43,9 @@ Scene twoStrands(bool crossing) {
 }
 
 RenderPlan planTaking(TransparencyPath path) {
-    RenderPlan plan;
-    plan.transparency = path;
-    return plan;
+    FrameRecipe recipe;
+    recipe.transparency.path = path;
+    return RenderPlan(recipe, FrameGraph());
 }
 
 std::vector<std::string> defectNames(const Scene& scene, TransparencyPath path = TransparencyPath::BinSorted) {

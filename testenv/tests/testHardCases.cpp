@@ -185,8 +185,8 @@ TEST(HardCases, AbsurdLightCountsAreCapped) {
     settings.set("shadowMemoryMB", "16");
     const RenderResult result = sharedRenderer().render(scene, orthographicView(12.0, 32), settings, diagnostics);
     EXPECT_TRUE(allFinite(result.color));
-    EXPECT_EQ(result.plan.lights.lights.size(), kMaxLights);
-    EXPECT_EQ(result.plan.lightsOverCap, 100000 - kMaxLights);
+    EXPECT_EQ(result.plan.recipe().lighting.lights.lights.size(), kMaxLights);
+    EXPECT_EQ(result.plan.recipe().lighting.overCap, 100000 - kMaxLights);
     EXPECT_TRUE(anyWarningContains(diagnostics.warnings(), "the stage has 100000 lights, more than the 1024"))
         << describe(diagnostics.warnings());
     EXPECT_TRUE(anyWarningContains(diagnostics.warnings(), "shade unshadowed")) << describe(diagnostics.warnings());

@@ -251,7 +251,7 @@ TEST(MeshRendering, LambertUnderADistantLight) {
         light.worldTransform = glm::rotate(glm::dmat4(1.0), glm::radians(tilt), glm::dvec3(1.0, 0.0, 0.0));
         scene.setLight(light);
         const RenderResult frame = render(scene, camera, {"shadingModel=kajiyaKay"});
-        EXPECT_TRUE(frame.plan.meshesLit);
+        EXPECT_TRUE(frame.plan.recipe().lighting.meshesLit);
         const float* rgba = &frame.color.pixels[4 * pixelIndex(kPixels / 2, kPixels / 2)];
         const float cosine = float(std::cos(glm::radians(tilt)));
         for (int c = 0; c < 3; ++c) EXPECT_NEAR(rgba[c], albedo[c] * cosine, 1e-5f) << "tilt " << tilt;
@@ -370,7 +370,7 @@ TEST(MeshRendering, UnlitMeshesAreCountedOnceAcrossLightBatches) {
     }
     const RenderResult frame = render(scene, camera, {"lightsPerPass=1"});
     EXPECT_EQ(frame.stats.lightPasses, 3u);
-    EXPECT_FALSE(frame.plan.meshesLit);
+    EXPECT_FALSE(frame.plan.recipe().lighting.meshesLit);
     const float* rgba = &frame.color.pixels[4 * pixelIndex(kPixels / 2, kPixels / 2)];
     EXPECT_EQ(glm::vec4(rgba[0], rgba[1], rgba[2], rgba[3]), glm::vec4(0.6f, 0.5f, 0.4f, 1.0f));
 }

@@ -101,7 +101,7 @@ TEST_P(SphereShadow, DarkensExactlyTheStrandsInItsShadow) {
     const RenderResult bare = render(strandsOnly, sampling);
     const RenderResult shadowed = render(withSphere, sampling);
     ASSERT_TRUE(shadowed.plan.isEnabled("meshShadow /light"));
-    EXPECT_FALSE(bare.plan.graph.find("meshShadow /light")) << "no meshes, no mesh shadow pass";
+    EXPECT_FALSE(bare.plan.graph().find("meshShadow /light")) << "no meshes, no mesh shadow pass";
 
     size_t inside = 0, outside = 0;
     for (int py = 0; py < kPixels; ++py) {

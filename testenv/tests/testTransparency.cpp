@@ -333,8 +333,8 @@ TEST(Transparency, ExactModeOverItsMemoryBudgetFallsBackAndSaysSo) {
     // overflowed is kept, with why, and the images come from the second.
     ASSERT_EQ(result.abandonedPlans.size(), 1u);
     EXPECT_EQ(result.abandonedPlans[0].reason, "exact -> binSorted (1024 bins): fragment lists over exactMemoryMB");
-    EXPECT_EQ(result.abandonedPlans[0].plan.transparency, TransparencyPath::Exact);
-    EXPECT_EQ(result.plan.transparency, TransparencyPath::BinSorted);
+    EXPECT_EQ(result.abandonedPlans[0].plan.recipe().transparency.path, TransparencyPath::Exact);
+    EXPECT_EQ(result.plan.recipe().transparency.path, TransparencyPath::BinSorted);
     EXPECT_TRUE(result.plan.isEnabled("sort"));
     EXPECT_FALSE(result.abandonedPlans[0].plan.isEnabled("sort"));
     EXPECT_NE(result.describePlans().find("this plan was abandoned: exact -> binSorted"), std::string::npos);
@@ -598,8 +598,8 @@ TEST(Transparency, ComputeRasterOverItsMemoryBudgetFallsBackToTheHardwareAndSays
               "the hardware rasteriser instead");
     EXPECT_NEAR(result.color.at(64, 64, 3), 1.0 - std::pow(0.9, 40), kOneStep);
     ASSERT_EQ(result.abandonedPlans.size(), 1u);
-    EXPECT_EQ(result.abandonedPlans[0].plan.strandRaster, StrandRaster::Compute);
-    EXPECT_EQ(result.plan.strandRaster, StrandRaster::Hardware);
+    EXPECT_EQ(result.abandonedPlans[0].plan.recipe().strandRaster.rasteriser, StrandRaster::Compute);
+    EXPECT_EQ(result.plan.recipe().strandRaster.rasteriser, StrandRaster::Hardware);
     // The same picture as a frame planned on the hardware from the start.
     Diagnostics direct;
     EXPECT_EQ(result.color.pixels, renderWithWarnings(scene, camera, {"strandRaster=hardware"}, direct).color.pixels);
@@ -612,8 +612,8 @@ TEST(Transparency, ComputeRasterOverItsMemoryBudgetFallsBackToTheHardwareAndSays
     EXPECT_EQ(twice.stats.fallback,
               "compute -> hardware rasteriser: fragment lists over strandRasterMemoryMB; exact -> binSorted (1024 "
               "bins): fragment lists over exactMemoryMB");
-    EXPECT_EQ(twice.plan.transparency, TransparencyPath::BinSorted);
-    EXPECT_EQ(twice.plan.strandRaster, StrandRaster::Hardware);
+    EXPECT_EQ(twice.plan.recipe().transparency.path, TransparencyPath::BinSorted);
+    EXPECT_EQ(twice.plan.recipe().strandRaster.rasteriser, StrandRaster::Hardware);
     EXPECT_EQ(both.warnings().size(), 2u);
     // Within budget the same frame stays in compute, with the same picture.
     RenderResult inBudget =

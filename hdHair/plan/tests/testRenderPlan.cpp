@@ -1,7 +1,10 @@
 #include <algorithm>
 #include <fstream>
-#include <sstream>
 #include <limits>
+#include <optional>
+#include <sstream>
+#include <type_traits>
+#include <utility>
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
@@ -17,7 +20,7 @@ namespace {
 
 // The names of what a pass reads, as --explain prints them.
 std::vector<std::string> readNames(const RenderPlan& plan, const std::string& pass) {
-    return plan.graph.namesOf(plan.graph.find(pass)->reads);
+    return plan.graph().namesOf(plan.graph().find(pass)->reads);
 }
 
 LightPrim hostLight() {
@@ -51,27 +54,33 @@ TEST(RenderPlan, HostCameraLightIsUsedOnlyLikeTheEnginesOwn) {
     scene.setLight(hostLight());
     RenderSettings settings;
     RenderPlan alone = makeRenderPlan(scene, settings, cameraAtPlusZ(), wideOpaqueStrands(10));
-    ASSERT_TRUE(alone.cameraLight);
-    ASSERT_EQ(alone.lights.lights.size(), 1u);
-    EXPECT_NEAR(alone.lights.lights[0].directionOrPosition.x, -1.0f, 1e-6f) << "the host's light, not a new one";
+    ASSERT_TRUE(alone.recipe().lighting.cameraLight);
+    ASSERT_EQ(alone.recipe().lighting.lights.lights.size(), 1u);
+    EXPECT_NEAR(alone.recipe().lighting.lights.lights[0].directionOrPosition.x, -1.0f, 1e-6f)
+        << "the host's light, not a new one";
 
     LightPrim key;
     key.path = "/World/key";
     scene.setLight(key);
     RenderPlan withStageLight = makeRenderPlan(scene, settings, cameraAtPlusZ(), wideOpaqueStrands(10));
-    EXPECT_FALSE(withStageLight.cameraLight);
-    EXPECT_EQ(withStageLight.lights.lights.size(), 1u);
+    EXPECT_FALSE(withStageLight.recipe().lighting.cameraLight);
+    EXPECT_EQ(withStageLight.recipe().lighting.lights.lights.size(), 1u);
 
     settings.set("cameraLight", "on");
-    EXPECT_EQ(makeRenderPlan(scene, settings, cameraAtPlusZ(), wideOpaqueStrands(10)).lights.lights.size(), 2u);
+    EXPECT_EQ(
+        makeRenderPlan(scene, settings, cameraAtPlusZ(), wideOpaqueStrands(10)).recipe().lighting.lights.lights.size(),
+        2u);
     settings.set("cameraLight", "off");
-    EXPECT_EQ(makeRenderPlan(Scene{}, settings, cameraAtPlusZ(), wideOpaqueStrands(10)).lights.lights.size(), 0u);
+    EXPECT_EQ(makeRenderPlan(Scene{}, settings, cameraAtPlusZ(), wideOpaqueStrands(10))
+                  .recipe()
+                  .lighting.lights.lights.size(),
+              0u);
 }
 
 TEST(RenderPlan, EnginesCameraLightShinesFromTheCamera) {
     RenderPlan plan = makeRenderPlan(Scene{}, RenderSettings{}, cameraAtPlusZ(), wideOpaqueStrands(10));
-    ASSERT_EQ(plan.lights.lights.size(), 1u);
-    EXPECT_NEAR(plan.lights.lights[0].directionOrPosition.z, 1.0f, 1e-6f);
+    ASSERT_EQ(plan.recipe().lighting.lights.lights.size(), 1u);
+    EXPECT_NEAR(plan.recipe().lighting.lights.lights[0].directionOrPosition.z, 1.0f, 1e-6f);
     EXPECT_TRUE(plan.isEnabled("strands"));
     EXPECT_FALSE(makeRenderPlan(Scene{}, RenderSettings{}, cameraAtPlusZ(), wideOpaqueStrands(0)).isEnabled("strands"));
 }
@@ -80,34 +89,37 @@ TEST(RenderPlan, OnlyStagesThatNeedBlendingAreSorted) {
     RenderSettings settings;
     settings.set("strandRaster", "hardware");  // the bin sort serves the hardware rasteriser
     RenderPlan wide = makeRenderPlan(Scene{}, settings, cameraAtPlusZ(), wideOpaqueStrands(10));
-    EXPECT_EQ(wide.transparency, TransparencyPath::Opaque);
+    EXPECT_EQ(wide.recipe().transparency.path, TransparencyPath::Opaque);
     EXPECT_FALSE(wide.isEnabled("sort"));
 
     StrandSummary thin = wideOpaqueStrands(10);
     thin.minProjectedWidthPixels = 0.5;  // sub-pixel: coverage needs blending
     RenderPlan sorted = makeRenderPlan(Scene{}, settings, cameraAtPlusZ(), thin);
-    EXPECT_EQ(sorted.transparency, TransparencyPath::BinSorted);
+    EXPECT_EQ(sorted.recipe().transparency.path, TransparencyPath::BinSorted);
     EXPECT_TRUE(sorted.isEnabled("sort"));
-    EXPECT_EQ(sorted.sortBins, 256u);
+    EXPECT_EQ(sorted.recipe().transparency.sortBins, 256u);
 
     StrandSummary translucent = wideOpaqueStrands(10);
     translucent.allOpaque = false;
     settings.set("transparency", "exact");
-    EXPECT_EQ(makeRenderPlan(Scene{}, settings, cameraAtPlusZ(), translucent).transparency, TransparencyPath::Exact);
+    EXPECT_EQ(makeRenderPlan(Scene{}, settings, cameraAtPlusZ(), translucent).recipe().transparency.path,
+              TransparencyPath::Exact);
     settings.set("transparency", "unsorted");
-    EXPECT_EQ(makeRenderPlan(Scene{}, settings, cameraAtPlusZ(), translucent).transparency,
+    EXPECT_EQ(makeRenderPlan(Scene{}, settings, cameraAtPlusZ(), translucent).recipe().transparency.path,
               TransparencyPath::Unsorted);
     settings.set("transparency", "opaque");
-    EXPECT_EQ(makeRenderPlan(Scene{}, settings, cameraAtPlusZ(), translucent).transparency, TransparencyPath::Opaque);
+    EXPECT_EQ(makeRenderPlan(Scene{}, settings, cameraAtPlusZ(), translucent).recipe().transparency.path,
+              TransparencyPath::Opaque);
 }
 
 TEST(RenderPlan, MsaaAppliesToTheOpaquePathOnly) {
     RenderSettings settings;
     settings.set("msaaSamples", "4");
-    EXPECT_EQ(makeRenderPlan(Scene{}, settings, cameraAtPlusZ(), wideOpaqueStrands(10)).msaaSamples, 4);
+    EXPECT_EQ(
+        makeRenderPlan(Scene{}, settings, cameraAtPlusZ(), wideOpaqueStrands(10)).recipe().transparency.msaaSamples, 4);
     StrandSummary thin = wideOpaqueStrands(10);
     thin.minProjectedWidthPixels = 0.5;
-    EXPECT_EQ(makeRenderPlan(Scene{}, settings, cameraAtPlusZ(), thin).msaaSamples, 0);
+    EXPECT_EQ(makeRenderPlan(Scene{}, settings, cameraAtPlusZ(), thin).recipe().transparency.msaaSamples, 0);
 }
 
 TEST(RenderPlan, SaysWhichPassProducesDepthAndIds) {
@@ -119,7 +131,7 @@ TEST(RenderPlan, SaysWhichPassProducesDepthAndIds) {
         settings.set("strandRaster", "hardware");  // compute: AutoRasterisesThinBlendedStrandsInComputeAndSaysWhy
         return makeRenderPlan(Scene{}, settings, cameraAtPlusZ(), translucent, ids);
     };
-    auto strandsReason = [](const RenderPlan& p) { return p.graph.find("strands")->reason; };
+    auto strandsReason = [](const RenderPlan& p) { return p.graph().find("strands")->reason; };
     // Blended paths other than exact draw ids in a pass of their own, only when asked for.
     for (const char* path : {"binSorted", "unsorted"}) {
         EXPECT_TRUE(plan(path, true).isEnabled("ids")) << path;
@@ -149,11 +161,12 @@ TEST(RenderPlan, SaysWhichPassProducesDepthAndIds) {
         return makeRenderPlan(Scene{}, settings, cameraAtPlusZ(), translucent, {}, {}, request);
     };
     RenderPlan fellBack = replanned(true);
-    EXPECT_EQ(fellBack.transparency, TransparencyPath::BinSorted);
-    EXPECT_EQ(fellBack.sortBins, 1024u);
+    EXPECT_EQ(fellBack.recipe().transparency.path, TransparencyPath::BinSorted);
+    EXPECT_EQ(fellBack.recipe().transparency.sortBins, 1024u);
     EXPECT_TRUE(fellBack.isEnabled("sort"));
     EXPECT_TRUE(fellBack.isEnabled("ids"));
-    EXPECT_NE(fellBack.transparencyReason.find("exact fell back"), std::string::npos) << fellBack.transparencyReason;
+    EXPECT_NE(fellBack.recipe().transparency.reason.find("exact fell back"), std::string::npos)
+        << fellBack.recipe().transparency.reason;
     EXPECT_FALSE(replanned(false).isEnabled("ids"));
 }
 
@@ -171,12 +184,12 @@ TEST(RenderPlan, AutoRasterisesThinBlendedStrandsInComputeAndSaysWhy) {
             request.fallbacks.add({FrameFallback::Kind::ComputeListsOverBudget, "compute -> hardware", ""});
         return makeRenderPlan(Scene{}, settings, cameraAtPlusZ(), strands, {}, {}, request);
     };
-    auto strandsReason = [](const RenderPlan& p) { return p.graph.find("strands")->reason; };
+    auto strandsReason = [](const RenderPlan& p) { return p.graph().find("strands")->reason; };
 
     // auto is the default.
     RenderPlan automatic = plan({}, thin, true);
-    EXPECT_EQ(automatic.strandRaster, StrandRaster::Compute);
-    EXPECT_EQ(automatic.transparency, TransparencyPath::BinSorted);
+    EXPECT_EQ(automatic.recipe().strandRaster.rasteriser, StrandRaster::Compute);
+    EXPECT_EQ(automatic.recipe().transparency.path, TransparencyPath::BinSorted);
     EXPECT_NE(strandsReason(automatic).find("compute: the strands project at most 1.50 px wide and cover about "
                                             "0.0 px a span or fewer (strandRasterMaxPixelWidth 4, "
                                             "strandRasterMaxFragmentsPerSpan 20; strandRaster=auto)"),
@@ -185,7 +198,7 @@ TEST(RenderPlan, AutoRasterisesThinBlendedStrandsInComputeAndSaysWhy) {
     // Lists sorted per pixel: no bin sort, no draw order, ids from the resolve.
     EXPECT_FALSE(automatic.isEnabled("sort"));
     EXPECT_FALSE(automatic.isEnabled("ids"));
-    const std::vector<FrameResource>& reads = automatic.graph.find("strands")->reads;
+    const std::vector<FrameResource>& reads = automatic.graph().find("strands")->reads;
     EXPECT_EQ(std::find(reads.begin(), reads.end(), FrameResource(ResourceKind::DrawOrder)), reads.end());
     EXPECT_NE(strandsReason(automatic).find("depth and ids: the nearest listed fragment"), std::string::npos);
 
@@ -193,41 +206,44 @@ TEST(RenderPlan, AutoRasterisesThinBlendedStrandsInComputeAndSaysWhy) {
     // with the transparency planned: binSorted needs its sort and, with ids,
     // the ids pass.
     RenderPlan fellBack = plan({}, thin, true, true);
-    EXPECT_EQ(fellBack.strandRaster, StrandRaster::Hardware);
+    EXPECT_EQ(fellBack.recipe().strandRaster.rasteriser, StrandRaster::Hardware);
     EXPECT_TRUE(fellBack.isEnabled("sort"));
     EXPECT_TRUE(fellBack.isEnabled("ids"));
-    EXPECT_NE(fellBack.strandRasterReason.find("hardware: the compute rasteriser's lists were over "
-                                               "strandRasterMemoryMB=512"),
+    EXPECT_NE(fellBack.recipe().strandRaster.reason.find("hardware: the compute rasteriser's lists were over "
+                                                         "strandRasterMemoryMB=512"),
               std::string::npos)
-        << fellBack.strandRasterReason;
+        << fellBack.recipe().strandRaster.reason;
 
     StrandSummary wide = thin;
     wide.maxProjectedWidthPixels = 6.0;
     RenderPlan wideAuto = plan({"strandRaster=auto"}, wide);
-    EXPECT_EQ(wideAuto.strandRaster, StrandRaster::Hardware);
-    EXPECT_NE(wideAuto.strandRasterReason.find("hardware: the strands may project 6.00 px wide ("),
+    EXPECT_EQ(wideAuto.recipe().strandRaster.rasteriser, StrandRaster::Hardware);
+    EXPECT_NE(wideAuto.recipe().strandRaster.reason.find("hardware: the strands may project 6.00 px wide ("),
               std::string::npos)
-        << wideAuto.strandRasterReason;
-    EXPECT_EQ(plan({"strandRaster=auto", "strandRasterMaxPixelWidth=8"}, wide).strandRaster, StrandRaster::Compute);
+        << wideAuto.recipe().strandRaster.reason;
+    EXPECT_EQ(plan({"strandRaster=auto", "strandRasterMaxPixelWidth=8"}, wide).recipe().strandRaster.rasteriser,
+              StrandRaster::Compute);
     StrandSummary justOver = thin;
     justOver.maxProjectedWidthPixels = 4.1;
-    EXPECT_EQ(plan({"strandRaster=auto"}, justOver).strandRaster, StrandRaster::Hardware);
+    EXPECT_EQ(plan({"strandRaster=auto"}, justOver).recipe().strandRaster.rasteriser, StrandRaster::Hardware);
     // An approximation asked for by a value other than the default keeps
     // the hardware path; the defaults (which Hydra hosts echo back as if
     // set) and exact, which the compute lists give too, do not.
     RenderPlan unsorted = plan({"transparency=unsorted"}, thin);
-    EXPECT_EQ(unsorted.strandRaster, StrandRaster::Hardware);
-    EXPECT_NE(unsorted.strandRasterReason.find("hardware: transparency=unsorted is set"), std::string::npos)
-        << unsorted.strandRasterReason;
-    EXPECT_EQ(plan({"sortBins=16"}, thin).strandRaster, StrandRaster::Hardware);
-    EXPECT_EQ(plan({"sortBins=16", "transparency=exact"}, thin).strandRaster, StrandRaster::Compute);
-    EXPECT_EQ(plan({"transparency=binSorted"}, thin).strandRaster, StrandRaster::Compute);
-    EXPECT_EQ(plan({"sortBins=256"}, thin).strandRaster, StrandRaster::Compute);
-    EXPECT_EQ(plan({"transparency=exact"}, thin).strandRaster, StrandRaster::Compute);
-    EXPECT_EQ(plan({"transparency=unsorted", "strandRaster=compute"}, thin).strandRaster, StrandRaster::Compute);
+    EXPECT_EQ(unsorted.recipe().strandRaster.rasteriser, StrandRaster::Hardware);
+    EXPECT_NE(unsorted.recipe().strandRaster.reason.find("hardware: transparency=unsorted is set"), std::string::npos)
+        << unsorted.recipe().strandRaster.reason;
+    EXPECT_EQ(plan({"sortBins=16"}, thin).recipe().strandRaster.rasteriser, StrandRaster::Hardware);
+    EXPECT_EQ(plan({"sortBins=16", "transparency=exact"}, thin).recipe().strandRaster.rasteriser,
+              StrandRaster::Compute);
+    EXPECT_EQ(plan({"transparency=binSorted"}, thin).recipe().strandRaster.rasteriser, StrandRaster::Compute);
+    EXPECT_EQ(plan({"sortBins=256"}, thin).recipe().strandRaster.rasteriser, StrandRaster::Compute);
+    EXPECT_EQ(plan({"transparency=exact"}, thin).recipe().strandRaster.rasteriser, StrandRaster::Compute);
+    EXPECT_EQ(plan({"transparency=unsorted", "strandRaster=compute"}, thin).recipe().strandRaster.rasteriser,
+              StrandRaster::Compute);
     StrandSummary reachesCamera = thin;
     reachesCamera.maxProjectedWidthPixels = std::numeric_limits<double>::infinity();
-    EXPECT_EQ(plan({"strandRaster=auto"}, reachesCamera).strandRaster, StrandRaster::Hardware);
+    EXPECT_EQ(plan({"strandRaster=auto"}, reachesCamera).recipe().strandRaster.rasteriser, StrandRaster::Hardware);
 
     // Per prim: the thin ones in compute, the wide ones listed by the
     // hardware into the same lists, while the thin hold at least half the
@@ -236,50 +252,53 @@ TEST(RenderPlan, AutoRasterisesThinBlendedStrandsInComputeAndSaysWhy) {
     mixed.maxProjectedWidthPixels = 9.0;
     mixed.prims = {{1.5, 600, 4.0}, {9.0, 100, 30.0}, {0.5, 300, 2.0}};
     RenderPlan mixedAuto = plan({}, mixed, true);
-    EXPECT_EQ(mixedAuto.strandRaster, StrandRaster::Compute);
-    EXPECT_EQ(mixedAuto.listedByHardware, (std::vector<bool>{false, true, false}));
-    EXPECT_TRUE(mixedAuto.mixesRasterisers());
+    EXPECT_EQ(mixedAuto.recipe().strandRaster.rasteriser, StrandRaster::Compute);
+    EXPECT_EQ(mixedAuto.recipe().strandRaster.listedByHardware, (std::vector<bool>{false, true, false}));
+    EXPECT_TRUE(mixedAuto.recipe().strandRaster.mixesRasterisers());
     EXPECT_FALSE(mixedAuto.isEnabled("sort"));
-    EXPECT_NE(mixedAuto.strandRasterReason.find("compute for 2 of 3 prims (900 of 1000 segments), whose strands "
-                                                "project at most 1.50 px wide and cover about 4.0 px a span or "
-                                                "fewer; the hardware rasteriser lists the 1 other prim(s), whose "
-                                                "strands may project 9.00 px wide, into the same lists"),
-              std::string::npos)
-        << mixedAuto.strandRasterReason;
-    EXPECT_FALSE(plan({}, mixed, true, true).mixesRasterisers());
+    EXPECT_NE(
+        mixedAuto.recipe().strandRaster.reason.find("compute for 2 of 3 prims (900 of 1000 segments), whose strands "
+                                                    "project at most 1.50 px wide and cover about 4.0 px a span or "
+                                                    "fewer; the hardware rasteriser lists the 1 other prim(s), whose "
+                                                    "strands may project 9.00 px wide, into the same lists"),
+        std::string::npos)
+        << mixedAuto.recipe().strandRaster.reason;
+    EXPECT_FALSE(plan({}, mixed, true, true).recipe().strandRaster.mixesRasterisers());
     mixed.prims = {{1.5, 400, 4.0}, {std::numeric_limits<double>::infinity(), 600, 4.0}};
     RenderPlan mostlyWide = plan({}, mixed);
-    EXPECT_EQ(mostlyWide.strandRaster, StrandRaster::Hardware);
-    EXPECT_TRUE(mostlyWide.listedByHardware.empty());
-    EXPECT_NE(mostlyWide.strandRasterReason.find("hardware: the strands reach the camera's plane, so no width "
-                                                 "bounds them; the prims within the rule hold under half the "
-                                                 "segments"),
-              std::string::npos)
-        << mostlyWide.strandRasterReason;
+    EXPECT_EQ(mostlyWide.recipe().strandRaster.rasteriser, StrandRaster::Hardware);
+    EXPECT_TRUE(mostlyWide.recipe().strandRaster.listedByHardware.empty());
+    EXPECT_NE(
+        mostlyWide.recipe().strandRaster.reason.find("hardware: the strands reach the camera's plane, so no width "
+                                                     "bounds them; the prims within the rule hold under half the "
+                                                     "segments"),
+        std::string::npos)
+        << mostlyWide.recipe().strandRaster.reason;
     mixed.prims = {{1.5, 500, 4.0}, {std::numeric_limits<double>::infinity(), 500, 4.0}};
-    EXPECT_EQ(plan({}, mixed).listedByHardware, (std::vector<bool>{false, true}));
-    EXPECT_FALSE(plan({"strandRaster=compute"}, mixed).mixesRasterisers());
-    EXPECT_FALSE(plan({"strandRaster=hardware"}, mixed).mixesRasterisers());
+    EXPECT_EQ(plan({}, mixed).recipe().strandRaster.listedByHardware, (std::vector<bool>{false, true}));
+    EXPECT_FALSE(plan({"strandRaster=compute"}, mixed).recipe().strandRaster.mixesRasterisers());
+    EXPECT_FALSE(plan({"strandRaster=hardware"}, mixed).recipe().strandRaster.mixesRasterisers());
     // Thin strands whose spans cover many pixels (long spans across the
     // frame) keep the hardware: the compute rasteriser's cost follows the
     // fragments it lists.
     StrandSummary longSpans = thin;
     longSpans.prims = {{1.5, 1000, 56.6}};
     RenderPlan coveringMany = plan({}, longSpans);
-    EXPECT_EQ(coveringMany.strandRaster, StrandRaster::Hardware);
-    EXPECT_NE(coveringMany.strandRasterReason.find("hardware: the strands cover about 56.6 px a span ("),
+    EXPECT_EQ(coveringMany.recipe().strandRaster.rasteriser, StrandRaster::Hardware);
+    EXPECT_NE(coveringMany.recipe().strandRaster.reason.find("hardware: the strands cover about 56.6 px a span ("),
               std::string::npos)
-        << coveringMany.strandRasterReason;
-    EXPECT_EQ(plan({"strandRasterMaxFragmentsPerSpan=60"}, longSpans).strandRaster, StrandRaster::Compute);
+        << coveringMany.recipe().strandRaster.reason;
+    EXPECT_EQ(plan({"strandRasterMaxFragmentsPerSpan=60"}, longSpans).recipe().strandRaster.rasteriser,
+              StrandRaster::Compute);
     longSpans.prims.push_back({1.5, 1000, 3.0});
-    EXPECT_EQ(plan({}, longSpans).listedByHardware, (std::vector<bool>{true, false}));
+    EXPECT_EQ(plan({}, longSpans).recipe().strandRaster.listedByHardware, (std::vector<bool>{true, false}));
 
     // Asked for, compute takes any blended frame; never the opaque path.
-    EXPECT_EQ(plan({"strandRaster=compute"}, wide).strandRaster, StrandRaster::Compute);
-    EXPECT_EQ(plan({"strandRaster=hardware"}, thin).strandRaster, StrandRaster::Hardware);
+    EXPECT_EQ(plan({"strandRaster=compute"}, wide).recipe().strandRaster.rasteriser, StrandRaster::Compute);
+    EXPECT_EQ(plan({"strandRaster=hardware"}, thin).recipe().strandRaster.rasteriser, StrandRaster::Hardware);
     RenderPlan opaque = plan({"strandRaster=compute"}, wideOpaqueStrands(10));
-    EXPECT_EQ(opaque.transparency, TransparencyPath::Opaque);
-    EXPECT_EQ(opaque.strandRaster, StrandRaster::Hardware);
+    EXPECT_EQ(opaque.recipe().transparency.path, TransparencyPath::Opaque);
+    EXPECT_EQ(opaque.recipe().strandRaster.rasteriser, StrandRaster::Hardware);
     EXPECT_TRUE(plan({"strandRaster=hardware"}, thin).isEnabled("sort"));
 }
 
@@ -301,11 +320,11 @@ TEST(RenderPlan, MeshPassesRunOnlyForVisibleMeshes) {
     thin.allOpaque = false;
     const RenderPlan hairOnly = makeRenderPlan(scene, settings, cameraAtPlusZ(), thin, true);
     for (const char* pass : {"meshUpload", "meshes"}) {
-        ASSERT_NE(hairOnly.graph.find(pass), nullptr);
-        EXPECT_FALSE(hairOnly.graph.find(pass)->wanted) << pass;
+        ASSERT_NE(hairOnly.graph().find(pass), nullptr);
+        EXPECT_FALSE(hairOnly.graph().find(pass)->wanted) << pass;
         EXPECT_FALSE(hairOnly.isEnabled(pass)) << pass;
     }
-    EXPECT_EQ(hairOnly.graph.find("meshes")->reason, "no meshes");
+    EXPECT_EQ(hairOnly.graph().find("meshes")->reason, "no meshes");
     EXPECT_EQ(readNames(hairOnly, "lightBatch 2"), (std::vector<std::string>{"strands", "drawOrder", "color"}));
 
     MeshSummary meshes;
@@ -320,12 +339,12 @@ TEST(RenderPlan, MeshPassesRunOnlyForVisibleMeshes) {
     const RenderPlan withMeshes = makeRenderPlan(scene, settings, cameraAtPlusZ(), thin, true, meshes);
     EXPECT_TRUE(withMeshes.isEnabled("meshUpload"));
     EXPECT_TRUE(withMeshes.isEnabled("meshes"));
-    EXPECT_TRUE(withMeshes.meshesLit);
-    EXPECT_EQ(withMeshes.graph.find("meshes")->reason,
+    EXPECT_TRUE(withMeshes.recipe().lighting.meshesLit);
+    EXPECT_EQ(withMeshes.graph().find("meshes")->reason,
               "2 mesh(es), 960 triangles (refine levels 0-2), opaque, Lambert under the lights; drawn before the "
               "strands: depth and ids written, strands behind them hidden");
     std::vector<std::string> order;
-    for (const FramePass& pass : withMeshes.graph.passes())
+    for (const FramePass& pass : withMeshes.graph().passes())
         if (pass.enabled) order.push_back(pass.name);
     EXPECT_EQ(order, (std::vector<std::string>{"upload", "meshUpload", "sort", "clear", "meshes", "strands", "ids",
                                                "lightBatch 2", "readback"}));
@@ -344,9 +363,9 @@ TEST(RenderPlan, MeshPassesRunOnlyForVisibleMeshes) {
     StrandSummary flatHair = thin;
     flatHair.anyLit = false;
     const RenderPlan flat = makeRenderPlan(scene, settings, cameraAtPlusZ(), flatHair, false, meshes);
-    EXPECT_FALSE(flat.meshesLit);
-    EXPECT_TRUE(flat.flatShading);
-    EXPECT_EQ(flat.lightBatches.size(), 1u);
+    EXPECT_FALSE(flat.recipe().lighting.meshesLit);
+    EXPECT_TRUE(flat.recipe().lighting.flatShading);
+    EXPECT_EQ(flat.recipe().lighting.batches.size(), 1u);
 }
 
 namespace {
@@ -367,13 +386,13 @@ LightPrim distantLight(const std::string& path, bool casts = true) {
 
 std::vector<std::string> shadowPassNames(const RenderPlan& plan) {
     std::vector<std::string> names;
-    for (const FramePass& pass : plan.graph.passes())
+    for (const FramePass& pass : plan.graph().passes())
         if (pass.name.rfind("shadow", 0) == 0 || pass.name.rfind("deepOpacity", 0) == 0) names.push_back(pass.name);
     return names;
 }
 
 bool reads(const RenderPlan& plan, const std::string& pass, const std::string& resource) {
-    const std::vector<std::string> names = plan.graph.namesOf(plan.graph.find(pass)->reads);
+    const std::vector<std::string> names = plan.graph().namesOf(plan.graph().find(pass)->reads);
     return std::find(names.begin(), names.end(), resource) != names.end();
 }
 
@@ -394,8 +413,8 @@ TEST(RenderPlan, EveryCastingLightGetsADepthAndAnOpacityPassReadByItsBatch) {
     EXPECT_TRUE(reads(plan, "strands", "deepOpacity /key"));
     EXPECT_FALSE(reads(plan, "strands", "deepOpacity /rim"));
     EXPECT_TRUE(reads(plan, "lightBatch 2", "deepOpacity /rim"));
-    EXPECT_EQ(plan.shadows.lights.size(), 2u);
-    EXPECT_TRUE(plan.shadows.lights[0].view.orthographic);
+    EXPECT_EQ(plan.recipe().shadows.lights.size(), 2u);
+    EXPECT_TRUE(plan.recipe().shadows.lights[0].view.orthographic);
 
     EXPECT_TRUE(plan.shadowUsed(0) && plan.shadowUsed(1));
 
@@ -412,21 +431,21 @@ TEST(RenderPlan, EveryCastingLightGetsADepthAndAnOpacityPassReadByItsBatch) {
                                       ShadowMapAssignment::Map{1, true, "rebuilt: the light moved"}});
     EXPECT_FALSE(kept.isEnabled("shadowDepth /key"));
     EXPECT_FALSE(kept.isEnabled("deepOpacity /key"));
-    EXPECT_EQ(kept.graph.find("deepOpacity /key")->reason, "kept: unchanged");
+    EXPECT_EQ(kept.graph().find("deepOpacity /key")->reason, "kept: unchanged");
     EXPECT_TRUE(kept.isEnabled("strands"));
     EXPECT_TRUE(reads(kept, "strands", "deepOpacity /key"));
     EXPECT_TRUE(kept.shadowUsed(0));
-    EXPECT_TRUE(kept.shadows.isMapped(kept.shadows.lights[0]));
+    EXPECT_TRUE(kept.recipe().shadows.isMapped(kept.recipe().shadows.lights[0]));
     EXPECT_TRUE(kept.isEnabled("deepOpacity /rim"));
-    EXPECT_EQ(kept.graph.find("deepOpacity /rim")->reason.rfind("rebuilt: the light moved; ", 0), 0u);
-    EXPECT_EQ(kept.shadows.capacity, 2);
+    EXPECT_EQ(kept.graph().find("deepOpacity /rim")->reason.rfind("rebuilt: the light moved; ", 0), 0u);
+    EXPECT_EQ(kept.recipe().shadows.capacity, 2);
 
     const RenderPlan unmapped = withMaps({ShadowMapAssignment::Map{-1, false, "no map: over the storage block"},
                                           ShadowMapAssignment::Map{1, true, "rebuilt: new"}});
     EXPECT_FALSE(unmapped.isEnabled("deepOpacity /key"));
-    EXPECT_EQ(unmapped.graph.find("deepOpacity /key")->reason, "no map: over the storage block");
+    EXPECT_EQ(unmapped.graph().find("deepOpacity /key")->reason, "no map: over the storage block");
     EXPECT_FALSE(reads(unmapped, "strands", "deepOpacity /key"));
-    EXPECT_FALSE(unmapped.shadows.isMapped(unmapped.shadows.lights[0]));
+    EXPECT_FALSE(unmapped.recipe().shadows.isMapped(unmapped.recipe().shadows.lights[0]));
     EXPECT_TRUE(reads(unmapped, "lightBatch 2", "deepOpacity /rim"));
     // One decision per planned shadow, or the plan is not made.
     EXPECT_THROW(withMaps({ShadowMapAssignment::Map{0, true, "rebuilt"}}), std::logic_error);
@@ -459,7 +478,7 @@ TEST(RenderPlan, NothingReadsShadowsUnderFlatShadingOrWithShadowsOff) {
     off.set("shadowMode", "off");
     RenderPlan offPlan = makeRenderPlan(scene, off, cameraAtPlusZ(), castingStrands());
     EXPECT_FALSE(offPlan.isEnabled("shadowDepth /key"));
-    EXPECT_EQ(offPlan.graph.find("shadowDepth /key")->reason, "shadowMode=off");
+    EXPECT_EQ(offPlan.graph().find("shadowDepth /key")->reason, "shadowMode=off");
     EXPECT_FALSE(reads(offPlan, "strands", "deepOpacity /key"));
 }
 
@@ -481,7 +500,7 @@ TEST(RenderPlan, ALightInsideTheHairCastsNothingAndSaysWhy) {
     scene.setLight(inside);
     RenderPlan plan = makeRenderPlan(scene, RenderSettings{}, cameraAtPlusZ(), castingStrands());
     EXPECT_FALSE(plan.isEnabled("shadowDepth /bulb"));
-    EXPECT_NE(plan.graph.find("shadowDepth /bulb")->reason.find("no shadows from this light: the light is inside"),
+    EXPECT_NE(plan.graph().find("shadowDepth /bulb")->reason.find("no shadows from this light: the light is inside"),
               std::string::npos);
     EXPECT_FALSE(reads(plan, "strands", "deepOpacity /bulb"));
     EXPECT_TRUE(plan.isEnabled("strands"));
@@ -491,8 +510,8 @@ TEST(RenderPlan, ALightInsideTheHairCastsNothingAndSaysWhy) {
 // at the eye darkens only what the eye cannot see, at the cost of a map.
 TEST(RenderPlan, TheCameraLightCastsOnlyWhenAsked) {
     const RenderPlan unshadowed = makeRenderPlan(Scene{}, RenderSettings{}, cameraAtPlusZ(), castingStrands());
-    ASSERT_TRUE(unshadowed.cameraLight);
-    EXPECT_TRUE(unshadowed.shadows.lights.empty());
+    ASSERT_TRUE(unshadowed.recipe().lighting.cameraLight);
+    EXPECT_TRUE(unshadowed.recipe().shadows.lights.empty());
     EXPECT_TRUE(shadowPassNames(unshadowed).empty());
     EXPECT_NE(unshadowed.describe().find("incl. the camera light, which casts no shadow (cameraLightShadows)"),
               std::string::npos)
@@ -500,7 +519,7 @@ TEST(RenderPlan, TheCameraLightCastsOnlyWhenAsked) {
     RenderSettings settings;
     settings.set("cameraLightShadows", "on");
     RenderPlan plan = makeRenderPlan(Scene{}, settings, cameraAtPlusZ(), castingStrands());
-    ASSERT_TRUE(plan.cameraLight);
+    ASSERT_TRUE(plan.recipe().lighting.cameraLight);
     EXPECT_EQ(shadowPassNames(plan), (std::vector<std::string>{"shadowDepth camera light", "deepOpacity camera light"}));
     EXPECT_TRUE(reads(plan, "strands", "deepOpacity camera light"));
 }
@@ -522,4 +541,66 @@ TEST(RenderPlan, ThePassListHereIsEveryKindInOrder) {
         listed.push_back(name);
     }
     EXPECT_EQ(listed, tokenNames<PassKind>());
+}
+
+// Each planner returns its own plan from the plans it depends on: what a
+// later planner decides follows from what it is given, not from the order
+// planners happened to run in on a shared recipe.
+TEST(RenderPlan, PlannersDecideFromThePlansTheyAreGiven) {
+    RenderSettings settings;
+    settings.set("strandRaster", "compute");
+    settings.set("minPixelWidth", "1.5");
+    settings.set("tessellation", "projectedLength");
+    TransparencyPlan opaque;
+    opaque.path = TransparencyPath::Opaque;
+    TransparencyPlan blended;
+    blended.path = TransparencyPath::Exact;
+    const StrandSummary strands = wideOpaqueStrands(10);
+    const FrameFallbacks none;
+
+    // The opaque path is the hardware's whatever strandRaster asks for.
+    EXPECT_EQ(planStrandRaster(opaque, settings.values(), strands, "", none).rasteriser, StrandRaster::Hardware);
+    EXPECT_EQ(planStrandRaster(blended, settings.values(), strands, "", none).rasteriser, StrandRaster::Compute);
+
+    // The coverage rule applies where strands blend; projectedLength has no
+    // chord tolerance.
+    EXPECT_EQ(planTessellation(settings.values(), opaque).minPixelWidth, 0.0);
+    EXPECT_EQ(planTessellation(settings.values(), blended).minPixelWidth, 1.5);
+    EXPECT_EQ(planTessellation(settings.values(), blended).tolerance, 0.0);
+    settings.set("tessellation", "screenError");
+    settings.set("tessellationTolerance", "0.25");
+    EXPECT_EQ(planTessellation(settings.values(), blended).tolerance, 0.25);
+
+    // The shadows read the lights' plan: a light that casts gets a planned
+    // shadow, and the SRBF lights' shared maps come from the lights.
+    LightPlan lights;
+    lights.lights.lights.resize(3);
+    lights.lights.lights[0].castsShadow = true;
+    lights.lights.lights[1].castsShadow = false;  // an SRBF light reading light 0's map
+    lights.lights.lights[2].castsShadow = true;
+    lights.sharedMaps = {{1, 0}};
+    settings.set("shadowMode", "deepOpacity");
+    const ShadowPlan shadows = planShadows(lights, settings.values(), strands, false, std::nullopt);
+    ASSERT_EQ(shadows.lights.size(), 2u);
+    EXPECT_EQ(shadows.lights[1].light, 2u);
+    EXPECT_EQ(shadows.shadowOf(1), 0);
+    EXPECT_EQ(shadows.shadowOf(2), 1);
+}
+
+// A recipe is made once and held, read-only, by its plan.
+TEST(RenderPlan, HoldsItsRecipeReadOnly) {
+    static_assert(std::is_same_v<decltype(std::declval<const RenderPlan&>().recipe()), const FrameRecipe&>);
+    static_assert(!std::is_base_of_v<FrameRecipe, RenderPlan>);
+    RenderSettings settings;
+    settings.set("lightsPerPass", "2");
+    Scene scene;
+    for (const char* path : {"/a", "/b", "/c"}) {
+        LightPrim light;
+        light.path = path;
+        light.type = LightType::Distant;
+        scene.setLight(light);
+    }
+    const RenderPlan plan = makeRenderPlan(scene, settings, cameraAtPlusZ(), wideOpaqueStrands(10));
+    EXPECT_EQ(plan.recipe().lighting.batches.size(), 2u);
+    EXPECT_TRUE(plan.isEnabled(PassKind::LightBatch, 1));
 }

@@ -355,18 +355,18 @@ TEST_F(DomeLighting, ThePlanShadowsTheStrongestLobesAndExplainsTheDome) {
     settings.set("domeShadowLights", "3");
     RenderResult result = renderer.render(scene, squareCamera(48), settings, diagnostics);
     const RenderPlan& plan = result.plan;
-    ASSERT_EQ(plan.domes.size(), 1u);
-    EXPECT_EQ(plan.domes[0].srbfLights, 12u);
-    EXPECT_EQ(plan.domes[0].shadowedLights, 3u);
-    ASSERT_EQ(plan.lights.lights.size(), 12u);  // no camera light: the dome lights the stage
-    EXPECT_EQ(plan.shadows.lights.size(), 3u);
-    EXPECT_EQ(plan.shadows.sharedMaps.size(), 9u);
-    for (size_t light = 0; light < 12; ++light) EXPECT_GE(plan.shadows.shadowOf(light), 0) << light;
+    ASSERT_EQ(plan.recipe().lighting.domes.size(), 1u);
+    EXPECT_EQ(plan.recipe().lighting.domes[0].srbfLights, 12u);
+    EXPECT_EQ(plan.recipe().lighting.domes[0].shadowedLights, 3u);
+    ASSERT_EQ(plan.recipe().lighting.lights.lights.size(), 12u);  // no camera light: the dome lights the stage
+    EXPECT_EQ(plan.recipe().shadows.lights.size(), 3u);
+    EXPECT_EQ(plan.recipe().shadows.sharedMaps.size(), 9u);
+    for (size_t light = 0; light < 12; ++light) EXPECT_GE(plan.recipe().shadows.shadowOf(light), 0) << light;
     EXPECT_TRUE(plan.isEnabled("deepOpacity /World/dome srbf 0"));
     EXPECT_NE(plan.describe().find("dome /World/dome: 12 SRBF lights (fit error"), std::string::npos)
         << plan.describe();
     EXPECT_NE(plan.describe().find("4 per pass"), std::string::npos);
-    EXPECT_EQ(plan.lightBatches.size(), 3u);
+    EXPECT_EQ(plan.recipe().lighting.batches.size(), 3u);
 }
 
 TEST_F(DomeLighting, TheStrongestLobesShadowTheHairBehind) {

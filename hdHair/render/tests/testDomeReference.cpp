@@ -109,15 +109,15 @@ RelativeColorError errorOf(const RenderResult& actual, const RenderResult& expec
 TEST_F(DomeReference, TheReferenceIsExplainedAndSampledLikeAnyDistantLights) {
     const RenderResult result = reference(tuftUnder(dome(writeSky(path("sky.exr")))), true);
     const RenderPlan& plan = result.plan;
-    ASSERT_EQ(plan.domes.size(), 1u);
-    EXPECT_EQ(plan.domes[0].sampledLights, 512u);
-    EXPECT_EQ(plan.domes[0].shadowedLights, 512u);
-    EXPECT_EQ(plan.domes[0].srbfLights, 0u);
-    ASSERT_EQ(plan.lights.lights.size(), 512u);
-    EXPECT_FALSE(plan.lights.lights[0].isSrbf());
-    EXPECT_EQ(plan.shadows.lights.size(), 512u);
-    EXPECT_TRUE(plan.shadows.sharedMaps.empty());
-    EXPECT_EQ(plan.lightBatches.size(), 32u);
+    ASSERT_EQ(plan.recipe().lighting.domes.size(), 1u);
+    EXPECT_EQ(plan.recipe().lighting.domes[0].sampledLights, 512u);
+    EXPECT_EQ(plan.recipe().lighting.domes[0].shadowedLights, 512u);
+    EXPECT_EQ(plan.recipe().lighting.domes[0].srbfLights, 0u);
+    ASSERT_EQ(plan.recipe().lighting.lights.lights.size(), 512u);
+    EXPECT_FALSE(plan.recipe().lighting.lights.lights[0].isSrbf());
+    EXPECT_EQ(plan.recipe().shadows.lights.size(), 512u);
+    EXPECT_TRUE(plan.recipe().shadows.sharedMaps.empty());
+    EXPECT_EQ(plan.recipe().lighting.batches.size(), 32u);
     EXPECT_NE(plan.describe().find("the reference (domeLighting=sampled): 512 distant lights importance-sampled"),
               std::string::npos)
         << plan.describe();

@@ -75,16 +75,16 @@ TEST(PassAccess, APassTouchingWhatItDoesNotDeclareFails) {
     EXPECT_EQ(runChecked(thread, *resources, plan), "");
 
     // Mutation: the readback no longer declares that it reads the depth.
-    RenderPlan readsUndeclared = plan;
-    readsUndeclared.graph = withoutDeclaration(plan.graph, PassKind::Readback, ResourceKind::Depth);
+    const RenderPlan readsUndeclared(plan.recipe(),
+                                     withoutDeclaration(plan.graph(), PassKind::Readback, ResourceKind::Depth));
     EXPECT_EQ(runChecked(thread, *resources, readsUndeclared),
               "frame graph: pass 'readback' reads 'depth', which it does not declare");
 
     // Mutation: the clear no longer declares that it writes the depth (nor
     // the readback that it reads it, which no pass would then provide).
-    RenderPlan writesUndeclared = plan;
-    writesUndeclared.graph = withoutDeclaration(
-        withoutDeclaration(plan.graph, PassKind::Readback, ResourceKind::Depth), PassKind::Clear, ResourceKind::Depth);
+    const RenderPlan writesUndeclared(
+        plan.recipe(), withoutDeclaration(withoutDeclaration(plan.graph(), PassKind::Readback, ResourceKind::Depth),
+                                          PassKind::Clear, ResourceKind::Depth));
     EXPECT_EQ(runChecked(thread, *resources, writesUndeclared),
               "frame graph: pass 'clear' writes 'depth', which it does not declare");
 

@@ -270,8 +270,9 @@ TEST(Renderer, MeshesArePreparedAndSentOnlyWhenTheyChange) {
     EXPECT_EQ(first.stats.preparedMeshes, 2u);
     EXPECT_EQ(first.stats.meshTriangles, 1u);
     EXPECT_TRUE(first.plan.isEnabled("meshes"));
-    EXPECT_EQ(first.plan.graph.find("meshUpload")->reason, "1 mesh(es), 1 triangles to the GPU: a mesh changed since "
-                                                           "the last frame");
+    EXPECT_EQ(first.plan.graph().find("meshUpload")->reason,
+              "1 mesh(es), 1 triangles to the GPU: a mesh changed since "
+              "the last frame");
     const size_t centre = size_t(pixelRow(camera, -0.5f)) * 32 + 16;
     EXPECT_EQ(first.primIds[centre], 4);
     EXPECT_EQ(first.elementIds[centre], 0);
@@ -279,7 +280,7 @@ TEST(Renderer, MeshesArePreparedAndSentOnlyWhenTheyChange) {
 
     RenderResult second = renderer.render(scene, camera, RenderSettings{}, diagnostics, RenderOutputs{true});
     EXPECT_EQ(second.stats.preparedMeshes, 0u);
-    EXPECT_EQ(second.plan.graph.find("meshUpload")->reason, "the meshes on the GPU are current: nothing to send");
+    EXPECT_EQ(second.plan.graph().find("meshUpload")->reason, "the meshes on the GPU are current: nothing to send");
     EXPECT_EQ(second.color.pixels, first.color.pixels);
 
     mesh.points[2].y = -0.2f;  // the triangle no longer covers y = -0.1

@@ -17,16 +17,16 @@ using gl::only;
 namespace {
 
 // A plan of `count` distant lights in one batch, without shadows.
-RenderPlan litPlan(size_t count = 1) {
-    RenderPlan plan;
-    plan.lights.lights.resize(count);
-    plan.lightBatches = {{0, count}};
+FrameRecipe litPlan(size_t count = 1) {
+    FrameRecipe plan;
+    plan.lighting.lights.lights.resize(count);
+    plan.lighting.batches = {{0, count}};
     plan.shadows.mode = ShadowMode::Off;
     return plan;
 }
 
 // Gives light `light` a planned shadow with a map in `slot` (-1: none).
-void castFrom(RenderPlan& plan, size_t light, int slot = 0) {
+void castFrom(FrameRecipe& plan, size_t light, int slot = 0) {
     PlannedShadow shadow;
     shadow.light = light;
     shadow.view.valid = true;
@@ -34,7 +34,7 @@ void castFrom(RenderPlan& plan, size_t light, int slot = 0) {
     plan.shadows.lights.push_back(shadow);
 }
 
-ShadingFeatures featuresOf(const RenderPlan& plan, ShadingFeatures materials = {}) {
+ShadingFeatures featuresOf(const FrameRecipe& plan, ShadingFeatures materials = {}) {
     return batchShadingFeatures(plan, 0, materials);
 }
 
@@ -77,25 +77,25 @@ TEST(StrandShadingFeatures, EachPlannedConditionTurnsOnItsFeature) {
     EXPECT_EQ(featuresOf(litPlan(), only({ShadingFeature::KajiyaKay})),
               only({ShadingFeature::Shade, ShadingFeature::KajiyaKay}));
 
-    RenderPlan dome = litPlan();
-    dome.lights.uniformDome = glm::vec3(0.5f);
+    FrameRecipe dome = litPlan();
+    dome.lighting.lights.uniformDome = glm::vec3(0.5f);
     EXPECT_EQ(featuresOf(dome), only({ShadingFeature::Shade, ShadingFeature::UniformDome}));
-    dome.lightBatches = {{0, 1}, {1, 1}};  // the uniform term belongs to the first batch only
+    dome.lighting.batches = {{0, 1}, {1, 1}};  // the uniform term belongs to the first batch only
     EXPECT_EQ(batchShadingFeatures(dome, 1, {}), shade);
 
-    RenderPlan local = litPlan();
-    local.lights.lights[0].isLocal = true;
+    FrameRecipe local = litPlan();
+    local.lighting.lights.lights[0].isLocal = true;
     EXPECT_EQ(featuresOf(local), only({ShadingFeature::Shade, ShadingFeature::LocalLights}));
-    RenderPlan lobe = litPlan();
-    lobe.lights.lights[0].srbfBandwidth = 8.0f;
+    FrameRecipe lobe = litPlan();
+    lobe.lighting.lights.lights[0].srbfBandwidth = 8.0f;
     EXPECT_EQ(featuresOf(lobe), only({ShadingFeature::Shade, ShadingFeature::SrbfLights}));
     // Lights of another batch are not read.
-    RenderPlan later = litPlan(2);
-    later.lights.lights[1].srbfBandwidth = 8.0f;
-    later.lightBatches = {{0, 1}, {1, 2}};
+    FrameRecipe later = litPlan(2);
+    later.lighting.lights.lights[1].srbfBandwidth = 8.0f;
+    later.lighting.batches = {{0, 1}, {1, 2}};
     EXPECT_EQ(featuresOf(later), shade);
 
-    RenderPlan deep = litPlan();
+    FrameRecipe deep = litPlan();
     deep.shadows.mode = ShadowMode::DeepOpacity;
     deep.shadows.bilinear = false;
     EXPECT_EQ(featuresOf(deep), shade) << "a mode with no light that has a map looks nothing up";
@@ -112,16 +112,16 @@ TEST(StrandShadingFeatures, EachPlannedConditionTurnsOnItsFeature) {
     deepLookup.add(ShadingFeature::BilinearShadows);
     EXPECT_EQ(featuresOf(deep), deepLookup);
 
-    RenderPlan reference = litPlan();
+    FrameRecipe reference = litPlan();
     reference.shadows.mode = ShadowMode::Reference;
     reference.shadows.bilinear = false;
     castFrom(reference, 0);
     EXPECT_EQ(featuresOf(reference), only({ShadingFeature::Shade, ShadingFeature::ShadowReference}));
-    RenderPlan off = litPlan();  // a map, but shadows off
+    FrameRecipe off = litPlan();  // a map, but shadows off
     castFrom(off, 0);
     EXPECT_EQ(featuresOf(off), shade);
 
-    RenderPlan taps = lobe;
+    FrameRecipe taps = lobe;
     taps.shadows.mode = ShadowMode::DeepOpacity;
     taps.shadows.bilinear = false;
     castFrom(taps, 0, 3);
@@ -129,15 +129,15 @@ TEST(StrandShadingFeatures, EachPlannedConditionTurnsOnItsFeature) {
         only({ShadingFeature::Shade, ShadingFeature::SrbfLights, ShadingFeature::DeepOpacity, ShadingFeature::SrbfShadowTaps});
     tapsLookup.setShadowLayers(taps.shadows.layers);
     EXPECT_EQ(featuresOf(taps), tapsLookup);
-    RenderPlan mipmap = taps;
+    FrameRecipe mipmap = taps;
     mipmap.shadows.convolvedOpacity = true;
     ShadingFeatures mipmapLookup = only(
         {ShadingFeature::Shade, ShadingFeature::SrbfLights, ShadingFeature::DeepOpacity, ShadingFeature::SrbfShadowMipmap});
     mipmapLookup.setShadowLayers(taps.shadows.layers);
     EXPECT_EQ(featuresOf(mipmap), mipmapLookup);
     // An SRBF light without a map of its own reads the one it shares.
-    RenderPlan shared = litPlan(2);
-    shared.lights.lights[1].srbfBandwidth = 8.0f;
+    FrameRecipe shared = litPlan(2);
+    shared.lighting.lights.lights[1].srbfBandwidth = 8.0f;
     shared.shadows.mode = ShadowMode::DeepOpacity;
     shared.shadows.bilinear = false;
     castFrom(shared, 0);
@@ -147,7 +147,7 @@ TEST(StrandShadingFeatures, EachPlannedConditionTurnsOnItsFeature) {
 
 // The plan's layer count is compiled in where a deep opacity map is read.
 TEST(StrandShadingFeatures, TheLayerCountComesFromThePlan) {
-    RenderPlan deep = litPlan();
+    FrameRecipe deep = litPlan();
     deep.shadows.mode = ShadowMode::DeepOpacity;
     deep.shadows.layers = 7;
     castFrom(deep, 0);
@@ -159,20 +159,20 @@ TEST(StrandShadingFeatures, TheLayerCountComesFromThePlan) {
 // Vertex shadows look up the batch's lights up to the last with a deep
 // opacity map.
 TEST(StrandShadingFeatures, VertexShadowsReachTheLastLightWithAMap) {
-    RenderPlan six = litPlan(6);
+    FrameRecipe six = litPlan(6);
     six.shadows.mode = ShadowMode::DeepOpacity;
     castFrom(six, 1);
     castFrom(six, 4, 1);
     EXPECT_EQ(batchVertexShadowLights(six, 0), 5);
-    RenderPlan none = litPlan();
+    FrameRecipe none = litPlan();
     none.shadows.mode = ShadowMode::DeepOpacity;
     castFrom(none, 0, -1);
     EXPECT_EQ(batchVertexShadowLights(none, 0), 0);
-    RenderPlan reference = six;  // the reference is looked up per fragment
+    FrameRecipe reference = six;  // the reference is looked up per fragment
     reference.shadows.mode = ShadowMode::Reference;
     EXPECT_EQ(batchVertexShadowLights(reference, 0), 0);
-    RenderPlan second = six;  // counted within the batch
-    second.lightBatches = {{0, 4}, {4, 6}};
+    FrameRecipe second = six;  // counted within the batch
+    second.lighting.batches = {{0, 4}, {4, 6}};
     EXPECT_EQ(batchVertexShadowLights(second, 0), 2);
     EXPECT_EQ(batchVertexShadowLights(second, 1), 1);
 }
