@@ -363,6 +363,81 @@ glm::dvec3 transport(const glm::dvec3& v, const glm::dvec3& a, const glm::dvec3&
     return v * c + glm::cross(k, v) * s + k * glm::dot(k, v) * (1 - c);
 }
 
+// Throws std::invalid_argument for the first option that cannot be written.
+void checkWriteOptions(const UsdaWriteOptions& options) {
+    if (options.upAxis != 'Y' && options.upAxis != 'Z')
+        throw std::invalid_argument(fmt::format("the up axis must be Y or Z, not '{}'", options.upAxis));
+    if (options.rootWidth && !(std::isfinite(*options.rootWidth) && *options.rootWidth > 0))
+        throw std::invalid_argument("the root width must be a positive number");
+    if (options.tipWidth && !(std::isfinite(*options.tipWidth) && *options.tipWidth >= 0))
+        throw std::invalid_argument("the tip width must be a number >= 0");
+    if (!(std::isfinite(options.metersPerUnit) && options.metersPerUnit > 0))
+        throw std::invalid_argument("metersPerUnit must be a positive number");
+}
+
+// The direction from the bounds' centre to the camera: --cameraFrom's, else in front.
+glm::dvec3 cameraDirection(const UsdaWriteOptions& options) {
+    glm::dvec3 from = options.upAxis == 'Y' ? glm::dvec3(0, 0, 1) : glm::dvec3(0, -1, 0);
+    if (options.cameraFrom) {
+        from = toVec(*options.cameraFrom);
+        if (!(glm::length(from) > 1e-9) || !std::isfinite(glm::length(from)))
+            throw std::invalid_argument("the camera direction must be a non-zero vector");
+    }
+    return from;
+}
+
+// The taper of strands without widths of their own (and of every strand when a width option is given).
+Taper automaticTaper(const UsdaWriteOptions& options, const Bounds& bounds) {
+    Taper autoTaper;
+    autoTaper.root = options.rootWidth.value_or(kAutoRootWidthPerDiagonal * bounds.diagonal());
+    if (!(autoTaper.root > 0)) autoTaper.root = 1e-3f;  // every point in one place
+    autoTaper.tip = options.tipWidth.value_or(kAutoTipPerRoot * autoTaper.root);
+    return autoTaper;
+}
+
+// The prims' names under /World, each unique.
+struct PrimNames {
+    std::vector<std::string> curves, meshes;
+};
+
+// Unique prim names for the curves, then the meshes, made from their input names.
+PrimNames uniquePrimNames(const std::vector<CurvesInput>& inputs, const std::vector<MeshInput>& meshes,
+                          const UsdaWriteOptions& options) {
+    std::set<std::string> used;
+    if (options.camera) used = {"main_cam", "key_light"};
+    auto uniqueName = [&](const std::string& wanted) {
+        const std::string base = usdIdentifier(wanted);
+        std::string name = base;
+        for (int k = 2; used.count(name); ++k) name = fmt::format("{}_{}", base, k);
+        used.insert(name);
+        return name;
+    };
+    PrimNames names;
+    for (const CurvesInput& input : inputs) names.curves.push_back(uniqueName(input.name));
+    for (const MeshInput& mesh : meshes) names.meshes.push_back(uniqueName(mesh.name));
+    return names;
+}
+
+// The layer's metadata and the opening of its World prim.
+void appendLayerHeader(std::string& out, const UsdaWriteOptions& options) {
+    out += "#usda 1.0\n(\n";
+    if (!options.doc.empty()) out += "    doc = " + quoted(options.doc) + "\n";
+    out += "    defaultPrim = \"World\"\n";
+    out += "    metersPerUnit = " + formatNumber(options.metersPerUnit) + "\n";
+    out += fmt::format("    upAxis = \"{}\"\n", options.upAxis);
+    out += ")\n\n";
+    out += "def Xform \"World\" (\n    kind = \"component\"\n)\n{\n";
+}
+
+// The camera framing every curve and mesh point, looking along -from.
+CameraFraming frameInputs(const std::vector<CurvesInput>& inputs, const std::vector<MeshInput>& meshes,
+                          const glm::dvec3& from, const glm::dvec3& up) {
+    std::vector<const std::vector<Float3>*> pointSets;
+    for (const CurvesInput& input : inputs) pointSets.push_back(&input.strands.points);
+    for (const MeshInput& mesh : meshes) pointSets.push_back(&mesh.mesh.points);
+    return frameCamera(pointSets, from, up);
+}
+
 }  // namespace
 
 void Bounds::add(const Float3& p) {
@@ -412,21 +487,9 @@ std::string usdIdentifier(const std::string& text) {
 CurvesUsda buildCurvesUsda(const std::vector<CurvesInput>& inputs, const UsdaWriteOptions& options,
                            const std::vector<MeshInput>& meshes) {
     if (inputs.empty() && meshes.empty()) throw std::invalid_argument("no hair to write");
-    if (options.upAxis != 'Y' && options.upAxis != 'Z')
-        throw std::invalid_argument(fmt::format("the up axis must be Y or Z, not '{}'", options.upAxis));
-    if (options.rootWidth && !(std::isfinite(*options.rootWidth) && *options.rootWidth > 0))
-        throw std::invalid_argument("the root width must be a positive number");
-    if (options.tipWidth && !(std::isfinite(*options.tipWidth) && *options.tipWidth >= 0))
-        throw std::invalid_argument("the tip width must be a number >= 0");
-    if (!(std::isfinite(options.metersPerUnit) && options.metersPerUnit > 0))
-        throw std::invalid_argument("metersPerUnit must be a positive number");
+    checkWriteOptions(options);
     const glm::dvec3 up = options.upAxis == 'Y' ? glm::dvec3(0, 1, 0) : glm::dvec3(0, 0, 1);
-    glm::dvec3 from = options.upAxis == 'Y' ? glm::dvec3(0, 0, 1) : glm::dvec3(0, -1, 0);
-    if (options.cameraFrom) {
-        from = toVec(*options.cameraFrom);
-        if (!(glm::length(from) > 1e-9) || !std::isfinite(glm::length(from)))
-            throw std::invalid_argument("the camera direction must be a non-zero vector");
-    }
+    const glm::dvec3 from = cameraDirection(options);
 
     CurvesUsda result;
     for (const CurvesInput& input : inputs) {
@@ -434,46 +497,21 @@ CurvesUsda buildCurvesUsda(const std::vector<CurvesInput>& inputs, const UsdaWri
         for (const Float3& p : input.strands.points) result.bounds.add(p);
     }
     for (const MeshInput& mesh : meshes) checkMesh(mesh);
-    Taper autoTaper;
-    autoTaper.root = options.rootWidth.value_or(kAutoRootWidthPerDiagonal * result.bounds.diagonal());
-    if (!(autoTaper.root > 0)) autoTaper.root = 1e-3f;  // every point in one place
-    autoTaper.tip = options.tipWidth.value_or(kAutoTipPerRoot * autoTaper.root);
+    const Taper autoTaper = automaticTaper(options, result.bounds);
     const bool widthOption = options.rootWidth || options.tipWidth;
     result.rootWidth = autoTaper.root;
     result.tipWidth = autoTaper.tip;
-
-    // Unique prim names.
-    std::set<std::string> used;
-    if (options.camera) used = {"main_cam", "key_light"};
-    auto uniqueName = [&](const std::string& wanted) {
-        const std::string base = usdIdentifier(wanted);
-        std::string name = base;
-        for (int k = 2; used.count(name); ++k) name = fmt::format("{}_{}", base, k);
-        used.insert(name);
-        return name;
-    };
-    std::vector<std::string> names, meshNames;
-    for (const CurvesInput& input : inputs) names.push_back(uniqueName(input.name));
-    for (const MeshInput& mesh : meshes) meshNames.push_back(uniqueName(mesh.name));
+    const PrimNames names = uniquePrimNames(inputs, meshes, options);
 
     size_t totalPoints = 0;
     for (const CurvesInput& input : inputs) totalPoints += input.strands.pointCount();
     std::string& out = result.text;
     out.reserve(totalPoints * 40 + 4096);
-    out += "#usda 1.0\n(\n";
-    if (!options.doc.empty()) out += "    doc = " + quoted(options.doc) + "\n";
-    out += "    defaultPrim = \"World\"\n";
-    out += "    metersPerUnit = " + formatNumber(options.metersPerUnit) + "\n";
-    out += fmt::format("    upAxis = \"{}\"\n", options.upAxis);
-    out += ")\n\n";
-    out += "def Xform \"World\" (\n    kind = \"component\"\n)\n{\n";
+    appendLayerHeader(out, options);
 
     std::optional<CameraFraming> framing;
     if (options.camera) {
-        std::vector<const std::vector<Float3>*> pointSets;
-        for (const CurvesInput& input : inputs) pointSets.push_back(&input.strands.points);
-        for (const MeshInput& mesh : meshes) pointSets.push_back(&mesh.mesh.points);
-        framing = frameCamera(pointSets, from, up);
+        framing = frameInputs(inputs, meshes, from, up);
         appendCamera(out, *framing);
     }
     for (size_t i = 0; i < inputs.size(); ++i) {
@@ -482,15 +520,15 @@ CurvesUsda buildCurvesUsda(const std::vector<CurvesInput>& inputs, const UsdaWri
         if (widthOption || (s.widths.empty() && !s.defaultWidth)) taper = autoTaper;
         if (framing || i > 0) out += '\n';
         WrittenCurves written;
-        written.path = "/World/" + names[i];
-        appendCurves(out, names[i], s, options, taper, written);
+        written.path = "/World/" + names.curves[i];
+        appendCurves(out, names.curves[i], s, options, taper, written);
         result.curves.push_back(written);
     }
     for (size_t i = 0; i < meshes.size(); ++i) {
         if (framing || i > 0 || !inputs.empty()) out += '\n';
         WrittenMesh written;
-        written.path = "/World/" + meshNames[i];
-        appendMesh(out, meshNames[i], meshes[i], written);
+        written.path = "/World/" + names.meshes[i];
+        appendMesh(out, names.meshes[i], meshes[i], written);
         result.meshes.push_back(written);
     }
     if (framing) {

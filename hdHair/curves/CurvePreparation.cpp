@@ -240,22 +240,14 @@ void growBoundsBySpan(const StrandControlPoint* c, glm::vec3& lo, glm::vec3& hi)
     }
 }
 
-PreparedCurves prepareCurves(const CurvesPrim& prim, Diagnostics& diagnostics,
-                             const std::vector<ShadingPrimvarRequest>& shadingPrimvars,
-                             const StrandColorSource* colors) {
-    PreparedCurves result;
-    result.path = prim.path;
-    constexpr float kHuge = std::numeric_limits<float>::max();
-    result.boundsMin = glm::vec3(kHuge);
-    result.boundsMax = glm::vec3(-kHuge);
-    if (std::string problem = transformProblem(prim.path, prim.worldTransform); !problem.empty()) {
-        diagnostics.warn(prim.path, problem);
-        return result;
-    }
+namespace {
 
-    const CurveTopology topology(prim);
+// Empty bounds start inverted at the largest float, so any span grows them.
+constexpr float kHuge = std::numeric_limits<float>::max();
+
+// Each curve's check, with hidden curves marked Invisible.
+std::vector<CurveCheck> checkCurves(const CurvesPrim& prim, const CurveTopology& topology) {
     const size_t curveCount = topology.curveCount();
-
     std::vector<CurveCheck> checks(curveCount);
     tbb::parallel_for(tbb::blocked_range<size_t>(0, curveCount), [&](const tbb::blocked_range<size_t>& range) {
         for (size_t i = range.begin(); i != range.end(); ++i) checks[i] = checkCurve(prim, topology, i);
@@ -264,22 +256,21 @@ PreparedCurves prepareCurves(const CurvesPrim& prim, Diagnostics& diagnostics,
     for (int hidden : prim.invisibleCurves)
         if (hidden >= 0 && static_cast<size_t>(hidden) < curveCount)
             checks[static_cast<size_t>(hidden)].status = CurveStatus::Invisible;
-    reportCurveChecks(prim, topology, checks, diagnostics);
-    reportPrimvarsNotHonoured(prim, diagnostics);
+    return checks;
+}
 
-    ResolvedPrimvar widths = resolvePrimvar(prim, topology, "widths", kFallbackWidth, diagnostics);
-    clampNegativeWidths(widths, prim.path, diagnostics);
-    const StrandColorSource ownColors = colors ? StrandColorSource() : strandColorSource(prim, nullptr, diagnostics);
-    const StrandColorSource& colorSource = colors ? *colors : ownColors;
-    auto resolveChannel = [&](const StrandColorSource::Channel& channel) {
-        return channel.constant.empty()
-                   ? resolvePrimvar(prim, topology, channel.primvar, channel.fallback, diagnostics)
-                   : constantPrimvar(channel.constant);
-    };
-    const ResolvedPrimvar colorValues = resolveChannel(colorSource.color);
-    result.colorAuthored = !colorSource.color.constant.empty() || prim.findPrimvar(colorSource.color.primvar);
-    const ResolvedPrimvar opacities = resolveChannel(colorSource.opacity);
-    std::vector<ResolvedPrimvar> shading;  // parallel to result.shadingPrimvars
+// The per-strand attributes, resolved against the prim's topology.
+struct StrandAttributes {
+    ResolvedPrimvar widths, colors, opacities;
+    std::vector<ResolvedPrimvar> shading;  // parallel to PreparedCurves::shadingPrimvars
+};
+
+// Resolves the requested shading primvars the prim authors; appends their
+// prepared form to result.shadingPrimvars and returns the resolved values in the same order.
+std::vector<ResolvedPrimvar> resolveShadingPrimvars(const CurvesPrim& prim, const CurveTopology& topology,
+                                                    const std::vector<ShadingPrimvarRequest>& shadingPrimvars,
+                                                    Diagnostics& diagnostics, PreparedCurves& result) {
+    std::vector<ResolvedPrimvar> shading;
     for (const ShadingPrimvarRequest& request : shadingPrimvars) {
         if (!prim.findPrimvar(request.name)) continue;
         ResolvedPrimvar resolved = resolvePrimvar(prim, topology, request.name, request.fallback, diagnostics);
@@ -294,16 +285,47 @@ PreparedCurves prepareCurves(const CurvesPrim& prim, Diagnostics& diagnostics,
         result.shadingPrimvars.push_back(std::move(prepared));
         shading.push_back(std::move(resolved));
     }
+    return shading;
+}
 
+// Widths, colours, opacities and shading primvars, resolved and repaired;
+// sets result.colorAuthored and result.shadingPrimvars' constant values.
+StrandAttributes resolveStrandAttributes(const CurvesPrim& prim, const CurveTopology& topology,
+                                         const std::vector<ShadingPrimvarRequest>& shadingPrimvars,
+                                         const StrandColorSource* colors, Diagnostics& diagnostics,
+                                         PreparedCurves& result) {
+    StrandAttributes attributes;
+    attributes.widths = resolvePrimvar(prim, topology, "widths", kFallbackWidth, diagnostics);
+    clampNegativeWidths(attributes.widths, prim.path, diagnostics);
+    const StrandColorSource ownColors = colors ? StrandColorSource() : strandColorSource(prim, nullptr, diagnostics);
+    const StrandColorSource& colorSource = colors ? *colors : ownColors;
+    auto resolveChannel = [&](const StrandColorSource::Channel& channel) {
+        return channel.constant.empty()
+                   ? resolvePrimvar(prim, topology, channel.primvar, channel.fallback, diagnostics)
+                   : constantPrimvar(channel.constant);
+    };
+    attributes.colors = resolveChannel(colorSource.color);
+    result.colorAuthored = !colorSource.color.constant.empty() || prim.findPrimvar(colorSource.color.primvar);
+    attributes.opacities = resolveChannel(colorSource.opacity);
+    attributes.shading = resolveShadingPrimvars(prim, topology, shadingPrimvars, diagnostics, result);
+    return attributes;
+}
+
+// Per curve, 1 where its spans share controls, else 0 (dropped curves included).
+std::vector<uint8_t> curvesSharingControls(const CurveTopology& topology, const std::vector<CurveCheck>& checks,
+                                           const StrandAttributes& attributes, const PreparedCurves& result) {
     // Spans share controls when the basis makes them overlap and no
     // attribute is linear per span (varying data's per-span controls
     // (2a-b, a, b, 2b-a) differ between neighbours).
     auto linearPerSpan = [](const ResolvedPrimvar& primvar) {
         return primvar.interpolation == Interpolation::Varying || primvar.interpolation == Interpolation::FaceVarying;
     };
-    bool attributesShare = !linearPerSpan(widths) && !linearPerSpan(colorValues) && !linearPerSpan(opacities);
-    for (size_t k = 0; k < shading.size(); ++k)
-        attributesShare = attributesShare && !(result.shadingPrimvars[k].varying && linearPerSpan(shading[k]));
+    bool attributesShare = !linearPerSpan(attributes.widths) && !linearPerSpan(attributes.colors) &&
+                           !linearPerSpan(attributes.opacities);
+    for (size_t k = 0; k < attributes.shading.size(); ++k)
+        attributesShare =
+            attributesShare && !(result.shadingPrimvars[k].varying && linearPerSpan(attributes.shading[k]));
+    const size_t curveCount = topology.curveCount();
     std::vector<uint8_t> shares(curveCount, 0);
     if (attributesShare) {
         tbb::parallel_for(tbb::blocked_range<size_t>(0, curveCount), [&](const tbb::blocked_range<size_t>& range) {
@@ -318,36 +340,96 @@ PreparedCurves prepareCurves(const CurvesPrim& prim, Diagnostics& diagnostics,
             }
         });
     }
+    return shares;
+}
 
-    // Where each kept curve's segments and controls go: exclusive prefix sums.
-    std::vector<size_t> firstSegment(curveCount + 1, 0), firstControl(curveCount + 1, 0);
+// Where each kept curve's segments and controls go.
+struct ControlLayout {
+    std::vector<uint8_t> shares;                     // per curve: its spans share controls
+    std::vector<size_t> firstSegment, firstControl;  // per curve, plus the totals at the end
+    size_t segmentTotal() const { return firstSegment.back(); }
+    size_t controlTotal() const { return firstControl.back(); }
+};
+
+// The layout of the kept curves' segments and controls; counts them in result.curveCount.
+ControlLayout layOutControls(const CurveTopology& topology, const std::vector<CurveCheck>& checks,
+                             std::vector<uint8_t> shares, PreparedCurves& result) {
+    const size_t curveCount = topology.curveCount();
+    ControlLayout layout;
+    layout.shares = std::move(shares);
+    // Exclusive prefix sums.
+    layout.firstSegment.assign(curveCount + 1, 0);
+    layout.firstControl.assign(curveCount + 1, 0);
     for (size_t i = 0; i < curveCount; ++i) {
         const bool kept = keeps(checks[i].status);
         const size_t segments = kept ? static_cast<size_t>(topology.segmentCount(i)) : 0;
-        firstSegment[i + 1] = firstSegment[i] + segments;
-        firstControl[i + 1] = firstControl[i] + (segments == 0 ? 0 : shares[i] ? segments + 3 : 4 * segments);
+        layout.firstSegment[i + 1] = layout.firstSegment[i] + segments;
+        layout.firstControl[i + 1] =
+            layout.firstControl[i] + (segments == 0 ? 0 : layout.shares[i] ? segments + 3 : 4 * segments);
         result.curveCount += kept ? 1 : 0;
     }
-    const size_t segmentTotal = firstSegment[curveCount], controlTotal = firstControl[curveCount];
-    if (segmentTotal == 0) return result;
-    if (controlTotal > std::numeric_limits<uint32_t>::max()) {
-        diagnostics.warn(prim.path, fmt::format("{} curve controls are more than one prim can hold (2^32); not drawn",
-                                                controlTotal));
-        return result;
-    }
+    return layout;
+}
+
+// Sizes result's control, segment and varying shading arrays for `layout`.
+void allocateControls(const ControlLayout& layout, PreparedCurves& result) {
+    const size_t controlTotal = layout.controlTotal();
     result.controlPoints.resize(controlTotal);
-    result.segmentFirstControl.resize(segmentTotal);
-    result.segmentCurve.resize(segmentTotal);
+    result.segmentFirstControl.resize(layout.segmentTotal());
+    result.segmentCurve.resize(layout.segmentTotal());
     for (PreparedShadingPrimvar& primvar : result.shadingPrimvars)
         if (primvar.varying) primvar.values.resize(controlTotal * static_cast<size_t>(primvar.tupleSize));
+}
 
-    // Widths are object-space diameters (HdSt scales them by the transform).
-    // A non-uniform scale stretches a round tube into an elliptical one, which
-    // a width cannot express; the cube root of the volume scale is its mean
-    // scale factor, exact for uniform scale.
-    const glm::dmat4& toWorld = prim.worldTransform;
-    const float widthScale = static_cast<float>(std::cbrt(std::abs(glm::determinant(glm::dmat3(toWorld)))));
+// What writing one curve's spans reads.
+struct SpanSources {
+    const CurvesPrim& prim;
+    const CurveTopology& topology;
+    const StrandAttributes& attributes;
+    const ControlLayout& layout;
+    float widthScale;
+};
 
+// Writes span `s` of curve `i` (n vertices, `worldPoints` 3n floats) into
+// result and grows [lo, hi] by it.
+void writeSpan(const SpanSources& sources, size_t i, int n, int s, const float* worldPoints, PreparedCurves& result,
+               glm::vec3& lo, glm::vec3& hi) {
+    const CurveTopology& topology = sources.topology;
+    const StrandAttributes& attributes = sources.attributes;
+    const size_t segment = sources.layout.firstSegment[i] + static_cast<size_t>(s);
+    // Shared spans step one control; the next span rewrites the
+    // three they share with the same values.
+    const size_t control = sources.layout.firstControl[i] + static_cast<size_t>(s) * (sources.layout.shares[i] ? 1 : 4);
+    result.segmentCurve[segment] = static_cast<uint32_t>(i);
+    result.segmentFirstControl[segment] = static_cast<uint32_t>(control);
+    StrandControlPoint* controls = &result.controlPoints[control];
+    const SpanStencil stencil = catmullRomStencil(topology.kind, n, s);
+    float positions[12], widthValues[4], spanColors[12], opacityValues[4];
+    applyStencil(stencil, worldPoints, 3, positions);
+    primvarSpanControls(attributes.widths, topology, stencil, i, s, widthValues);
+    primvarSpanControls(attributes.colors, topology, stencil, i, s, spanColors);
+    primvarSpanControls(attributes.opacities, topology, stencil, i, s, opacityValues);
+    for (int r = 0; r < 4; ++r) {
+        controls[r].position = glm::vec3(positions[3 * r], positions[3 * r + 1], positions[3 * r + 2]);
+        controls[r].width = widthValues[r] * sources.widthScale;
+        controls[r].color = glm::vec3(spanColors[3 * r], spanColors[3 * r + 1], spanColors[3 * r + 2]);
+        controls[r].opacity = opacityValues[r];
+    }
+    for (size_t k = 0; k < attributes.shading.size(); ++k) {
+        PreparedShadingPrimvar& primvar = result.shadingPrimvars[k];
+        if (primvar.varying)
+            primvarSpanControls(attributes.shading[k], topology, stencil, i, s,
+                                &primvar.values[control * static_cast<size_t>(primvar.tupleSize)]);
+    }
+    growBoundsBySpan(controls, lo, hi);
+}
+
+// Writes every kept curve's controls into result (already allocated) and
+// sets its bounds.
+void writeControls(const SpanSources& sources, const std::vector<CurveCheck>& checks, PreparedCurves& result) {
+    const CurveTopology& topology = sources.topology;
+    const size_t curveCount = topology.curveCount();
+    const glm::dmat4& toWorld = sources.prim.worldTransform;
     std::vector<glm::vec3> curveMin(curveCount, glm::vec3(kHuge));
     std::vector<glm::vec3> curveMax(curveCount, glm::vec3(-kHuge));
     tbb::parallel_for(tbb::blocked_range<size_t>(0, curveCount), [&](const tbb::blocked_range<size_t>& range) {
@@ -359,39 +441,13 @@ PreparedCurves prepareCurves(const CurvesPrim& prim, Diagnostics& diagnostics,
             // 1), so transforming the vertices first is exact; double
             // precision keeps far-from-origin hair steady.
             worldPoints.resize(3 * static_cast<size_t>(n));
-            const glm::vec3* objectPoints = &prim.points[topology.vertexOffsets[i]];
+            const glm::vec3* objectPoints = &sources.prim.points[topology.vertexOffsets[i]];
             for (size_t v = 0; v < static_cast<size_t>(n); ++v) {
                 const glm::dvec4 p = toWorld * glm::dvec4(glm::dvec3(objectPoints[v]), 1.0);
                 for (int c = 0; c < 3; ++c) worldPoints[3 * v + static_cast<size_t>(c)] = static_cast<float>(p[c]);
             }
-            for (int s = 0; s < topology.segmentCount(i); ++s) {
-                const size_t segment = firstSegment[i] + static_cast<size_t>(s);
-                // Shared spans step one control; the next span rewrites the
-                // three they share with the same values.
-                const size_t control = firstControl[i] + static_cast<size_t>(s) * (shares[i] ? 1 : 4);
-                result.segmentCurve[segment] = static_cast<uint32_t>(i);
-                result.segmentFirstControl[segment] = static_cast<uint32_t>(control);
-                StrandControlPoint* controls = &result.controlPoints[control];
-                const SpanStencil stencil = catmullRomStencil(topology.kind, n, s);
-                float positions[12], widthValues[4], spanColors[12], opacityValues[4];
-                applyStencil(stencil, worldPoints.data(), 3, positions);
-                primvarSpanControls(widths, topology, stencil, i, s, widthValues);
-                primvarSpanControls(colorValues, topology, stencil, i, s, spanColors);
-                primvarSpanControls(opacities, topology, stencil, i, s, opacityValues);
-                for (int r = 0; r < 4; ++r) {
-                    controls[r].position = glm::vec3(positions[3 * r], positions[3 * r + 1], positions[3 * r + 2]);
-                    controls[r].width = widthValues[r] * widthScale;
-                    controls[r].color = glm::vec3(spanColors[3 * r], spanColors[3 * r + 1], spanColors[3 * r + 2]);
-                    controls[r].opacity = opacityValues[r];
-                }
-                for (size_t k = 0; k < shading.size(); ++k) {
-                    PreparedShadingPrimvar& primvar = result.shadingPrimvars[k];
-                    if (primvar.varying)
-                        primvarSpanControls(shading[k], topology, stencil, i, s,
-                                            &primvar.values[control * static_cast<size_t>(primvar.tupleSize)]);
-                }
-                growBoundsBySpan(controls, curveMin[i], curveMax[i]);
-            }
+            for (int s = 0; s < topology.segmentCount(i); ++s)
+                writeSpan(sources, i, n, s, worldPoints.data(), result, curveMin[i], curveMax[i]);
         }
     });
 
@@ -399,6 +455,47 @@ PreparedCurves prepareCurves(const CurvesPrim& prim, Diagnostics& diagnostics,
         result.boundsMin = glm::min(result.boundsMin, curveMin[i]);
         result.boundsMax = glm::max(result.boundsMax, curveMax[i]);
     }
+}
+
+}  // namespace
+
+PreparedCurves prepareCurves(const CurvesPrim& prim, Diagnostics& diagnostics,
+                             const std::vector<ShadingPrimvarRequest>& shadingPrimvars,
+                             const StrandColorSource* colors) {
+    PreparedCurves result;
+    result.path = prim.path;
+    result.boundsMin = glm::vec3(kHuge);
+    result.boundsMax = glm::vec3(-kHuge);
+    if (std::string problem = transformProblem(prim.path, prim.worldTransform); !problem.empty()) {
+        diagnostics.warn(prim.path, problem);
+        return result;
+    }
+
+    const CurveTopology topology(prim);
+    const std::vector<CurveCheck> checks = checkCurves(prim, topology);
+    reportCurveChecks(prim, topology, checks, diagnostics);
+    reportPrimvarsNotHonoured(prim, diagnostics);
+
+    const StrandAttributes attributes =
+        resolveStrandAttributes(prim, topology, shadingPrimvars, colors, diagnostics, result);
+    std::vector<uint8_t> shares = curvesSharingControls(topology, checks, attributes, result);
+    const ControlLayout layout = layOutControls(topology, checks, std::move(shares), result);
+    const size_t segmentTotal = layout.segmentTotal(), controlTotal = layout.controlTotal();
+    if (segmentTotal == 0) return result;
+    if (controlTotal > std::numeric_limits<uint32_t>::max()) {
+        diagnostics.warn(prim.path, fmt::format("{} curve controls are more than one prim can hold (2^32); not drawn",
+                                                controlTotal));
+        return result;
+    }
+    allocateControls(layout, result);
+
+    // Widths are object-space diameters (HdSt scales them by the transform).
+    // A non-uniform scale stretches a round tube into an elliptical one, which
+    // a width cannot express; the cube root of the volume scale is its mean
+    // scale factor, exact for uniform scale.
+    const float widthScale =
+        static_cast<float>(std::cbrt(std::abs(glm::determinant(glm::dmat3(prim.worldTransform)))));
+    writeControls(SpanSources{prim, topology, attributes, layout, widthScale}, checks, result);
     return result;
 }
 

@@ -162,11 +162,8 @@ uint64_t FragmentListPass::fillLists(const StrandGeometry& geometry, const Liste
     return offered;
 }
 
-uint64_t FragmentListPass::render(const StrandGeometry& geometry, const ListedSegments& segments, int width,
-                                  int height, size_t capacity, uint64_t expectedFragments, float maxSegmentsPerSpan, bool writeIds,
-                                  ShadingFeatures features, GLuint frameDepth, const ListFilling& filling) {
-    stopped_ = false;
-    ensureImage(width, height);
+size_t FragmentListPass::wantedNodes(const ListedSegments& segments, int width, int height, size_t capacity,
+                                     uint64_t expectedFragments) const {
     // The nodes take what the frame needs, not the whole budget: storage is
     // made (and, on llvmpipe, zeroed) when it is allocated, which costs
     // about as much as the list pass itself at a 512 MB budget. A first
@@ -187,27 +184,10 @@ uint64_t FragmentListPass::render(const StrandGeometry& geometry, const ListedSe
         expectedFragments > 0
             ? size_t(std::min(expectedFragments + expectedFragments / 4, pixels * kMostFirstGuessFragmentsPerPixel))
             : size_t(std::min(pixels * 2, spans * kFirstGuessFragmentsPerSpan));
-    const size_t wanted = std::max(kFewestNodes, std::min(capacity, listedLast_ ? listedLast_ + listedLast_ / 4
-                                                                                : firstGuess));
-    if (!nodes_ || nodeCapacity_ < wanted || nodeCapacity_ / 4 > wanted) resizeNodes(wanted);
-    uint64_t offered = fillLists(geometry, segments, maxSegmentsPerSpan, features, frameDepth, filling);
-    if (!stopped_ && offered > nodeCapacity_ && offered <= capacity) {
-        resizeNodes(std::min<size_t>(capacity, size_t(offered + offered / 4)));
-        offered = fillLists(geometry, segments, maxSegmentsPerSpan, features, frameDepth, filling);
-    }
-    if (!stopped_) listedLast_ = size_t(std::min<uint64_t>(offered, capacity));
-    if (stopped_) {
-        // The marks of the tiles listed so far must not reach the next frame.
-        gatherTiles();
-        glEnable(GL_DEPTH_TEST);
-        glDepthMask(GL_TRUE);
-        glBindVertexArray(0);
-        glUseProgram(0);
-        return offered;
-    }
+    return std::max(kFewestNodes, std::min(capacity, listedLast_ ? listedLast_ + listedLast_ / 4 : firstGuess));
+}
 
-    gatherTiles();
-
+void FragmentListPass::resolveTiles(int width, int height, bool writeIds) {
     // Pass 2: resolve every pixel of the tiles holding fragments over what
     // the frame holds (opaque meshes, or nothing; pixels elsewhere keep
     // it): colour composited (ONE, ONE_MINUS_SRC_ALPHA) and the nearest
@@ -240,6 +220,9 @@ uint64_t FragmentListPass::render(const StrandGeometry& geometry, const ListedSe
     }
     glEnable(GL_DEPTH_TEST);
     glDepthMask(GL_TRUE);
+}
+
+void FragmentListPass::readResolveCounts() {
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
     uint32_t longLists[2] = {0, 0};
     glGetNamedBufferSubData(counter_.get(), 2 * sizeof(uint32_t), sizeof longLists, longLists);
@@ -248,6 +231,34 @@ uint64_t FragmentListPass::render(const StrandGeometry& geometry, const ListedSe
     uint32_t tiles = 0;
     glGetNamedBufferSubData(tileDraw_.get(), sizeof(uint32_t), sizeof tiles, &tiles);
     resolvedTiles_ = tiles;
+}
+
+uint64_t FragmentListPass::render(const StrandGeometry& geometry, const ListedSegments& segments, int width,
+                                  int height, size_t capacity, uint64_t expectedFragments, float maxSegmentsPerSpan, bool writeIds,
+                                  ShadingFeatures features, GLuint frameDepth, const ListFilling& filling) {
+    stopped_ = false;
+    ensureImage(width, height);
+    const size_t wanted = wantedNodes(segments, width, height, capacity, expectedFragments);
+    if (!nodes_ || nodeCapacity_ < wanted || nodeCapacity_ / 4 > wanted) resizeNodes(wanted);
+    uint64_t offered = fillLists(geometry, segments, maxSegmentsPerSpan, features, frameDepth, filling);
+    if (!stopped_ && offered > nodeCapacity_ && offered <= capacity) {
+        resizeNodes(std::min<size_t>(capacity, size_t(offered + offered / 4)));
+        offered = fillLists(geometry, segments, maxSegmentsPerSpan, features, frameDepth, filling);
+    }
+    if (!stopped_) listedLast_ = size_t(std::min<uint64_t>(offered, capacity));
+    if (stopped_) {
+        // The marks of the tiles listed so far must not reach the next frame.
+        gatherTiles();
+        glEnable(GL_DEPTH_TEST);
+        glDepthMask(GL_TRUE);
+        glBindVertexArray(0);
+        glUseProgram(0);
+        return offered;
+    }
+
+    gatherTiles();
+    resolveTiles(width, height, writeIds);
+    readResolveCounts();
     glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
     glBindVertexArray(0);
     glUseProgram(0);

@@ -103,6 +103,13 @@ private:
     void ensureImage(int width, int height);
     // Gathers the marked tiles into the resolve's indirect draw and clears the marks.
     void gatherTiles();
+    // The fragments render() makes node storage for: a first guess, then what the last render listed.
+    size_t wantedNodes(const ListedSegments& segments, int width, int height, size_t capacity,
+                       uint64_t expectedFragments) const;
+    // Pass 2: composites the gathered tiles' lists into the bound framebuffer (and their ids with `writeIds`).
+    void resolveTiles(int width, int height, bool writeIds);
+    // Reads back the last resolve's overlong and unwalked pixels and its resolved tiles.
+    void readResolveCounts();
 
     ShadingPrograms listPrograms_;
     ShadingPrograms computePrograms_;

@@ -95,6 +95,30 @@ bool sameBits(GfMatrix4d const& a, GfMatrix4d const& b) {
     return std::memcmp(a.data(), b.data(), sizeof(double) * 16) == 0;
 }
 
+// Where the image goes (y down): the framing's data window; without a
+// framing, the legacy viewport.
+GfRect2i dataWindowOf(HdRenderPassState const& state) {
+    CameraUtilFraming const& framing = state.GetFraming();
+    if (framing.IsValid()) return framing.dataWindow;
+    GfVec4f const& viewport = state.GetViewport();
+    return GfRect2i(GfVec2i(int(viewport[0]), int(viewport[1])), int(viewport[2]), int(viewport[3]));
+}
+
+// The host's camera as the engine's view of `dataWindow`, its lens and
+// transform checked as the embedded reader checks them.
+hdhair::CameraView cameraViewOf(HdCamera const& camera, HdRenderPassState const& state, GfMatrix4d const& view,
+                                GfMatrix4d const& hostProjection, GfRect2i const& dataWindow,
+                                hdhair::Diagnostics& diagnostics) {
+    // A lens that cannot be used is an error naming the prim and attribute,
+    // a bad clipping range takes USD's fallback with a warning.
+    const hdhair::CameraPrim prim = cameraPrimOf(camera);
+    const hdhair::CameraPrim checked = hdhair::checkedCamera(prim, "the host's camera", diagnostics);
+    const GfMatrix4d projection =
+        checked.clippingRange == prim.clippingRange ? hostProjection : projectionFor(checked, state);
+    return hdhair::hydra::cameraViewFromHydra(view.data(), projection.data(), dataWindow.GetWidth(),
+                                              dataWindow.GetHeight());
+}
+
 }  // namespace
 
 bool HdHairRenderPass::Layout::operator==(Layout const& other) const {
@@ -113,6 +137,57 @@ HdHairRenderPass::HdHairRenderPass(HdRenderIndex* index, HdRprimCollection const
 
 HdHairRenderPass::~HdHairRenderPass() = default;
 
+HdHairRenderPass::FrameKey HdHairRenderPass::_FrameKeyOf(HdRenderPassState const& state,
+                                                          TfTokenVector const& renderTags,
+                                                          GfRect2i const& dataWindow) const {
+    FrameKey frame;
+    frame.sceneVersion = _renderParam->GetSceneVersion();
+    frame.settingsVersion = _delegate->GetRenderSettingsVersion();
+    frame.view = state.GetWorldToViewMatrix();
+    frame.projection = state.GetProjectionMatrix();
+    frame.layout.dataWindow = dataWindow;
+    for (HdRenderPassAovBinding const& binding : state.GetAovBindings()) {
+        frame.layout.buffers.emplace_back(binding.renderBufferId, binding.renderBuffer);
+        if (binding.renderBuffer)
+            frame.layout.bufferShapes.emplace_back(binding.renderBuffer->GetWidth(), binding.renderBuffer->GetHeight(),
+                                                   int(binding.renderBuffer->GetFormat()));
+    }
+    frame.renderTags = renderTags;
+    return frame;
+}
+
+bool HdHairRenderPass::_SubmitFrame(FrameKey const& frame, HdRenderPassState const& state,
+                                    TfTokenVector const& renderTags) {
+    HdRenderPassAovBindingVector const& bindings = state.GetAovBindings();
+    try {
+        if (!_renderer)
+            _renderer = std::make_unique<hdhair::ProgressiveRenderer>(
+                _renderParam->GetRenderer(), _renderParam->GetRendererMutex(), _renderParam->GetDiagnostics());
+        hdhair::FrameRequest request;
+        int refineLevel = 0;
+        request.scene = _renderParam->Snapshot(renderTags, &refineLevel);
+        request.settings = _delegate->GetEngineSettings();
+        request.settings.setComplexity(hdhair::hydra::complexityFromRefineLevel(refineLevel));
+        request.camera = cameraViewOf(*state.GetCamera(), state, frame.view, frame.projection, frame.layout.dataWindow,
+                                      _renderParam->GetDiagnostics());
+        Requested requested{frame.layout, std::nullopt};
+        request.ids = wantsIds(bindings) && _idsRead;
+        if (wantsIds(bindings) && !request.ids) requested.deferredIdsRequest = request;
+        _newestRequest = _renderer->submit(std::move(request));
+        _requests[_newestRequest] = std::move(requested);
+    } catch (std::exception const& error) {
+        // No GL, say: reported once per change and the buffers left
+        // cleared; hosts must not hang waiting for a frame that cannot come.
+        _Fail(error.what(), bindings);
+        _newestRequest = 0;
+        _requests.clear();
+        _renderParam->SetProgress({_shown, _error, false, 0, 0, 0, 0, 0});
+        _Settle(bindings);
+        return false;
+    }
+    return true;
+}
+
 void HdHairRenderPass::_Execute(HdRenderPassStateSharedPtr const& renderPassState,
                                 TfTokenVector const& renderTags) {
     HdRenderPassAovBindingVector const& bindings = renderPassState->GetAovBindings();
@@ -124,73 +199,14 @@ void HdHairRenderPass::_Execute(HdRenderPassStateSharedPtr const& renderPassStat
         return;
     }
 
-    // The framing's data window is where the image goes (y down); without a
-    // framing, the legacy viewport.
-    CameraUtilFraming const& framing = renderPassState->GetFraming();
-    GfRect2i dataWindow;
-    if (framing.IsValid()) {
-        dataWindow = framing.dataWindow;
-    } else {
-        GfVec4f const& viewport = renderPassState->GetViewport();
-        dataWindow = GfRect2i(GfVec2i(int(viewport[0]), int(viewport[1])), int(viewport[2]), int(viewport[3]));
-    }
-
-    FrameKey frame;
-    frame.sceneVersion = _renderParam->GetSceneVersion();
-    frame.settingsVersion = _delegate->GetRenderSettingsVersion();
-    frame.view = renderPassState->GetWorldToViewMatrix();
-    frame.projection = renderPassState->GetProjectionMatrix();
-    HdCamera const& camera = *renderPassState->GetCamera();
-    frame.layout.dataWindow = dataWindow;
-    for (HdRenderPassAovBinding const& binding : bindings) {
-        frame.layout.buffers.emplace_back(binding.renderBufferId, binding.renderBuffer);
-        if (binding.renderBuffer)
-            frame.layout.bufferShapes.emplace_back(binding.renderBuffer->GetWidth(), binding.renderBuffer->GetHeight(),
-                                                   int(binding.renderBuffer->GetFormat()));
-    }
-    frame.renderTags = renderTags;
-
+    const FrameKey frame = _FrameKeyOf(*renderPassState, renderTags, dataWindowOf(*renderPassState));
     if (_deferredIds && _deferredIds->WereRead()) _idsRead = true;
     if (!_hasLastFrame || !(frame == _lastFrame)) {
         _lastFrame = frame;
         _hasLastFrame = true;
         _converged = false;
         setConverged(bindings, false);
-        try {
-            if (!_renderer)
-                _renderer = std::make_unique<hdhair::ProgressiveRenderer>(
-                    _renderParam->GetRenderer(), _renderParam->GetRendererMutex(), _renderParam->GetDiagnostics());
-            hdhair::FrameRequest request;
-            int refineLevel = 0;
-            request.scene = _renderParam->Snapshot(renderTags, &refineLevel);
-            request.settings = _delegate->GetEngineSettings();
-            request.settings.setComplexity(hdhair::hydra::complexityFromRefineLevel(refineLevel));
-            // The camera prim's lens and transform, checked as the embedded
-            // reader checks them: a lens that cannot be used is an error
-            // naming the prim and attribute, a bad clipping range takes
-            // USD's fallback with a warning.
-            const hdhair::CameraPrim prim = cameraPrimOf(camera);
-            const hdhair::CameraPrim checked = hdhair::checkedCamera(prim, "the host's camera", _renderParam->GetDiagnostics());
-            const GfMatrix4d projection = checked.clippingRange == prim.clippingRange
-                                              ? frame.projection
-                                              : projectionFor(checked, *renderPassState);
-            request.camera = hdhair::hydra::cameraViewFromHydra(frame.view.data(), projection.data(),
-                                                                dataWindow.GetWidth(), dataWindow.GetHeight());
-            Requested requested{frame.layout, std::nullopt};
-            request.ids = wantsIds(bindings) && _idsRead;
-            if (wantsIds(bindings) && !request.ids) requested.deferredIdsRequest = request;
-            _newestRequest = _renderer->submit(std::move(request));
-            _requests[_newestRequest] = std::move(requested);
-        } catch (std::exception const& error) {
-            // No GL, say: reported once per change and the buffers left
-            // cleared; hosts must not hang waiting for a frame that cannot come.
-            _Fail(error.what(), bindings);
-            _newestRequest = 0;
-            _requests.clear();
-            _renderParam->SetProgress({_shown, _error, false, 0, 0, 0, 0, 0});
-            _Settle(bindings);
-            return;
-        }
+        if (!_SubmitFrame(frame, *renderPassState, renderTags)) return;
     }
 
     _TakeFinished(frame.layout, bindings);

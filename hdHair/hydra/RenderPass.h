@@ -64,6 +64,12 @@ private:
         bool operator==(FrameKey const& other) const;
     };
 
+    // The key of the frame `state` asks for, into `dataWindow`.
+    FrameKey _FrameKeyOf(HdRenderPassState const& state, TfTokenVector const& renderTags,
+                         GfRect2i const& dataWindow) const;
+    // Asks the renderer for `frame`; false when that failed (reported, and
+    // the buffers cleared and settled).
+    bool _SubmitFrame(FrameKey const& frame, HdRenderPassState const& state, TfTokenVector const& renderTags);
     // Shows the newest finished frame, if any, when it fits the buffers as
     // they are (`current`), and settles when it is the newest view's full frame.
     void _TakeFinished(Layout const& current, HdRenderPassAovBindingVector const& bindings);

@@ -88,6 +88,77 @@ Sdc::Options schemeOptions(const MeshTopology& topology) {
     return options;
 }
 
+// OpenSubdiv's face-varying channels, pointing into `faceVaryingChannels`.
+std::vector<Far::TopologyDescriptor::FVarChannel> fvarChannels(
+    [[maybe_unused]] const MeshTopology& topology, const std::vector<std::vector<int>>& faceVaryingChannels) {
+    std::vector<Far::TopologyDescriptor::FVarChannel> channels(faceVaryingChannels.size());
+    for (size_t c = 0; c < faceVaryingChannels.size(); ++c) {
+        const std::vector<int>& values = faceVaryingChannels[c];
+        assert(values.size() == topology.faceVertexIndices.size());
+        // Every value a channel uses, for OpenSubdiv's value count.
+        channels[c].numValues = values.empty() ? 0 : *std::max_element(values.begin(), values.end()) + 1;
+        channels[c].valueIndices = values.data();
+    }
+    return channels;
+}
+
+// The indices of the topology's hole faces.
+std::vector<int> holeFaces(const MeshTopology& topology) {
+    std::vector<int> holes;
+    for (size_t f = 0; f < topology.faceCount(); ++f)
+        if (topology.hole[f]) holes.push_back(int(f));
+    return holes;
+}
+
+// The topology as OpenSubdiv takes it; points into `topology`, `channels` and `holes`.
+Far::TopologyDescriptor describe(const MeshTopology& topology,
+                                 const std::vector<Far::TopologyDescriptor::FVarChannel>& channels,
+                                 const std::vector<int>& holes) {
+    Far::TopologyDescriptor descriptor;
+    descriptor.numVertices = int(topology.points.size());
+    descriptor.numFaces = int(topology.faceCount());
+    descriptor.numVertsPerFace = topology.faceVertexCounts.data();
+    descriptor.vertIndicesPerFace = topology.faceVertexIndices.data();
+    descriptor.numCreases = int(topology.creaseSharpnesses.size());
+    descriptor.creaseVertexIndexPairs = topology.creaseEdges.data();
+    descriptor.creaseWeights = topology.creaseSharpnesses.data();
+    descriptor.numCorners = int(topology.corners.size());
+    descriptor.cornerVertexIndices = topology.corners.data();
+    descriptor.cornerWeights = topology.cornerSharpnesses.data();
+    descriptor.numHoles = int(holes.size());
+    descriptor.holeIndices = holes.data();
+    descriptor.numFVarChannels = int(channels.size());
+    descriptor.fvarChannels = channels.data();
+    return descriptor;
+}
+
+// OpenSubdiv's refiner of the mesh, refined uniformly to `level`; nullptr
+// when OpenSubdiv cannot take the mesh. Its messages become warnings.
+std::unique_ptr<Far::TopologyRefiner> refineUniformly(const MeshTopology& topology, int level,
+                                                      const std::vector<std::vector<int>>& faceVaryingChannels,
+                                                      const std::string& primPath, Diagnostics& diagnostics) {
+    const std::vector<Far::TopologyDescriptor::FVarChannel> channels = fvarChannels(topology, faceVaryingChannels);
+    const std::vector<int> holes = holeFaces(topology);
+    const Far::TopologyDescriptor descriptor = describe(topology, channels, holes);
+
+    CollectOpenSubdivMessages messages;
+    using Factory = Far::TopologyRefinerFactory<Far::TopologyDescriptor>;
+    std::unique_ptr<Far::TopologyRefiner> far(
+        Factory::Create(descriptor, Factory::Options(schemeType(topology.scheme), schemeOptions(topology))));
+    if (far) {
+        // Limit positions need the last level's full topology.
+        Far::TopologyRefiner::UniformOptions uniform(level);
+        uniform.fullTopologyInLastLevel = true;
+        far->RefineUniform(uniform);
+    }
+    for (const std::string& message : messages.messages)
+        diagnostics.warn(primPath, "OpenSubdiv: " + message);
+    if (!far)
+        diagnostics.warn(primPath, fmt::format("OpenSubdiv cannot subdivide this mesh ({}); drawn as its cage",
+                                               toString(topology.scheme)));
+    return far;
+}
+
 }  // namespace
 
 MeshRefinement::MeshRefinement(const MeshTopology& topology, int level,
@@ -95,71 +166,39 @@ MeshRefinement::MeshRefinement(const MeshTopology& topology, int level,
                                Diagnostics& diagnostics)
     : channels_(faceVaryingChannels) {
     if (level > 0 && topology.scheme != SubdivisionScheme::None && topology.faceCount() > 0) {
-        // Every value a channel uses, for OpenSubdiv's value count.
-        std::vector<int> valueCounts;
-        std::vector<Far::TopologyDescriptor::FVarChannel> channels(channels_.size());
-        for (size_t c = 0; c < channels_.size(); ++c) {
-            assert(channels_[c].size() == topology.faceVertexIndices.size());
-            channels[c].numValues =
-                channels_[c].empty() ? 0 : *std::max_element(channels_[c].begin(), channels_[c].end()) + 1;
-            channels[c].valueIndices = channels_[c].data();
-        }
-        std::vector<int> holes;
-        for (size_t f = 0; f < topology.faceCount(); ++f)
-            if (topology.hole[f]) holes.push_back(int(f));
-        Far::TopologyDescriptor descriptor;
-        descriptor.numVertices = int(topology.points.size());
-        descriptor.numFaces = int(topology.faceCount());
-        descriptor.numVertsPerFace = topology.faceVertexCounts.data();
-        descriptor.vertIndicesPerFace = topology.faceVertexIndices.data();
-        descriptor.numCreases = int(topology.creaseSharpnesses.size());
-        descriptor.creaseVertexIndexPairs = topology.creaseEdges.data();
-        descriptor.creaseWeights = topology.creaseSharpnesses.data();
-        descriptor.numCorners = int(topology.corners.size());
-        descriptor.cornerVertexIndices = topology.corners.data();
-        descriptor.cornerWeights = topology.cornerSharpnesses.data();
-        descriptor.numHoles = int(holes.size());
-        descriptor.holeIndices = holes.data();
-        descriptor.numFVarChannels = int(channels.size());
-        descriptor.fvarChannels = channels.data();
-
-        CollectOpenSubdivMessages messages;
-        using Factory = Far::TopologyRefinerFactory<Far::TopologyDescriptor>;
-        std::unique_ptr<Far::TopologyRefiner> far(
-            Factory::Create(descriptor, Factory::Options(schemeType(topology.scheme), schemeOptions(topology))));
-        if (far) {
-            // Limit positions need the last level's full topology.
-            Far::TopologyRefiner::UniformOptions uniform(level);
-            uniform.fullTopologyInLastLevel = true;
-            far->RefineUniform(uniform);
+        if (std::unique_ptr<Far::TopologyRefiner> far =
+                refineUniformly(topology, level, channels_, primPath, diagnostics)) {
             refiner_ = std::make_unique<Refiner>();
             refiner_->far = std::move(far);
         }
-        for (const std::string& message : messages.messages)
-            diagnostics.warn(primPath, "OpenSubdiv: " + message);
-        if (!refiner_)
-            diagnostics.warn(primPath, fmt::format("OpenSubdiv cannot subdivide this mesh ({}); drawn as its cage",
-                                                   toString(topology.scheme)));
     }
 
     if (!refiner_) {
-        points_ = topology.points;
-        size_t corner = 0;
-        for (size_t f = 0; f < topology.faceCount(); ++f) {
-            const int n = topology.faceVertexCounts[f];
-            if (!topology.hole[f]) {
-                faceVertexCounts_.push_back(n);
-                baseFaces_.push_back(int(f));
-                for (int i = 0; i < n; ++i) {
-                    faceVertexIndices_.push_back(topology.faceVertexIndices[corner + size_t(i)]);
-                    cageCorners_.push_back(int(corner) + i);
-                }
-            }
-            corner += size_t(n);
-        }
+        keepCage(topology);
         return;
     }
+    readRefinedFaces();
+    refinePoints(topology);
+}
 
+void MeshRefinement::keepCage(const MeshTopology& topology) {
+    points_ = topology.points;
+    size_t corner = 0;
+    for (size_t f = 0; f < topology.faceCount(); ++f) {
+        const int n = topology.faceVertexCounts[f];
+        if (!topology.hole[f]) {
+            faceVertexCounts_.push_back(n);
+            baseFaces_.push_back(int(f));
+            for (int i = 0; i < n; ++i) {
+                faceVertexIndices_.push_back(topology.faceVertexIndices[corner + size_t(i)]);
+                cageCorners_.push_back(int(corner) + i);
+            }
+        }
+        corner += size_t(n);
+    }
+}
+
+void MeshRefinement::readRefinedFaces() {
     const Far::TopologyRefiner& far = *refiner_->far;
     level_ = far.GetMaxLevel();
     const Far::TopologyLevel& last = far.GetLevel(level_);
@@ -172,7 +211,10 @@ MeshRefinement::MeshRefinement(const MeshTopology& topology, int level,
         for (int l = level_; l > 0; --l) base = far.GetLevel(l).GetFaceParentFace(base);
         baseFaces_.push_back(base);
     }
+}
 
+void MeshRefinement::refinePoints(const MeshTopology& topology) {
+    const Far::TopologyRefiner& far = *refiner_->far;
     onLimitSurface_ = topology.scheme == SubdivisionScheme::CatmullClark || topology.scheme == SubdivisionScheme::Loop;
     std::vector<Element> levelData(topology.points.size());
     for (size_t p = 0; p < topology.points.size(); ++p) std::copy_n(&topology.points[p].x, 3, levelData[p].v);

@@ -60,6 +60,14 @@ public:
 
 private:
     struct Refiner;  // OpenSubdiv's, kept for the primvars
+
+    // Without OpenSubdiv: the cage's points and its faces that are not holes.
+    void keepCage(const MeshTopology& topology);
+    // The last level's faces that are not holes, and the base face of each.
+    void readRefinedFaces();
+    // The refined points, and limit normals where the scheme has a limit surface.
+    void refinePoints(const MeshTopology& topology);
+
     std::unique_ptr<Refiner> refiner_;
     std::vector<std::vector<int>> channels_;
     int level_ = 0;

@@ -101,6 +101,123 @@ std::vector<OutgoingRow> outgoingRows(SrbfTableKind kind, const SrbfTableResolut
     return rows;
 }
 
+// cos nψ at every ψ node, [node][order] for orders 0..orders.
+std::vector<double> azimuthCosines(int W, int orders) {
+    std::vector<double> cosines(std::size_t(W) * (orders + 1));
+    for (int x = 0; x < W; ++x)
+        for (int n = 0; n <= orders; ++n)
+            cosines[std::size_t(x) * (orders + 1) + n] = std::cos(n * node(x, W, 0.0, kPi));
+    return cosines;
+}
+
+// What every texel plane of one table reads.
+struct TablePlan {
+    SrbfTableKind kind;
+    SrbfTableResolution r;
+    int W, H, C;
+    int orders;  // the Fourier orders kept: 0 for Kajiya-Kay
+    int groups;  // the longitudinal functions' channel groups
+    const Inclinations& inclinations;
+    const std::vector<OutgoingRow>& rows;
+    std::vector<double> cosines;  // azimuthCosines
+};
+
+// One task's working memory, reused from plane to plane.
+struct PlaneScratch {
+    std::vector<double> bessel;
+    std::vector<double> weight;                 // per θ_i node
+    std::vector<int> lastOrder;                 // per θ_i node: the last order summed, −1 for none
+    std::vector<std::vector<double>> besselAt;  // per θ_i node: e^(−κ) I_n(κ) up to lastOrder
+    std::vector<double> b;                      // B_gn, [group][order]
+    std::vector<glm::dvec3> modes;              // per Fourier order
+
+    explicit PlaneScratch(const TablePlan& plan)
+        : weight(plan.inclinations.theta.size()), lastOrder(plan.inclinations.theta.size()),
+          besselAt(plan.inclinations.theta.size()), b(std::size_t(plan.groups) * (plan.orders + 1)),
+          modes(std::size_t(plan.orders + 1)) {}
+};
+
+// Fills scratch.weight, lastOrder and besselAt for the plane of bandwidth
+// λ centred at θ_ξ.
+void weighInclinations(const TablePlan& plan, double lambda, double thetaXi, PlaneScratch& scratch) {
+    const Inclinations& inclinations = plan.inclinations;
+    const int orders = plan.orders;
+    const double cosXi = std::max(0.0, std::cos(thetaXi));
+    // Per θ_i node: 2π Δθ cos θ_i exp(λ(cos(θ_i − θ_ξ) − 1)) and e^(−κ) I_n(κ).
+    for (std::size_t i = 0; i < inclinations.theta.size(); ++i) {
+        scratch.weight[i] = 2.0 * kPi * inclinations.step * inclinations.cosTheta[i] *
+                            std::exp(lambda * (std::cos(inclinations.theta[i] - thetaXi) - 1.0));
+        scratch.lastOrder[i] = -1;
+        if (scratch.weight[i] < kNegligible) continue;
+        scaledModifiedBesselI(lambda * inclinations.cosTheta[i] * cosXi, orders, scratch.bessel);
+        int last = 0;
+        while (last < orders && scratch.bessel[std::size_t(last) + 1] > kNegligible) ++last;
+        scratch.lastOrder[i] = last;
+        scratch.besselAt[i].assign(scratch.bessel.begin(), scratch.bessel.begin() + last + 1);
+    }
+}
+
+// Sums scratch.b for one θ_o row from the plane's quadrature.
+void sumLongitudinalModes(const TablePlan& plan, const OutgoingRow& row, PlaneScratch& scratch) {
+    const int orders = plan.orders;
+    std::vector<double>& b = scratch.b;
+    // B_gn = Σ_i weight_i · longitudinal_g(θ_i) · e^(−κ_i) I_n(κ_i)
+    std::fill(b.begin(), b.end(), 0.0);
+    for (std::size_t i = 0; i < plan.inclinations.theta.size(); ++i) {
+        if (scratch.lastOrder[i] < 0) continue;
+        const double* bi = scratch.besselAt[i].data();
+        for (int g = 0; g < plan.groups; ++g) {
+            double w = scratch.weight[i] * row.longitudinal[g][i];
+            double* bg = &b[std::size_t(g) * (orders + 1)];
+            for (int n = 0; n <= scratch.lastOrder[i]; ++n) bg[n] += w * bi[n];
+        }
+    }
+}
+
+// Writes one Marschner row's texels (W of them, C channels each) from scratch.b.
+void writeMarschnerRow(const TablePlan& plan, const OutgoingRow& row, PlaneScratch& scratch, float* out) {
+    const int orders = plan.orders;
+    // Per Fourier mode, the channels: RGB = Σ_p a'_pn B_pn, or (R, TT, TRT) = a'_pn B_pn.
+    for (int n = 0; n <= orders; ++n) {
+        glm::dvec3 mode(0.0);
+        for (int p = 0; p < 3; ++p) {
+            double bpn = scratch.b[std::size_t(p) * (orders + 1) + n];
+            if (plan.kind == SrbfTableKind::MarschnerColour)
+                mode += row.fourier[p][std::size_t(n)] * bpn;
+            else
+                mode[p] = row.fourier[p][std::size_t(n)].x * bpn;
+        }
+        scratch.modes[std::size_t(n)] = mode;
+    }
+    for (int x = 0; x < plan.W; ++x) {
+        glm::dvec3 value(0.0);
+        const double* c = &plan.cosines[std::size_t(x) * (orders + 1)];
+        for (int n = 0; n <= orders; ++n) value += scratch.modes[std::size_t(n)] * c[n];
+        for (int channel = 0; channel < 3; ++channel)
+            out[std::size_t(x) * plan.C + channel] = float(std::max(0.0, value[channel]));
+    }
+}
+
+// Fills the texels of plane z = l·centres + k: 1/λ node l, θ_ξ node k.
+void fillPlane(const TablePlan& plan, int z, PlaneScratch& scratch, std::vector<float>& texels) {
+    const SrbfTableResolution& r = plan.r;
+    const int l = z / r.centres, k = z % r.centres;
+    const double lambda = 1.0 / node(l, r.bandwidths, kInverseLambdaMin, kInverseLambdaMax);
+    const double thetaXi = node(k, r.centres, -0.5 * kPi, 0.5 * kPi);
+    weighInclinations(plan, lambda, thetaXi, scratch);
+    for (int y = 0; y < plan.H; ++y) {
+        const OutgoingRow& row = plan.rows[std::size_t(y)];
+        sumLongitudinalModes(plan, row, scratch);
+        float* out = &texels[(std::size_t(z) * plan.H + y) * plan.W * plan.C];
+        if (plan.kind == SrbfTableKind::KajiyaKay) {
+            out[0] = float(scratch.b[0]);
+            out[1] = float(scratch.b[1]);
+            continue;
+        }
+        writeMarschnerRow(plan, row, scratch, out);
+    }
+}
+
 SrbfConvolutionTable buildTable(SrbfTableKind kind, const SrbfTableResolution& requested,
                                 SrbfTablePrecision precision, const MarschnerParameters& marschner,
                                 float shininess) {
@@ -116,78 +233,13 @@ SrbfConvolutionTable buildTable(SrbfTableKind kind, const SrbfTableResolution& r
     const Inclinations inclinations;
     const std::vector<OutgoingRow> rows = outgoingRows(kind, r, marschner, shininess, inclinations);
     const int orders = kind == SrbfTableKind::KajiyaKay ? 0 : kFourierOrders;
-    // cos nψ at every ψ node.
-    std::vector<double> cosines(std::size_t(W) * (orders + 1));
-    for (int x = 0; x < W; ++x)
-        for (int n = 0; n <= orders; ++n)
-            cosines[std::size_t(x) * (orders + 1) + n] = std::cos(n * node(x, W, 0.0, kPi));
     const int groups = kind == SrbfTableKind::KajiyaKay ? 2 : 3;
+    const TablePlan plan{kind, r, W, H, C, orders, groups, inclinations, rows, azimuthCosines(W, orders)};
 
     // One task per (1/λ slab, θ_ξ node): its texels are the z = l·centres + k plane.
     tbb::parallel_for(tbb::blocked_range<int>(0, table.depth()), [&](const tbb::blocked_range<int>& range) {
-        std::vector<double> bessel;
-        std::vector<double> weight(inclinations.theta.size());
-        std::vector<int> lastOrder(inclinations.theta.size());
-        std::vector<std::vector<double>> besselAt(inclinations.theta.size());
-        std::vector<double> b(std::size_t(groups) * (orders + 1));
-        std::vector<glm::dvec3> modes(std::size_t(orders + 1));
-        for (int z = range.begin(); z != range.end(); ++z) {
-            const int l = z / r.centres, k = z % r.centres;
-            const double lambda = 1.0 / node(l, r.bandwidths, kInverseLambdaMin, kInverseLambdaMax);
-            const double thetaXi = node(k, r.centres, -0.5 * kPi, 0.5 * kPi);
-            const double cosXi = std::max(0.0, std::cos(thetaXi));
-            // Per θ_i node: 2π Δθ cos θ_i exp(λ(cos(θ_i − θ_ξ) − 1)) and e^(−κ) I_n(κ).
-            for (std::size_t i = 0; i < inclinations.theta.size(); ++i) {
-                weight[i] = 2.0 * kPi * inclinations.step * inclinations.cosTheta[i] *
-                            std::exp(lambda * (std::cos(inclinations.theta[i] - thetaXi) - 1.0));
-                lastOrder[i] = -1;
-                if (weight[i] < kNegligible) continue;
-                scaledModifiedBesselI(lambda * inclinations.cosTheta[i] * cosXi, orders, bessel);
-                int last = 0;
-                while (last < orders && bessel[std::size_t(last) + 1] > kNegligible) ++last;
-                lastOrder[i] = last;
-                besselAt[i].assign(bessel.begin(), bessel.begin() + last + 1);
-            }
-            for (int y = 0; y < H; ++y) {
-                const OutgoingRow& row = rows[std::size_t(y)];
-                // B_gn = Σ_i weight_i · longitudinal_g(θ_i) · e^(−κ_i) I_n(κ_i)
-                std::fill(b.begin(), b.end(), 0.0);
-                for (std::size_t i = 0; i < inclinations.theta.size(); ++i) {
-                    if (lastOrder[i] < 0) continue;
-                    const double* bi = besselAt[i].data();
-                    for (int g = 0; g < groups; ++g) {
-                        double w = weight[i] * row.longitudinal[g][i];
-                        double* bg = &b[std::size_t(g) * (orders + 1)];
-                        for (int n = 0; n <= lastOrder[i]; ++n) bg[n] += w * bi[n];
-                    }
-                }
-                float* out = &table.texels[(std::size_t(z) * H + y) * W * C];
-                if (kind == SrbfTableKind::KajiyaKay) {
-                    out[0] = float(b[0]);
-                    out[1] = float(b[1]);
-                    continue;
-                }
-                // Per Fourier mode, the channels: RGB = Σ_p a'_pn B_pn, or (R, TT, TRT) = a'_pn B_pn.
-                for (int n = 0; n <= orders; ++n) {
-                    glm::dvec3 mode(0.0);
-                    for (int p = 0; p < 3; ++p) {
-                        double bpn = b[std::size_t(p) * (orders + 1) + n];
-                        if (kind == SrbfTableKind::MarschnerColour)
-                            mode += row.fourier[p][std::size_t(n)] * bpn;
-                        else
-                            mode[p] = row.fourier[p][std::size_t(n)].x * bpn;
-                    }
-                    modes[std::size_t(n)] = mode;
-                }
-                for (int x = 0; x < W; ++x) {
-                    glm::dvec3 value(0.0);
-                    const double* c = &cosines[std::size_t(x) * (orders + 1)];
-                    for (int n = 0; n <= orders; ++n) value += modes[std::size_t(n)] * c[n];
-                    for (int channel = 0; channel < 3; ++channel)
-                        out[std::size_t(x) * C + channel] = float(std::max(0.0, value[channel]));
-                }
-            }
-        }
+        PlaneScratch scratch(plan);
+        for (int z = range.begin(); z != range.end(); ++z) fillPlane(plan, z, scratch, table.texels);
     });
     if (precision == SrbfTablePrecision::Half)
         for (float& texel : table.texels) texel = roundToHalf(texel);

@@ -275,6 +275,110 @@ std::string cameraDescription(const Options& options, const RenderSettings& sett
     return options.camera.empty() ? fmt::format("framing camera ({})", toString(settings.values().framing)) : options.camera;
 }
 
+#if HDHAIR_WITH_USD
+// The plugin's warnings: the first kWarningsPrinted printed, every one kept
+// for --stats.
+struct PluginWarnings {
+    size_t printed = 0;
+    nlohmann::json warnings = nlohmann::json::array();  // every one, for --stats
+    std::mutex mutex;  // the plugin's render thread warns too
+
+    void warn(const std::string& warning) {
+        const std::lock_guard<std::mutex> lock(mutex);
+        if (printed++ < kWarningsPrinted)
+            std::fprintf(stderr, "hdhair-record: warning: %s\n", printableText(warning).c_str());
+        warnings.push_back({{"message", printableText(warning)}});
+    }
+};
+
+// The request that records the frame at `time` through OpenUSD, framed as `framing` says.
+hydra::UsdImagingRecordRequest usdImagingRequest(const Options& options, const usda::SceneReadOptions& purposes,
+                                                 Complexity complexity, double time, FramingStyle framing,
+                                                 PluginWarnings& warnings) {
+    hydra::UsdImagingRecordRequest request;
+    request.warn = [&warnings](const std::string& warning) { warnings.warn(warning); };
+    request.stagePath = options.usdFile;
+    request.camera = options.camera;
+    request.imageWidth = options.imageWidth;
+    request.time = time;
+    request.complexity = complexity;
+    request.settings = settingAssignments(options);
+    request.renderPurpose = purposes.renderPurpose;
+    request.proxyPurpose = purposes.proxyPurpose;
+    request.guidePurpose = purposes.guidePurpose;
+    request.framing = framing;
+    request.pluginPath = hydraPluginResources();
+    return request;
+}
+
+// The plugin's frame stats, parsed; an empty object when there are none or they do not parse.
+nlohmann::json pluginFrameStats(const std::string& frameStatsJson) {
+    nlohmann::json frameStats = nlohmann::json::object();
+    if (!frameStatsJson.empty()) frameStats = nlohmann::json::parse(frameStatsJson, nullptr, false);
+    if (frameStats.is_discarded()) frameStats = nlohmann::json::object();
+    return frameStats;
+}
+
+// --verbose and --explain for one frame recorded through OpenUSD.
+void printUsdImagingFrame(const Options& options, const RenderSettings& settings, double time,
+                          const hydra::UsdImagingRecordResult& result, const nlohmann::json& frameStats, int width,
+                          int height, double milliseconds, const std::string& outputPath) {
+    if (options.explain) printSettingOrigins(settings);
+    if (options.explain && !result.plan.empty())
+        std::printf("hdhair-record: plan (%s):\n%s", describeTime(time).c_str(), result.plan.c_str());
+    if (options.verbose && frameStats.contains("gl"))
+        std::printf("hdhair-record: GL (the plugin's) %s on %s\n", frameStats.value("gl", "?").c_str(),
+                    frameStats.value("glDevice", "?").c_str());
+    if (options.verbose || options.explain) {
+        std::string passes;
+        for (const nlohmann::json& pass : frameStats.value("passes", nlohmann::json::array()))
+            passes += fmt::format("{}{} {:.1f} ms", passes.empty() ? "" : ", ", pass.value("name", "?"),
+                                  pass.value("milliseconds", 0.0));
+        std::printf("hdhair-record: %s: %dx%d through OpenUSD and the HdHair plugin, camera %s, %.1f ms in all%s%s; "
+                    "wrote %s\n",
+                    describeTime(time).c_str(), width, height, result.camera.c_str(),
+                    milliseconds, passes.empty() ? "" : "; plugin passes: ", passes.c_str(), outputPath.c_str());
+    }
+}
+
+// One frame through OpenUSD and the plugin, recorded and written; returns its stats.
+nlohmann::json recordFrameThroughUsdImaging(const Options& options, const usda::SceneReadOptions& purposes,
+                                            const DisplayTransform& display, RenderingSpace space,
+                                            Complexity complexity, double time, PluginWarnings& warnings) {
+    const RenderSettings settings = RenderSettings::fromAssignments(complexity, settingAssignments(options));
+    const hydra::UsdImagingRecordRequest request =
+        usdImagingRequest(options, purposes, complexity, time, settings.values().framing, warnings);
+    Clock::time_point start = Clock::now();
+    hydra::UsdImagingRecordResult result = hydra::recordWithUsdImaging(request);
+    double milliseconds = millisecondsSince(start);
+    std::string outputPath =
+        std::isfinite(time) ? expandFramePlaceholder(options.outputPath, time) : options.outputPath;
+    // The plugin's own report of the frame (its passes and plan), as the
+    // embedded path prints it; the total also covers opening the stage
+    // and Hydra's sync.
+    nlohmann::json frameStats = pluginFrameStats(result.frameStatsJson);
+    // The plugin's colour AOV is scene-linear (hosts correct it once);
+    // the display transform runs here, on the CPU.
+    std::vector<PassTiming> writing;
+    Diagnostics writeDiagnostics;
+    writeDiagnostics.setListener([](const Diagnostic& warning) {
+        std::fprintf(stderr, "hdhair-record: warning: %s: %s\n", warning.where.c_str(), warning.message.c_str());
+    });
+    const int width = result.color.width, height = result.color.height;
+    writeFrameImage(std::move(result.color), nullptr, display, space, outputPath, options.exrFloat32,
+                    writeDiagnostics, writing, frameStats);
+    for (const PassTiming& pass : writing)
+        frameStats["passes"].push_back({{"name", pass.name}, {"milliseconds", pass.milliseconds}});
+    printUsdImagingFrame(options, settings, time, result, frameStats, width, height, milliseconds, outputPath);
+    frameStats["reader"] = "usd";
+    frameStats["camera"] = result.camera;
+    frameStats["image"] = {{"width", width}, {"height", height}};
+    frameStats["totalMilliseconds"] = milliseconds;
+    frameStats["output"] = outputPath;
+    return frameStats;
+}
+#endif
+
 // The OpenUSD path: UsdStage, UsdImagingGL and the hdHair plugin, as
 // usdrecord --renderer HdHair --disableGpu renders.
 int runThroughUsdImaging(const Options& options, const usda::SceneReadOptions& purposes,
@@ -287,83 +391,17 @@ int runThroughUsdImaging(const Options& options, const usda::SceneReadOptions& p
     Complexity complexity = Complexity::Low;
     parseToken(options.complexity, &complexity);
     nlohmann::json allStats = nlohmann::json::array();
-    size_t printed = 0;
-    nlohmann::json warnings = nlohmann::json::array();  // every one, for --stats
-    std::mutex warningsMutex;  // the plugin's render thread warns too
-    for (double time : timesToRender(options)) {
-        hydra::UsdImagingRecordRequest request;
-        request.warn = [&printed, &warnings, &warningsMutex](const std::string& warning) {
-            const std::lock_guard<std::mutex> lock(warningsMutex);
-            if (printed++ < kWarningsPrinted)
-                std::fprintf(stderr, "hdhair-record: warning: %s\n", printableText(warning).c_str());
-            warnings.push_back({{"message", printableText(warning)}});
-        };
-        request.stagePath = options.usdFile;
-        request.camera = options.camera;
-        request.imageWidth = options.imageWidth;
-        request.time = time;
-        request.complexity = complexity;
-        request.settings = settingAssignments(options);
-        request.renderPurpose = purposes.renderPurpose;
-        request.proxyPurpose = purposes.proxyPurpose;
-        request.guidePurpose = purposes.guidePurpose;
-        const RenderSettings settings = RenderSettings::fromAssignments(complexity, request.settings);
-        request.framing = settings.values().framing;
-        request.pluginPath = hydraPluginResources();
-        Clock::time_point start = Clock::now();
-        hydra::UsdImagingRecordResult result = hydra::recordWithUsdImaging(request);
-        double milliseconds = millisecondsSince(start);
-        std::string outputPath =
-            std::isfinite(time) ? expandFramePlaceholder(options.outputPath, time) : options.outputPath;
-        // The plugin's own report of the frame (its passes and plan), as the
-        // embedded path prints it; the total also covers opening the stage
-        // and Hydra's sync.
-        nlohmann::json frameStats = nlohmann::json::object();
-        if (!result.frameStatsJson.empty()) frameStats = nlohmann::json::parse(result.frameStatsJson, nullptr, false);
-        if (frameStats.is_discarded()) frameStats = nlohmann::json::object();
-        // The plugin's colour AOV is scene-linear (hosts correct it once);
-        // the display transform runs here, on the CPU.
-        std::vector<PassTiming> writing;
-        Diagnostics writeDiagnostics;
-        writeDiagnostics.setListener([](const Diagnostic& warning) {
-            std::fprintf(stderr, "hdhair-record: warning: %s: %s\n", warning.where.c_str(), warning.message.c_str());
-        });
-        const int width = result.color.width, height = result.color.height;
-        writeFrameImage(std::move(result.color), nullptr, display, space, outputPath, options.exrFloat32,
-                        writeDiagnostics, writing, frameStats);
-        for (const PassTiming& pass : writing)
-            frameStats["passes"].push_back({{"name", pass.name}, {"milliseconds", pass.milliseconds}});
-        if (options.explain) printSettingOrigins(settings);
-        if (options.explain && !result.plan.empty())
-            std::printf("hdhair-record: plan (%s):\n%s", describeTime(time).c_str(), result.plan.c_str());
-        if (options.verbose && frameStats.contains("gl"))
-            std::printf("hdhair-record: GL (the plugin's) %s on %s\n", frameStats.value("gl", "?").c_str(),
-                        frameStats.value("glDevice", "?").c_str());
-        if (options.verbose || options.explain) {
-            std::string passes;
-            for (const nlohmann::json& pass : frameStats.value("passes", nlohmann::json::array()))
-                passes += fmt::format("{}{} {:.1f} ms", passes.empty() ? "" : ", ", pass.value("name", "?"),
-                                      pass.value("milliseconds", 0.0));
-            std::printf("hdhair-record: %s: %dx%d through OpenUSD and the HdHair plugin, camera %s, %.1f ms in all%s%s; "
-                        "wrote %s\n",
-                        describeTime(time).c_str(), width, height, result.camera.c_str(),
-                        milliseconds, passes.empty() ? "" : "; plugin passes: ", passes.c_str(), outputPath.c_str());
-        }
-        frameStats["reader"] = "usd";
-        frameStats["camera"] = result.camera;
-        frameStats["image"] = {{"width", width}, {"height", height}};
-        frameStats["totalMilliseconds"] = milliseconds;
-        frameStats["output"] = outputPath;
-        allStats.push_back(frameStats);
-    }
-    if (printed > kWarningsPrinted)
+    PluginWarnings warnings;
+    for (double time : timesToRender(options))
+        allStats.push_back(recordFrameThroughUsdImaging(options, purposes, display, space, complexity, time, warnings));
+    if (warnings.printed > kWarningsPrinted)
         std::fprintf(stderr, "hdhair-record: warning: %zu more warnings not shown (see --stats)\n",
-                     printed - kWarningsPrinted);
+                     warnings.printed - kWarningsPrinted);
     if (!options.statsFile.empty()) {
         nlohmann::json stats;
         stats["stage"] = options.usdFile;
         stats["frames"] = allStats;
-        stats["warnings"] = warnings;
+        stats["warnings"] = warnings.warnings;
         writeTextFileAtomically(options.statsFile, stats.dump(2) + "\n");
         filesWritten.push_back(options.statsFile);
     }
@@ -402,12 +440,9 @@ std::atomic<bool> stopRequested{false};
 
 void requestStop(int) { stopRequested.store(true); }
 
-// --reference cycles: each frame's scene, read by the embedded reader and
-// prepared as hdHair prepares it, exported once and path-traced by Cycles;
-// the image is written as hdHair's own (colour space, alpha, atomic write),
-// the EXR with the path tracer's settings in its metadata.
-int runCyclesReference(const Options& options, const usda::SceneReadOptions& readOptions,
-                       const DisplayTransform& display, RenderingSpace space, const RenderSettings& settings) {
+// --reference cycles' options, checked: throws std::invalid_argument for
+// the first that is wrong, and warns that the display transform runs on the CPU.
+void checkCyclesReferenceOptions(const Options& options) {
     if (options.reference != "cycles")
         throw std::invalid_argument("--reference must be cycles, not '" + options.reference + "'");
     if (options.readerGiven && options.reader != "embedded")
@@ -421,6 +456,96 @@ int runCyclesReference(const Options& options, const usda::SceneReadOptions& rea
     if (cycles.maxBounces < 0 || cycles.maxBounces > 1024)
         throw std::invalid_argument("--maxBounces must be 0 (single scattering) to 1024");
     if (!(cycles.timeLimitSeconds >= 0.0)) throw std::invalid_argument("--timeLimit must be 0 (none) or more seconds");
+}
+
+// The request for one Cycles frame; its progress lines are timed from `lastReport`.
+CyclesFrameRequest cyclesFrameRequest(const Options& options, Clock::time_point& lastReport) {
+    CyclesFrameRequest request;
+    request.blender = options.blender;
+    request.options = options.cycles;
+    request.stop = &stopRequested;
+    request.progress = [&lastReport](const CyclesProgress& progress) {
+        // One line every few seconds: a batch log stays readable.
+        if (millisecondsSince(lastReport) < 2000.0 && progress.sample != progress.samples) return;
+        lastReport = Clock::now();
+        std::fprintf(stderr, "hdhair-record: cycles: sample %d/%d%s\n", progress.sample, progress.samples,
+                     progress.secondsLeft >= 0.0 ? fmt::format(", {:.0f} s left", progress.secondsLeft).c_str()
+                                                 : "");
+    };
+    return request;
+}
+
+// The reference render: what stays the same for every frame.
+struct CyclesReferenceRun {
+    const Options& options;
+    const usda::SceneReadOptions& readOptions;
+    const DisplayTransform& display;
+    RenderingSpace space;
+    const RenderSettings& settings;
+    Diagnostics& diagnostics;
+};
+
+// One frame path-traced by Cycles and written as hdHair's own; returns its stats.
+nlohmann::json renderCyclesReferenceFrame(const CyclesReferenceRun& run, const usda::Stage& stage, double time) {
+    const Options& options = run.options;
+    const RenderSettings& settings = run.settings;
+    Diagnostics& diagnostics = run.diagnostics;
+    const CyclesRenderOptions& cycles = options.cycles;
+    Clock::time_point start = Clock::now();
+    Scene scene;
+    usda::readScene(stage, time, scene, diagnostics, run.readOptions);
+    CyclesFraming framing;
+    framing.camera = cameraPrimView(options, scene, diagnostics);
+    framing.frame = [&](const SceneBounds& bounds) { return framingView(options, settings, scene, bounds); };
+    const std::string outputPath =
+        std::isfinite(time) ? expandFramePlaceholder(options.outputPath, time) : options.outputPath;
+    if (options.verbose || options.explain)
+        std::printf("hdhair-record: %s: Cycles reference: %d samples, seed %d, %d bounces%s\n",
+                    describeTime(time).c_str(), cycles.samples, cycles.seed, cycles.maxBounces,
+                    cycles.maxBounces == 0 ? " (single scattering)" : "");
+    Clock::time_point lastReport = Clock::now();
+    const CyclesFrameRequest request = cyclesFrameRequest(options, lastReport);
+    CyclesFrame frame = renderCyclesFrame(scene, framing, settings, request, diagnostics);
+    const CyclesProcessResult& result = frame.result;
+    const CameraView& camera = frame.camera;
+    if (options.verbose || options.explain)
+        std::printf("hdhair-record: %s: exported %zu curves (%zu keys), %zu mesh triangles, %zu lights, %zu "
+                    "domes\n",
+                    describeTime(time).c_str(), frame.curves, frame.keys, frame.triangles, frame.lights,
+                    frame.domes);
+    const ImageMetadata metadata = cyclesFrameMetadata(cycles, result);
+    std::vector<PassTiming> passes = {{"exportScene", frame.exportMilliseconds},
+                                      {"cycles", result.renderSeconds * 1000.0}};
+    nlohmann::json frameStats;
+    writeFrameImage(std::move(frame.color), nullptr, run.display, run.space, outputPath, options.exrFloat32,
+                    diagnostics, passes, frameStats, metadata);
+    if (result.samplesDone < cycles.samples)
+        diagnostics.warn(outputPath, fmt::format("Cycles stopped at the time limit after {} of {} samples",
+                                                 result.samplesDone, cycles.samples));
+    if (options.verbose || options.explain)
+        std::printf("hdhair-record: %s: %dx%d, camera %s, %s, %d samples in %.1f s; wrote %s\n",
+                    describeTime(time).c_str(), camera.imageWidth, camera.imageHeight,
+                    cameraDescription(options, settings).c_str(), result.blenderVersion.c_str(),
+                    result.samplesDone, result.renderSeconds, outputPath.c_str());
+    frameStats["reference"] = "cycles";
+    frameStats["scene"] = frame.scene;
+    frameStats["samplesDone"] = result.samplesDone;
+    frameStats["camera"] = cameraDescription(options, settings);
+    frameStats["time"] = std::isfinite(time) ? nlohmann::json(time) : nlohmann::json(describeTime(time));
+    frameStats["output"] = outputPath;
+    for (const PassTiming& pass : passes)
+        frameStats["passes"].push_back({{"name", pass.name}, {"milliseconds", pass.milliseconds}});
+    frameStats["totalMilliseconds"] = millisecondsSince(start);
+    return frameStats;
+}
+
+// --reference cycles: each frame's scene, read by the embedded reader and
+// prepared as hdHair prepares it, exported once and path-traced by Cycles;
+// the image is written as hdHair's own (colour space, alpha, atomic write),
+// the EXR with the path tracer's settings in its metadata.
+int runCyclesReference(const Options& options, const usda::SceneReadOptions& readOptions,
+                       const DisplayTransform& display, RenderingSpace space, const RenderSettings& settings) {
+    checkCyclesReferenceOptions(options);
     Diagnostics diagnostics;
     size_t printed = 0;
     diagnostics.setListener([&](const Diagnostic& warning) {
@@ -430,66 +555,9 @@ int runCyclesReference(const Options& options, const usda::SceneReadOptions& rea
     std::unique_ptr<usda::Stage> stage = usda::Stage::open(options.usdFile);
     std::signal(SIGINT, requestStop);
     std::signal(SIGTERM, requestStop);
+    const CyclesReferenceRun run{options, readOptions, display, space, settings, diagnostics};
     nlohmann::json allStats = nlohmann::json::array();
-    for (double time : timesToRender(options)) {
-        Clock::time_point start = Clock::now();
-        Scene scene;
-        usda::readScene(*stage, time, scene, diagnostics, readOptions);
-        CyclesFraming framing;
-        framing.camera = cameraPrimView(options, scene, diagnostics);
-        framing.frame = [&](const SceneBounds& bounds) { return framingView(options, settings, scene, bounds); };
-        const std::string outputPath =
-            std::isfinite(time) ? expandFramePlaceholder(options.outputPath, time) : options.outputPath;
-        if (options.verbose || options.explain)
-            std::printf("hdhair-record: %s: Cycles reference: %d samples, seed %d, %d bounces%s\n",
-                        describeTime(time).c_str(), cycles.samples, cycles.seed, cycles.maxBounces,
-                        cycles.maxBounces == 0 ? " (single scattering)" : "");
-        CyclesFrameRequest request;
-        request.blender = options.blender;
-        request.options = cycles;
-        request.stop = &stopRequested;
-        Clock::time_point lastReport = Clock::now();
-        request.progress = [&](const CyclesProgress& progress) {
-            // One line every few seconds: a batch log stays readable.
-            if (millisecondsSince(lastReport) < 2000.0 && progress.sample != progress.samples) return;
-            lastReport = Clock::now();
-            std::fprintf(stderr, "hdhair-record: cycles: sample %d/%d%s\n", progress.sample, progress.samples,
-                         progress.secondsLeft >= 0.0 ? fmt::format(", {:.0f} s left", progress.secondsLeft).c_str()
-                                                     : "");
-        };
-        CyclesFrame frame = renderCyclesFrame(scene, framing, settings, request, diagnostics);
-        const CyclesProcessResult& result = frame.result;
-        const CameraView& camera = frame.camera;
-        if (options.verbose || options.explain)
-            std::printf("hdhair-record: %s: exported %zu curves (%zu keys), %zu mesh triangles, %zu lights, %zu "
-                        "domes\n",
-                        describeTime(time).c_str(), frame.curves, frame.keys, frame.triangles, frame.lights,
-                        frame.domes);
-        const ImageMetadata metadata = cyclesFrameMetadata(cycles, result);
-        std::vector<PassTiming> passes = {{"exportScene", frame.exportMilliseconds},
-                                          {"cycles", result.renderSeconds * 1000.0}};
-        nlohmann::json frameStats;
-        writeFrameImage(std::move(frame.color), nullptr, display, space, outputPath, options.exrFloat32, diagnostics, passes,
-                        frameStats, metadata);
-        if (result.samplesDone < cycles.samples)
-            diagnostics.warn(outputPath, fmt::format("Cycles stopped at the time limit after {} of {} samples",
-                                                     result.samplesDone, cycles.samples));
-        if (options.verbose || options.explain)
-            std::printf("hdhair-record: %s: %dx%d, camera %s, %s, %d samples in %.1f s; wrote %s\n",
-                        describeTime(time).c_str(), camera.imageWidth, camera.imageHeight,
-                        cameraDescription(options, settings).c_str(), result.blenderVersion.c_str(),
-                        result.samplesDone, result.renderSeconds, outputPath.c_str());
-        frameStats["reference"] = "cycles";
-        frameStats["scene"] = frame.scene;
-        frameStats["samplesDone"] = result.samplesDone;
-        frameStats["camera"] = cameraDescription(options, settings);
-        frameStats["time"] = std::isfinite(time) ? nlohmann::json(time) : nlohmann::json(describeTime(time));
-        frameStats["output"] = outputPath;
-        for (const PassTiming& pass : passes)
-            frameStats["passes"].push_back({{"name", pass.name}, {"milliseconds", pass.milliseconds}});
-        frameStats["totalMilliseconds"] = millisecondsSince(start);
-        allStats.push_back(frameStats);
-    }
+    for (double time : timesToRender(options)) allStats.push_back(renderCyclesReferenceFrame(run, *stage, time));
     std::signal(SIGINT, SIG_DFL);
     std::signal(SIGTERM, SIG_DFL);
     finishRun(options, allStats, diagnostics, printed);
