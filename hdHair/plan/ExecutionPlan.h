@@ -11,7 +11,7 @@ struct ExecutionPlan {
     // Whether the strand draws are batched (drawBatching; auto: the
     // renderer asks the GL driver, gl::PatchBatching::forDriver).
     DrawBatching batching = DrawBatching::Auto;
-    // Each pass timed on the GPU for --stats (passTimings).
+    // Each pass timed for --stats (passTimings).
     bool passTimings = false;
     // Each strand program compiled with only the shading its draw can reach
     // (specializeShaders), or with all of it.
