@@ -9,7 +9,8 @@
 // (hdHair/plan/NearestStrandRule.h).
 // Meshes are two-sided: no face is culled, and a face seen from the back is
 // lit as its back (the normal reversed). They receive the hair's shadows
-// (the deep opacity maps of the batch's lights), not their own.
+// (the deep opacity maps of the batch's lights) and the meshes' own, each
+// other's and their own (shadows.glsl meshShadowTransmittance).
 #include "include/shadingFeatures.glsl"
 #include "include/lights.glsl"
 #include "include/meshGeometry.glsl"
@@ -41,7 +42,7 @@ void main() {
             vec3 l;
             vec3 irradiance = lightIrradiance(i, worldPosition, l);
             if (all(equal(irradiance, vec3(0.0)))) continue;  // unlit here: no shadow lookup
-            irradiance *= hairShadowTransmittance(i, worldPosition);
+            irradiance *= meshShadowTransmittance(i, worldPosition, n);
             radiance += irradiance * (max(dot(n, l), 0.0) * inversePi) * color;
         }
     } else {

@@ -79,7 +79,7 @@ void ShadowMapPass::drawStrands(ShadingPrograms& programs, ShadingPrograms& stra
 void ShadowMapPass::renderMeshDepth(ShadowMapStorage& storage, MeshPass& meshPass, const MeshGeometry& meshes,
                                     const std::vector<MeshDraw>& draws, const FrameUniforms& lightView,
                                     const ShadowUniforms& light) {
-    storage.bindMeshDepthTarget(int(light.lightMap[0].x));
+    storage.bindMeshDepthTarget(int(light.meshMap[0].x));
     draw_.bindBlocks(lightView, light);
     meshPass.draw(meshes, draws, lightView.viewProjection, MeshShading::LightDepth);
     checkGlError("drawing a mesh shadow depth map");

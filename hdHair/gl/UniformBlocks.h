@@ -79,8 +79,17 @@ struct ShadowUniforms {
     // y: 1 when SRBF lights read the opacity layers' mip chain
     // (domeShadowFilter=mipmap, ShadowPlan::convolvedOpacity).
     glm::ivec4 occluders{0};
+    // The view each light's mesh depth is drawn from (PlannedShadow::meshView):
+    // world to its clip space, its eye (xyz) and unit viewing direction (xyz);
+    // x: the slot of its mesh depth (-1: none), y: a texel's world size (at
+    // linear depth 1 when perspective), z: 1 perspective, 0 orthographic.
+    glm::mat4 meshViewProjection[kMaxLightsPerPass]{};
+    glm::vec4 meshEye[kMaxLightsPerPass]{};
+    glm::vec4 meshForward[kMaxLightsPerPass]{};
+    glm::vec4 meshMap[kMaxLightsPerPass]{};
 };
-static_assert(sizeof(ShadowUniforms) == 64 * kMaxLightsPerPass + 48 * kMaxLightsPerPass + 16 * 8 + 48,
+static_assert(sizeof(ShadowUniforms) == 64 * kMaxLightsPerPass + 48 * kMaxLightsPerPass + 16 * 8 + 48 +
+                                            112 * kMaxLightsPerPass,
               "std140 layout of ShadowUniforms");
 constexpr int kShadowModeOff = 0, kShadowModeDeepOpacity = 1, kShadowModeReference = 2;
 

@@ -34,7 +34,7 @@ FrameRecipe makeFrameRecipe(const Scene& scene, const RenderSettings& settings, 
                             const std::optional<ShadowMapAssignment>& shadowMaps) {
     const SettingValues& values = settings.values();
     LightPlan lighting = planLights(scene, values, camera, strands, meshes, domes);
-    ShadowPlan shadows = planShadows(lighting, values, strands, meshes.meshes > 0, shadowMaps);
+    ShadowPlan shadows = planShadows(lighting, values, strands, meshes, shadowMaps);
     TransparencyPlan transparency = planTransparency(values, strands, fallbacks);
     StrandRasterPlan strandRaster =
         planStrandRaster(transparency, values, strands, binSortingAskedFor(settings), fallbacks);

@@ -68,6 +68,15 @@ void applyMapDecision(FramePass& pass, const PlannedShadow& shadow) {
 // Whether the renderer gave `shadow` no map (its lookups read none).
 bool assignedNoMap(const PlannedShadow& shadow) { return shadow.assigned && shadow.slot < 0; }
 
+// What "meshShadow L" draws, and from where.
+std::string meshViewDescription(const PlannedShadow& shadow, int resolution) {
+    const ShadowLightView& view = shadow.meshView;
+    return fmt::format("{} light view of the hair and meshes, {}x{}: the nearest mesh per texel, opaque: the hair "
+                       "and the meshes behind it are unlit{}",
+                       view.orthographic ? "orthographic" : "perspective", resolution, resolution,
+                       shadow.meshFallback.empty() ? "" : " (" + shadow.meshFallback + ")");
+}
+
 // The passes that build light `shadow`'s map, wanted or not with the reason.
 void addShadowPasses(FrameGraph& graph, const FrameRecipe& recipe, size_t index, bool anyStrands) {
     const ShadowPlan& shadows = recipe.shadows;
@@ -123,10 +132,14 @@ void addShadowPasses(FrameGraph& graph, const FrameRecipe& recipe, size_t index,
                                     : why) +
                                 drawn + flat});
     }
-    if (shadows.meshesCast)
-        add(FramePass{PassKind::MeshShadow, "meshShadow " + key, {ResourceKind::MeshGeometry}, {shadows.meshResourceOf(index)}, wanted,
-                            why + (wanted ? ": the nearest mesh per texel, opaque: the hair behind it is unlit" : "") +
-                                flat});
+    if (!shadows.meshesCast) return;
+    // The meshes' depth is drawn with or without hair: meshes shadow each other.
+    const bool meshWanted = shadow.meshView.valid;
+    add(FramePass{PassKind::MeshShadow, "meshShadow " + key, {ResourceKind::MeshGeometry}, {shadows.meshResourceOf(index)}, meshWanted,
+                        (meshWanted        ? meshViewDescription(shadow, shadows.resolution)
+                         : shadow.overBudget ? "no shadows from this light: " + shadow.view.fallback
+                                             : shadow.meshFallback) +
+                            flat});
 }
 
 // The opacity layers of every map averaged into a mip chain ("opacityMipmaps").
@@ -138,17 +151,18 @@ std::vector<FrameResource> batchShadowReads(const FrameRecipe& recipe, size_t ba
     std::vector<FrameResource> reads;
     if (recipe.shadows.mode == ShadowMode::Off) return reads;
     bool srbfMapRead = false;
-    for (size_t light = recipe.lighting.batches[batch].first; light < recipe.lighting.batches[batch].second; ++light) {
-        int shadow = recipe.shadows.shadowOf(light);
-        if (shadow < 0 || !recipe.shadows.lights[size_t(shadow)].view.valid ||
-            assignedNoMap(recipe.shadows.lights[size_t(shadow)]))
-            continue;
-        srbfMapRead = srbfMapRead || recipe.lighting.lights.lights[light].isSrbf();
-        const FrameResource map = recipe.shadows.resourceOf(size_t(shadow));
+    auto readOnce = [&reads](FrameResource map) {
         // SRBF lights share maps (ShadowPlan::sharedMaps): each read once.
-        if (std::find(reads.begin(), reads.end(), map) != reads.end()) continue;
-        reads.push_back(map);
-        if (recipe.shadows.meshesCast) reads.push_back(recipe.shadows.meshResourceOf(size_t(shadow)));
+        if (std::find(reads.begin(), reads.end(), map) == reads.end()) reads.push_back(map);
+    };
+    for (size_t light = recipe.lighting.batches[batch].first; light < recipe.lighting.batches[batch].second; ++light) {
+        const int shadow = recipe.shadows.shadowOf(light);
+        if (shadow < 0 || assignedNoMap(recipe.shadows.lights[size_t(shadow)])) continue;
+        const PlannedShadow& planned = recipe.shadows.lights[size_t(shadow)];
+        if (recipe.shadows.meshesCast && planned.meshView.valid) readOnce(recipe.shadows.meshResourceOf(size_t(shadow)));
+        if (!planned.view.valid) continue;
+        srbfMapRead = srbfMapRead || recipe.lighting.lights.lights[light].isSrbf();
+        readOnce(recipe.shadows.resourceOf(size_t(shadow)));
     }
     // Its SRBF lights that read a map read it through the mip chain (which
     // "opacityMipmaps" makes whenever an SRBF light has a map).
@@ -217,6 +231,12 @@ FramePass meshesPass(const std::vector<FrameResource>& frameImages, const FrameR
                      const MeshSummary& meshes, bool idsRequested, const std::string& noMeshes) {
     std::vector<FrameResource> reads{ResourceKind::MeshGeometry};
     reads.insert(reads.end(), frameImages.begin(), frameImages.end());
+    // Lit, they read the first batch's shadows: the hair's and the meshes'.
+    if (recipe.lighting.meshesLit && !recipe.lighting.batches.empty())
+        for (const FrameResource& map : batchShadowReads(recipe, 0))
+            if (map.kind == ResourceKind::DeepOpacity || map.kind == ResourceKind::ShadowFragments ||
+                map.kind == ResourceKind::MeshDepth)
+                reads.push_back(map);
     FramePass pass{PassKind::Meshes, "meshes", reads, frameImages, meshes.meshes > 0, noMeshes};
     if (!pass.wanted) return pass;
     const std::string levels = meshes.minRefineLevel == meshes.maxRefineLevel
@@ -350,9 +370,10 @@ nlohmann::json RenderPlan::toJson(const std::vector<double>& passMilliseconds) c
 }
 
 bool RenderPlan::shadowUsed(size_t shadow) const {
-    const FrameResource resource = recipe_.shadows.resourceOf(shadow);
+    const FrameResource hair = recipe_.shadows.resourceOf(shadow), meshes = recipe_.shadows.meshResourceOf(shadow);
     for (const FramePass& pass : graph_.passes())
-        if (pass.enabled && std::find(pass.reads.begin(), pass.reads.end(), resource) != pass.reads.end())
+        if (pass.enabled && (std::find(pass.reads.begin(), pass.reads.end(), hair) != pass.reads.end() ||
+                             std::find(pass.reads.begin(), pass.reads.end(), meshes) != pass.reads.end()))
             return true;
     return false;
 }

@@ -56,6 +56,9 @@ struct MeshSummary {
     size_t meshes = 0;        // visible meshes with at least one triangle
     uint64_t triangles = 0;   // after refinement
     int minRefineLevel = 0, maxRefineLevel = 0;  // the levels drawn
+    // The drawn meshes' world bounds: what the light views that shadow the
+    // meshes hold besides the hair (ShadowPlanner.h, PlannedShadow::meshView).
+    CasterBounds bounds;
     bool changed = false;     // the GPU copy must be sent again
 };
 

@@ -136,6 +136,12 @@ double tanHalfHolding(const glm::dvec3& eye, const glm::dvec3& forward, const Bo
 
 }  // namespace
 
+CasterBounds unite(const CasterBounds& a, const CasterBounds& b) {
+    if (a.empty()) return CasterBounds{b.min, b.max, std::max(a.maxWidth, b.maxWidth)};
+    if (b.empty()) return CasterBounds{a.min, a.max, std::max(a.maxWidth, b.maxWidth)};
+    return CasterBounds{glm::min(a.min, b.min), glm::max(a.max, b.max), std::max(a.maxWidth, b.maxWidth)};
+}
+
 ShadowLightView fitShadowLightView(const ShadingLight& light, const CasterBounds& casters, int resolution) {
     if (casters.empty()) return invalid("nothing casts");
     const double margin = 0.5 * (std::isfinite(casters.maxWidth) ? std::max(casters.maxWidth, 0.0) : 0.0);

@@ -42,6 +42,9 @@ struct CasterBounds {
     bool empty() const { return min.x > max.x || min.y > max.y || min.z > max.z; }
 };
 
+// Bounds that hold both (an empty one adds nothing), with the wider width.
+CasterBounds unite(const CasterBounds& a, const CasterBounds& b);
+
 // The widest frustum a perspective light view may have (half-angle).
 constexpr double kMaxShadowHalfFieldOfViewDegrees = 75.0;
 

@@ -127,13 +127,31 @@ ShadowPlan shadowSettings(const SettingValues& settings) {
     return shadows;
 }
 
-// A light view fitted to the casters for `shadow`, while shadowMemoryMB
-// holds another map (`mapped` so far); past that, why it has none.
+// The view the meshes' depth is drawn from: the hair and the meshes
+// together, or, where one view cannot hold both, the hair's own (meshes then
+// shadow what lies within the hair's view only, and `meshFallback` says so).
+void fitMeshView(PlannedShadow& shadow, const ShadingLight& light, const ShadowPlan& shadows,
+                 const StrandSummary& strands, const MeshSummary& meshes) {
+    shadow.meshView = fitShadowLightView(light, unite(strands.casters, meshes.bounds), shadows.resolution);
+    if (shadow.meshView.valid) return;
+    const std::string why = shadow.meshView.fallback;
+    if (shadow.view.valid) {
+        shadow.meshView = shadow.view;
+        shadow.meshFallback = "meshes shadow each other only within the hair's light view: " + why;
+    } else {
+        shadow.meshFallback = "no mesh shadows from this light: " + why;
+    }
+}
+
+// Light views fitted to the casters for `shadow` (the hair's, and with
+// meshes the meshes' too), while shadowMemoryMB holds another map (`mapped`
+// so far); past that, why it has none.
 void fitView(PlannedShadow& shadow, const ShadingLight& light, ShadowPlan& shadows, const StrandSummary& strands,
-             size_t& mapped) {
+             const MeshSummary& meshes, size_t& mapped) {
     if (mapped < shadows.maxMaps) {
         shadow.view = fitShadowLightView(light, strands.casters, shadows.resolution);
-        mapped += shadow.view.valid ? 1 : 0;
+        if (shadows.meshesCast) fitMeshView(shadow, light, shadows, strands, meshes);
+        mapped += shadow.view.valid || shadow.meshView.valid ? 1 : 0;
         return;
     }
     shadow.view.valid = false;
@@ -174,10 +192,10 @@ void assignShadowMaps(ShadowPlan& shadows, const ShadowMapAssignment& assignment
 }  // namespace
 
 ShadowPlan planShadows(const LightPlan& lights, const SettingValues& settings, const StrandSummary& strands,
-                       bool anyMeshes, const std::optional<ShadowMapAssignment>& assignment) {
+                       const MeshSummary& meshes, const std::optional<ShadowMapAssignment>& assignment) {
     ShadowPlan shadows = shadowSettings(settings);
     shadows.sharedMaps = lights.sharedMaps;
-    shadows.meshesCast = anyMeshes && shadows.mode != ShadowMode::Off;
+    shadows.meshesCast = meshes.meshes > 0 && shadows.mode != ShadowMode::Off;
     shadows.maxMaps = shadowMapBudget(shadows.resolution, shadows.layers, shadows.memoryMB);
     size_t mapped = 0;
     for (size_t i = 0; i < lights.lights.lights.size(); ++i) {
@@ -186,7 +204,7 @@ ShadowPlan planShadows(const LightPlan& lights, const SettingValues& settings, c
         PlannedShadow shadow;
         shadow.light = i;
         shadow.key = light.path.empty() ? "camera light" : light.path;
-        if (shadows.mode != ShadowMode::Off) fitView(shadow, light, shadows, strands, mapped);
+        if (shadows.mode != ShadowMode::Off) fitView(shadow, light, shadows, strands, meshes, mapped);
         planStrandLines(shadow, shadows, shadows.strandLinesSetting, strands.casters.maxWidth);
         shadows.lights.push_back(std::move(shadow));
     }

@@ -21,6 +21,7 @@
 namespace hdhair {
 
 struct LightPlan;
+struct MeshSummary;
 struct SettingValues;
 struct StrandSummary;
 
@@ -39,6 +40,15 @@ struct PlannedShadow {
     size_t light = 0;       // index into LightPlan::lights.lights
     std::string key;        // the light's path, or "camera light"
     ShadowLightView view;   // not valid: no map, the light shades unshadowed (view.fallback says why)
+    // With meshes (ShadowPlan::meshesCast): the view the meshes' depth is
+    // drawn from, fitted to the hair and the meshes together, so that meshes
+    // shadow the hair, themselves and each other wherever they are; the
+    // hair's own maps keep their tighter view. Where the two cannot be held
+    // by one view (a light among the meshes) it is the hair's view, and
+    // `meshFallback` says what that leaves out; without a valid view of
+    // either, the meshes are unshadowed by this light (meshFallback says why).
+    ShadowLightView meshView;
+    std::string meshFallback;
     // The renderer's decision for its map (ShadowMapAssignment, below),
     // copied in when the plan is made: never changed while the frame runs.
     bool assigned = false;  // decided: the plan the frame runs
@@ -100,7 +110,8 @@ struct ShadowPlan {
         return {mode == ShadowMode::Reference ? ResourceKind::ShadowFragments : ResourceKind::DeepOpacity, shadow};
     }
     // Meshes are drawn, so every map has their depth too ("meshDepth L",
-    // the opaque occluders strands test against).
+    // from PlannedShadow::meshView): the opaque occluders strands and meshes
+    // test against.
     bool meshesCast = false;
     FrameResource meshResourceOf(size_t shadow) const { return {ResourceKind::MeshDepth, shadow}; }
     // SRBF lights without a map of their own that read another light's
@@ -117,6 +128,11 @@ struct ShadowPlan {
     // a slot (the renderer's, ShadowMapCache).
     bool isMapped(const PlannedShadow& shadow) const {
         return mode != ShadowMode::Off && shadow.view.valid && shadow.slot >= 0;
+    }
+    // Whether `shadow` has a mesh depth the lookups read: meshes cast, a
+    // mesh view, and a slot. A frame without hair has mesh maps only.
+    bool isMeshMapped(const PlannedShadow& shadow) const {
+        return meshesCast && shadow.meshView.valid && shadow.slot >= 0;
     }
 
     // What shapes every map besides its light's view and the casters (each
@@ -162,6 +178,6 @@ struct ShadowMapAssignment {
 // lights than shadowMemoryMB holds maps: the reference must not shade a
 // light unshadowed.
 ShadowPlan planShadows(const LightPlan& lights, const SettingValues& settings, const StrandSummary& strands,
-                       bool anyMeshes, const std::optional<ShadowMapAssignment>& assignment);
+                       const MeshSummary& meshes, const std::optional<ShadowMapAssignment>& assignment);
 
 }  // namespace hdhair

@@ -167,23 +167,24 @@ gl::ShadingFeatures bindBatchInputs(FrameContext& context, gl::RenderTarget& tar
     return features;
 }
 
-// The maps the strand programs of light batch `batch` look up, as their
-// uniforms name them by slot: each planned shadow's map (and the meshes'
-// depth beside it), and the mip chain when an SRBF light reads through it.
-void touchBatchShadows(FrameContext& context, size_t batch) {
+// The maps the programs of light batch `batch` look up, as their uniforms
+// name them by slot: each planned shadow's map and the meshes' depth, and,
+// for the strands, the mip chain when an SRBF light reads through it.
+void touchBatchShadows(FrameContext& context, size_t batch, bool strands) {
     const FrameRecipe& recipe = context.plan.recipe();
     const ShadowPlan& shadows = recipe.shadows;
     const gl::ShadowUniforms uniforms = batchShadowUniforms(context.plan.recipe(), batch);
     const auto [begin, end] = recipe.lighting.batches[batch];
     for (size_t entry = 0; entry < end - begin && entry < size_t(gl::kMaxLightsPerPass); ++entry) {
-        const int slot = int(uniforms.lightMap[entry].x);
-        if (slot < 0) continue;
+        const int slot = int(uniforms.lightMap[entry].x), meshSlot = int(uniforms.meshMap[entry].x);
         for (size_t shadow = 0; shadow < shadows.lights.size(); ++shadow) {
-            if (!shadows.isMapped(shadows.lights[shadow]) || shadows.lights[shadow].slot != slot) continue;
-            touch(context, shadows.resourceOf(shadow), Access::Read);
-            if (shadows.meshesCast) touch(context, shadows.meshResourceOf(shadow), Access::Read);
+            const PlannedShadow& planned = shadows.lights[shadow];
+            if (slot >= 0 && shadows.isMapped(planned) && planned.slot == slot)
+                touch(context, shadows.resourceOf(shadow), Access::Read);
+            if (meshSlot >= 0 && shadows.isMeshMapped(planned) && planned.slot == meshSlot)
+                touch(context, shadows.meshResourceOf(shadow), Access::Read);
         }
-        if (shadows.convolvedOpacity && recipe.lighting.lights.lights[begin + entry].isSrbf())
+        if (strands && shadows.convolvedOpacity && recipe.lighting.lights.lights[begin + entry].isSrbf())
             touch(context, ResourceKind::ConvolvedOpacity, Access::Read);
     }
 }
@@ -193,6 +194,7 @@ void touchBatchShadows(FrameContext& context, size_t batch) {
 void drawMeshes(FrameContext& context, gl::RenderTarget& target, size_t batch) {
     touch(context, ResourceKind::MeshGeometry, Access::Read);
     touchFrameImages(context, target, Access::Update, true);
+    if (context.plan.recipe().lighting.meshesLit) touchBatchShadows(context, batch, false);
     bindBatchInputs(context, target, batch);
     context.resources.meshPass.draw(
         context.resources.meshes, context.inputs.meshes.draws, context.inputs.frame.viewProjection,
@@ -351,7 +353,7 @@ void listStrands(FrameContext& context, gl::RenderTarget& target, size_t batch, 
 void drawStrands(FrameContext& context, gl::RenderTarget& target, size_t batch) {
     const FrameRecipe& recipe = context.plan.recipe();
     touch(context, ResourceKind::Strands, Access::Read);
-    touchBatchShadows(context, batch);
+    touchBatchShadows(context, batch, true);
     const gl::ShadingFeatures features = bindBatchInputs(context, target, batch);
     if (recipe.strandRaster.rasteriser == StrandRaster::Compute)
         return listStrands(context, target, batch, features, true);
@@ -433,7 +435,7 @@ void shadowDepth(FrameContext& context, size_t shadow) { hairShadowMap(context, 
 // "deepOpacity L": light L's opacity layers behind that hair.
 void deepOpacity(FrameContext& context, size_t shadow) { hairShadowMap(context, shadow, PassKind::DeepOpacity); }
 
-// "meshShadow L": the nearest mesh in light L's view.
+// "meshShadow L": the nearest mesh in light L's mesh view.
 void meshShadow(FrameContext& context, size_t shadow) {
     touch(context, ResourceKind::MeshGeometry, Access::Read);
     touch(context, {ResourceKind::MeshDepth, shadow}, Access::Write);
@@ -441,7 +443,7 @@ void meshShadow(FrameContext& context, size_t shadow) {
     FrameResources& resources = context.resources;
     resources.shadowMapPass.renderMeshDepth(resources.shadowMaps, resources.meshPass, resources.meshes,
                                             context.inputs.meshes.draws,
-                                            lightViewFrameUniforms(context.plan.recipe(), shadow, context.inputs.frame),
+                                            meshViewFrameUniforms(context.plan.recipe(), shadow, context.inputs.frame),
                                             lightShadowUniforms(context.plan.recipe(), shadow));
 }
 

@@ -320,6 +320,7 @@ MeshUpload Renderer::meshUpload(const Scene& scene, MeshSummary& summary) {
         summary.maxRefineLevel = std::max(summary.maxRefineLevel, prepared->refineLevel);
         summary.meshes += 1;
         summary.triangles += prepared->triangleCount();
+        summary.bounds = unite(summary.bounds, CasterBounds{prepared->boundsMin, prepared->boundsMax, 0.0});
     }
     upload.changed = drawn != uploadedMeshes_;
     summary.changed = upload.changed;
@@ -344,13 +345,14 @@ ShadowMapAssignment Renderer::decideShadowMaps(const RenderPlan& plan, const Str
         if (shadows.mode != ShadowMode::Off && !recipe.lighting.flatShading && summary.segments > 0 &&
             !shadow.view.valid && !shadow.overBudget)
             diagnostics.warn(shadow.key, "no shadows from this light: " + shadow.view.fallback);
+        if (!shadow.meshFallback.empty() && !recipe.lighting.flatShading) diagnostics.warn(shadow.key, shadow.meshFallback);
         if (!plan.shadowUsed(i)) continue;
         if (auto unbuildable = fallbacks.unbuildableShadows.find(shadow.key);
             unbuildable != fallbacks.unbuildableShadows.end()) {
             assignment.maps[i] = ShadowMapAssignment::Map{-1, false, "no map: " + unbuildable->second};
             continue;
         }
-        requests.push_back({shadow.key, shadow.view, followsCamera});
+        requests.push_back({shadow.key, shadow.view, followsCamera, shadow.meshView});
         requested.push_back(i);
     }
     // domeLighting=sampled throws over budget when it is planned (planShadows).
@@ -550,12 +552,8 @@ void Renderer::gatherDrawnCurves(const Scene& scene, const CameraView& camera, c
                                  fragmentsPerSpanEstimate(camera, *cached.prepared, cached.meanSpanLength,
                                                           cached.meanSpanWidth)});
         // Every drawn strand casts shadows.
-        CasterBounds& casters = summary.casters;
-        const glm::dvec3 low(cached.prepared->boundsMin), high(cached.prepared->boundsMax);
-        const bool first = casters.empty();
-        casters.min = first ? low : glm::min(casters.min, low);
-        casters.max = first ? high : glm::max(casters.max, high);
-        casters.maxWidth = std::max(casters.maxWidth, double(cached.maxWidth));
+        summary.casters = unite(summary.casters, CasterBounds{cached.prepared->boundsMin, cached.prepared->boundsMax,
+                                                             double(cached.maxWidth)});
         summary.spanLengths.push_back(&cached.spanLengths);
         frame.curves += cached.prepared->curveCount;
         stats.authoredPoints += entry.prim->points.size();

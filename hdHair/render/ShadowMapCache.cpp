@@ -56,7 +56,7 @@ ShadowFrame ShadowMapCache::update(const std::vector<ShadowMapRequest>& requests
             why[i] = "the shadow or tessellation settings changed";
         } else if (it->second.castersVersion != castersVersion) {
             why[i] = "the hair changed";
-        } else if (it->second.view != request.view) {
+        } else if (it->second.view != request.view || it->second.meshView != request.meshView) {
             why[i] = request.followsCamera ? "the camera moved, and the camera light with it" : "the light moved";
         }
     }
@@ -79,7 +79,7 @@ ShadowFrame ShadowMapCache::update(const std::vector<ShadowMapRequest>& requests
                                            : "kept: light, hair and settings unchanged since it was built";
         frame.maps.push_back(decision);
         Held& held = held_[requests[i].key];
-        held = Held{slots[i], requests[i].view, shape, castersVersion};
+        held = Held{slots[i], requests[i].view, requests[i].meshView, shape, castersVersion};
     }
     return frame;
 }

@@ -7,7 +7,7 @@
 //   - it is new to the renderer, or its slot storage grew;
 //   - its light view (ShadowLightView: the light's position or direction,
 //     and the casters' bounds it is fitted to; the camera light's view
-//     follows the camera, so its map does too);
+//     follows the camera, so its map does too), or its meshes' view;
 //   - the casters: any change of the strands on the GPU (castersVersion);
 //   - the shadow and tessellation settings (ShadowPlan's operator==).
 // Intensity, colour and other shading-only edits keep the map. Otherwise
@@ -29,6 +29,9 @@ struct ShadowMapRequest {
     std::string key;            // the light's path, or "camera light"
     ShadowLightView view;       // valid
     bool followsCamera = false;  // the camera light
+    // The view its meshes' depth is drawn from (PlannedShadow::meshView;
+    // not valid without meshes): moving a mesh away from the hair moves it.
+    ShadowLightView meshView;
 };
 
 struct ShadowMapDecision {
@@ -54,7 +57,7 @@ public:
 private:
     struct Held {
         int slot = 0;
-        ShadowLightView view;
+        ShadowLightView view, meshView;
         ShadowPlan shape;  // what shaped it (its lights left out)
         uint64_t castersVersion = 0;
     };

@@ -24,6 +24,7 @@ gl::ShadowUniforms common(const ShadowPlan& shadows) {
     uniforms.extinction = glm::vec4(kShadowExtinction, 0.0f, 0.0f, 0.0f);
     uniforms.occluders = glm::ivec4(shadows.meshesCast ? 1 : 0, shadows.convolvedOpacity ? 1 : 0, 0, 0);
     for (glm::vec4& map : uniforms.lightMap) map.x = -1.0f;
+    for (glm::vec4& map : uniforms.meshMap) map.x = -1.0f;
     return uniforms;
 }
 
@@ -37,6 +38,13 @@ void setEntry(gl::ShadowUniforms& uniforms, int entry, const ShadowPlan& shadows
     uniforms.lightMap[entry] = glm::vec4(mapped ? float(shadow.slot) : -1.0f,
                                          float(shadows.layerDepth * (view.farDepth - view.nearDepth)),
                                          float(view.texelSize), view.orthographic ? 0.0f : 1.0f);
+    if (!shadows.isMeshMapped(shadow)) return;
+    const ShadowLightView& meshView = shadow.meshView;
+    uniforms.meshViewProjection[entry] = glm::mat4(meshView.projection * meshView.view);
+    uniforms.meshEye[entry] = glm::vec4(glm::vec3(meshView.eye), 0.0f);
+    uniforms.meshForward[entry] = glm::vec4(glm::vec3(meshView.forward), 0.0f);
+    uniforms.meshMap[entry] =
+        glm::vec4(float(shadow.slot), float(meshView.texelSize), meshView.orthographic ? 0.0f : 1.0f, 0.0f);
 }
 
 }  // namespace
@@ -55,6 +63,16 @@ gl::ShadowUniforms lightShadowUniforms(const FrameRecipe& recipe, size_t shadow)
     gl::ShadowUniforms uniforms = common(recipe.shadows);
     setEntry(uniforms, 0, recipe.shadows, recipe.shadows.lights[shadow]);
     return uniforms;
+}
+
+gl::FrameUniforms meshViewFrameUniforms(const FrameRecipe& recipe, size_t shadow, const gl::FrameUniforms& camera) {
+    const ShadowLightView& view = recipe.shadows.lights[shadow].meshView;
+    gl::FrameUniforms frame = lightViewFrameUniforms(recipe, shadow, camera);
+    frame.viewProjection = glm::mat4(view.projection * view.view);
+    frame.cameraPosition = glm::vec4(glm::vec3(view.eye), view.orthographic ? 0.0f : 1.0f);
+    frame.cameraForward = glm::vec4(glm::vec3(view.forward), 0.0f);
+    frame.pixelsPerUnit = float(view.pixelsPerUnit);
+    return frame;
 }
 
 gl::FrameUniforms lightViewFrameUniforms(const FrameRecipe& recipe, size_t shadow, const gl::FrameUniforms& camera) {

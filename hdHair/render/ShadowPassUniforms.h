@@ -16,5 +16,8 @@ gl::ShadowUniforms lightShadowUniforms(const FrameRecipe& recipe, size_t shadow)
 // tolerance is in the map's texels), ribbons facing the light, the coverage
 // rule at recipe.shadows.minPixelWidth, unordered.
 gl::FrameUniforms lightViewFrameUniforms(const FrameRecipe& recipe, size_t shadow, const gl::FrameUniforms& camera);
+// The same from the view the light's mesh depth is drawn from
+// (PlannedShadow::meshView).
+gl::FrameUniforms meshViewFrameUniforms(const FrameRecipe& recipe, size_t shadow, const gl::FrameUniforms& camera);
 
 }  // namespace hdhair

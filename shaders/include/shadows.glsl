@@ -24,6 +24,14 @@ layout(std140, binding = 2) uniform ShadowUniforms {
     vec4 extinction;          // x: k of T = exp(-k opacity)
     ivec4 occluders;          // x: 1 when shadowMeshDepths holds the meshes of every slot;
                               // y: 1 when SRBF lights read shadowOpacity's mip chain
+    // The view each light's mesh depth is drawn from, fitted to the hair and
+    // the meshes together (hdHair/plan/ShadowPlanner.h PlannedShadow::meshView).
+    mat4 meshViewProjection[HDHAIR_MAX_LIGHTS];
+    vec4 meshEye[HDHAIR_MAX_LIGHTS];      // xyz: its eye
+    vec4 meshForward[HDHAIR_MAX_LIGHTS];  // xyz: its unit viewing direction
+    // x: the slot of its mesh depth (-1: none), y: a texel's world size (at
+    // linear depth 1 when perspective), z: 1 perspective, 0 orthographic.
+    vec4 meshMap[HDHAIR_MAX_LIGHTS];
 } shadows;
 
 // Per light slot: the nearest hair's linear depth, and the layers, 4 a texel
@@ -40,6 +48,41 @@ float shadowLinearDepth(int i, vec3 position) {
 }
 
 int shadowSlot(int i) { return int(shadows.lightMap[i].x); }
+
+// Linear depth in light i's mesh view (shadowMeshDepths' depth).
+float meshLinearDepth(int i, vec3 position) {
+    return dot(position - shadows.meshEye[i].xyz, shadows.meshForward[i].xyz);
+}
+
+// A texel's world size at linear depth z in light i's mesh view.
+float meshTexelSize(int i, float z) { return shadows.meshMap[i].y * (shadows.meshMap[i].z > 0.5 ? max(z, 0.0) : 1.0); }
+
+// The fraction of light i that the meshes let through to `point`: the share
+// of the four mesh-view texels around it (bilinear weights, percentage-closer
+// filtering) whose nearest mesh lies beyond it, less `biasTexels` of the
+// view's texels so that a surface does not shadow itself where its own depth
+// was rasterised at a texel centre a little nearer. 1 without a mesh map.
+float meshTransmittance(int i, vec3 point, float biasTexels) {
+#if HDHAIR_FEATURE_MESH_OCCLUDERS
+    if (shadows.occluders.x == 0 || shadows.meshMap[i].x < 0.0) return 1.0;
+    vec4 clip = shadows.meshViewProjection[i] * vec4(point, 1.0);
+    if (clip.w <= 0.0) return 1.0;  // behind a perspective light's eye: outside its view
+    float z = meshLinearDepth(i, point);
+    z -= biasTexels * meshTexelSize(i, z);
+    vec2 corner = (clip.xy / clip.w * 0.5 + 0.5) * float(shadows.mode.w) - 0.5;
+    ivec2 base = ivec2(floor(corner));
+    vec2 w = corner - vec2(base);
+    vec4 lit;  // texels (0,0), (1,0), (0,1), (1,1) from base: 1 where no mesh is nearer
+    for (int t = 0; t < 4; ++t) {
+        ivec2 texel = base + ivec2(t & 1, t >> 1);
+        bool inside = all(greaterThanEqual(texel, ivec2(0))) && all(lessThan(texel, ivec2(shadows.mode.w)));
+        lit[t] = !inside || z <= texelFetch(shadowMeshDepths, ivec3(texel, int(shadows.meshMap[i].x)), 0).r ? 1.0 : 0.0;
+    }
+    return mix(mix(lit.x, lit.y, w.x), mix(lit.z, lit.w, w.x), w.y);
+#else
+    return 1.0;
+#endif
+}
 
 float shadowLayerBoundary(int layer) { return shadows.layerBoundaries[layer / 4][layer % 4]; }
 
@@ -147,15 +190,9 @@ float referenceOpacityAt(int i, ivec2 texel, float z) {
     return opacity;
 }
 
-// `meshesOcclude`: whether the meshes' depth counts too (strands); meshes
-// themselves receive only the hair's shadow (a mesh would shadow itself).
-float shadowTransmittanceAt(int i, ivec2 texel, float z, bool meshesOcclude) {
+// The hair's transmittance at one texel of light i's map, at linear depth z.
+float shadowTransmittanceAt(int i, ivec2 texel, float z) {
     if (any(lessThan(texel, ivec2(0))) || any(greaterThanEqual(texel, ivec2(shadows.mode.w)))) return 1.0;
-#if HDHAIR_FEATURE_MESH_OCCLUDERS
-    if (meshesOcclude && shadows.occluders.x != 0 &&
-        z > texelFetch(shadowMeshDepths, ivec3(texel, shadowSlot(i)), 0).r)
-        return 0.0;
-#endif
 #if HDHAIR_FEATURE_SHADOW_REFERENCE && HDHAIR_FEATURE_DEEP_OPACITY
     float opacity = shadows.mode.x == HDHAIR_SHADOW_REFERENCE ? referenceOpacityAt(i, texel, z)
                                                               : deepOpacityAt(i, texel, z);
@@ -199,7 +236,7 @@ vec4 opacityBehindNearestHair(vec4 d, float scale, vec4 layer0, vec4 layer1, vec
 // same. Gathered at the corner the four texels share, where the gather's
 // footprint is exactly them whatever its rounding; texels off the map,
 // which the edge clamp repeats, get no shadow.
-vec4 gatheredTransmittances(int i, ivec2 base, float z, bool meshesOcclude) {
+vec4 gatheredTransmittances(int i, ivec2 base, float z) {
     float slot = float(shadowSlot(i));
     vec3 at = vec3(vec2(base + 1) / float(shadows.mode.w), slot);
     ivec4 x = base.x + ivec4(0, 1, 1, 0), y = base.y + ivec4(1, 1, 0, 0);
@@ -213,21 +250,17 @@ vec4 gatheredTransmittances(int i, ivec2 base, float z, bool meshesOcclude) {
     vec4 opacity = opacityBehindNearestHair(d, shadows.lightMap[i].y, layer0, layer1, layer2, layer3);
     opacity = mix(opacity, vec4(0.0), lessThanEqual(d, vec4(0.0)));
     vec4 transmittance = exp(-shadows.extinction.x * opacity);
-#if HDHAIR_FEATURE_MESH_OCCLUDERS
-    if (meshesOcclude && shadows.occluders.x != 0)
-        transmittance = mix(transmittance, vec4(0.0), greaterThan(vec4(z), textureGather(shadowMeshDepths, at, 0)));
-#endif
     return mix(transmittance, vec4(1.0), outside);
 }
 #endif
 
-// The fraction of light i that reaches `point`: a point on a strand's
-// centre line (`meshesOcclude` true) or on a mesh (false). Bias: one texel's
+// The fraction of light i that the hair lets through to `point`: a point
+// on a strand's centre line or on a mesh. Bias: one texel's
 // world size, so that where the camera's polyline and the light's (each
 // within its view's tessellation tolerance of the curve, a fraction of a
 // pixel or texel) and the light's rasterisation of the same strand disagree
 // by less than a texel, the strand does not shadow itself.
-float shadowTransmittanceFrom(int i, vec3 point, bool meshesOcclude) {
+float hairShadowTransmittance(int i, vec3 point) {
 #if !HDHAIR_FEATURE_DEEP_OPACITY && !HDHAIR_FEATURE_SHADOW_REFERENCE
     return 1.0;  // shadows off, or no light of the pass has a map
 #else
@@ -238,7 +271,7 @@ float shadowTransmittanceFrom(int i, vec3 point, bool meshesOcclude) {
     float z = shadowLinearDepth(i, point);
     z -= shadows.lightMap[i].z * (shadows.lightMap[i].w > 0.5 ? z : 1.0);
 #if HDHAIR_FEATURE_BILINEAR_SHADOWS
-    if (shadows.mode.z == 0) return shadowTransmittanceAt(i, ivec2(floor(position)), z, meshesOcclude);
+    if (shadows.mode.z == 0) return shadowTransmittanceAt(i, ivec2(floor(position)), z);
     // Bilinear: the four nearest texels' transmittances, each against its
     // own nearest hair (z0-relative values cannot be filtered by the
     // hardware: thesis section 1.5.4), weighted by distance.
@@ -246,23 +279,37 @@ float shadowTransmittanceFrom(int i, vec3 point, bool meshesOcclude) {
     ivec2 base = ivec2(floor(corner));
     vec2 w = corner - vec2(base);
 #if HDHAIR_SHADOW_LAYER_VECTORS == 1 && !HDHAIR_FEATURE_SHADOW_REFERENCE
-    vec4 t = gatheredTransmittances(i, base, z, meshesOcclude);  // (0,1), (1,1), (1,0), (0,0)
+    vec4 t = gatheredTransmittances(i, base, z);  // (0,1), (1,1), (1,0), (0,0)
     return mix(mix(t.w, t.z, w.x), mix(t.x, t.y, w.x), w.y);
 #else
-    float t00 = shadowTransmittanceAt(i, base, z, meshesOcclude);
-    float t10 = shadowTransmittanceAt(i, base + ivec2(1, 0), z, meshesOcclude);
-    float t01 = shadowTransmittanceAt(i, base + ivec2(0, 1), z, meshesOcclude);
-    float t11 = shadowTransmittanceAt(i, base + ivec2(1, 1), z, meshesOcclude);
+    float t00 = shadowTransmittanceAt(i, base, z);
+    float t10 = shadowTransmittanceAt(i, base + ivec2(1, 0), z);
+    float t01 = shadowTransmittanceAt(i, base + ivec2(0, 1), z);
+    float t11 = shadowTransmittanceAt(i, base + ivec2(1, 1), z);
     return mix(mix(t00, t10, w.x), mix(t01, t11, w.x), w.y);
 #endif
 #else
-    return shadowTransmittanceAt(i, ivec2(floor(position)), z, meshesOcclude);  // shadowFilter=nearest
+    return shadowTransmittanceAt(i, ivec2(floor(position)), z);  // shadowFilter=nearest
 #endif
 #endif
 }
 
-// What reaches a strand: through the hair and past the meshes.
-float shadowTransmittance(int i, vec3 centre) { return shadowTransmittanceFrom(i, centre, true); }
+// What reaches a strand: through the hair and past the meshes (a texel's
+// bias in the meshes' view, as in the hair's).
+float shadowTransmittance(int i, vec3 centre) {
+    return hairShadowTransmittance(i, centre) * meshTransmittance(i, centre, 1.0);
+}
+
+// What reaches a mesh: through the hair, and past the meshes, its own faces
+// included. `normal`: the surface's, facing the light. The lookup point is
+// moved 1.5 texels off the surface along it (normal-offset shadows): the
+// depth of a surface at angle θ to the light changes by tan θ a texel, and
+// the offset, 1.5/cos θ texels along the light, covers that over the two
+// texels the filter reads, so a lit face does not shadow itself at any angle.
+float meshShadowTransmittance(int i, vec3 point, vec3 normal) {
+    float texel = meshTexelSize(i, meshLinearDepth(i, point));
+    return hairShadowTransmittance(i, point) * meshTransmittance(i, point + normal * (1.5 * texel), 1.0);
+}
 
 // What reaches a strand from SRBF light i (srbfLighting.glsl), whose
 // directions spread about its centre: after Ren et al. 2010 §5 (digest §4.4),
@@ -299,22 +346,17 @@ float srbfShadowTransmittance(int i, vec3 centre) {
     if (shadows.occluders.y != 0)
 #endif
     {  // domeShadowFilter=mipmap
-#if HDHAIR_FEATURE_MESH_OCCLUDERS
-        if (shadows.occluders.x != 0 && z > texelFetch(shadowMeshDepths, ivec3(texel, shadowSlot(i)), 0).r)
-            return 0.0;
-#endif
-        return exp(-shadows.extinction.x * convolvedOpacityAt(i, position, texel, z, radius));
+        return exp(-shadows.extinction.x * convolvedOpacityAt(i, position, texel, z, radius)) *
+               meshTransmittance(i, centre, 1.0);
     }
 #endif
 #if HDHAIR_FEATURE_SRBF_SHADOW_TAPS
     float sum = 0.0;
     for (int y = -1; y <= 1; ++y)
         for (int x = -1; x <= 1; ++x)
-            sum += shadowTransmittanceAt(i, ivec2(floor(position + vec2(x, y) * radius)), z, true);
-    return sum / 9.0;
+            sum += shadowTransmittanceAt(i, ivec2(floor(position + vec2(x, y) * radius)), z);
+    return sum / 9.0 * meshTransmittance(i, centre, 1.0);
 #endif
 #endif
 }
 
-// What reaches a mesh: through the hair.
-float hairShadowTransmittance(int i, vec3 point) { return shadowTransmittanceFrom(i, point, false); }

@@ -580,7 +580,7 @@ TEST(RenderPlan, PlannersDecideFromThePlansTheyAreGiven) {
     lights.lights.lights[2].castsShadow = true;
     lights.sharedMaps = {{1, 0}};
     settings.set("shadowMode", "deepOpacity");
-    const ShadowPlan shadows = planShadows(lights, settings.values(), strands, false, std::nullopt);
+    const ShadowPlan shadows = planShadows(lights, settings.values(), strands, MeshSummary{}, std::nullopt);
     ASSERT_EQ(shadows.lights.size(), 2u);
     EXPECT_EQ(shadows.lights[1].light, 2u);
     EXPECT_EQ(shadows.shadowOf(1), 0);
