@@ -22,6 +22,7 @@ const std::vector<ShadingFeatureSwitch>& shadingFeatureSwitches() {
         {ShadingFeature::MeshOccluders, "HDHAIR_FEATURE_MESH_OCCLUDERS", "meshOccluders"},
         {ShadingFeature::SrbfShadowTaps, "HDHAIR_FEATURE_SRBF_SHADOW_TAPS", "srbfShadowTaps"},
         {ShadingFeature::SrbfShadowMipmap, "HDHAIR_FEATURE_SRBF_SHADOW_MIPMAP", "srbfShadowMipmap"},
+        {ShadingFeature::DensityVolume, "HDHAIR_FEATURE_DENSITY_VOLUME", "densityVolume"},
     };
     return switches;
 }

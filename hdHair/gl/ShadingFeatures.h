@@ -35,6 +35,7 @@ enum class ShadingFeature : uint32_t {
     BilinearShadows = 1u << 14,     // four texels a lookup (shadowFilter=bilinear), not one
     SrbfShadowTaps = 1u << 12,      // a lobe with a map, nine taps (domeShadowFilter=taps)
     SrbfShadowMipmap = 1u << 13,    // a lobe with a map, the mip chain (domeShadowFilter=mipmap)
+    DensityVolume = 1u << 16,       // a light shadowed through the hair's density volume
 };
 
 class ShadingFeatures {

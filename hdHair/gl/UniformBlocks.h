@@ -87,9 +87,14 @@ struct ShadowUniforms {
     glm::vec4 meshEye[kMaxLightsPerPass]{};
     glm::vec4 meshForward[kMaxLightsPerPass]{};
     glm::vec4 meshMap[kMaxLightsPerPass]{};
+    // The hair density volume (hdHair/curves/HairDensityGrid.h): xyz its
+    // lowest corner, w a voxel's edge; x: a bit per light of the pass
+    // shadowed through it, yzw: its voxels along x, y, z.
+    glm::vec4 volumeOrigin{0.0f};
+    glm::ivec4 volume{0};
 };
 static_assert(sizeof(ShadowUniforms) == 64 * kMaxLightsPerPass + 48 * kMaxLightsPerPass + 16 * 8 + 48 +
-                                            112 * kMaxLightsPerPass,
+                                            112 * kMaxLightsPerPass + 32,
               "std140 layout of ShadowUniforms");
 constexpr int kShadowModeOff = 0, kShadowModeDeepOpacity = 1, kShadowModeReference = 2;
 

@@ -36,6 +36,7 @@ enum class ResourceKind {
     ShadowFragments,   // per light: every light-view fragment (shadowMode=reference)
     MeshDepth,         // per light: the nearest mesh in its view
     ConvolvedOpacity,  // every map's opacity layers as a mip chain
+    DensityVolume,     // the hair's optical density on a grid (HairDensityGrid.h)
     Color,
     Depth,
     Ids,
@@ -44,7 +45,7 @@ enum class ResourceKind {
 };
 template <>
 struct TokenTable<ResourceKind> {
-    static constexpr std::array<TokenName<ResourceKind>, 15> names{{
+    static constexpr std::array<TokenName<ResourceKind>, 16> names{{
         {ResourceKind::PreparedStrands, "preparedStrands"},
         {ResourceKind::PreparedMeshes, "preparedMeshes"},
         {ResourceKind::Strands, "strands"},
@@ -55,6 +56,7 @@ struct TokenTable<ResourceKind> {
         {ResourceKind::ShadowFragments, "shadowFragments"},
         {ResourceKind::MeshDepth, "meshDepth"},
         {ResourceKind::ConvolvedOpacity, "convolvedOpacity"},
+        {ResourceKind::DensityVolume, "densityVolume"},
         {ResourceKind::Color, "color"},
         {ResourceKind::Depth, "depth"},
         {ResourceKind::Ids, "ids"},
@@ -95,6 +97,7 @@ enum class PassKind {
     ShadowFragments,
     MeshShadow,
     OpacityMipmaps,
+    DensityVolume,
     Clear,
     Meshes,
     Strands,
@@ -107,7 +110,7 @@ enum class PassKind {
 // Each kind's name: its passes' labels begin with it ("deepOpacity /World/key").
 template <>
 struct TokenTable<PassKind> {
-    static constexpr std::array<TokenName<PassKind>, 16> names{{
+    static constexpr std::array<TokenName<PassKind>, 17> names{{
         {PassKind::Upload, "upload"},
         {PassKind::MeshUpload, "meshUpload"},
         {PassKind::Sort, "sort"},
@@ -116,6 +119,7 @@ struct TokenTable<PassKind> {
         {PassKind::ShadowFragments, "shadowFragments"},
         {PassKind::MeshShadow, "meshShadow"},
         {PassKind::OpacityMipmaps, "opacityMipmaps"},
+        {PassKind::DensityVolume, "densityVolume"},
         {PassKind::Clear, "clear"},
         {PassKind::Meshes, "meshes"},
         {PassKind::Strands, "strands"},

@@ -5,6 +5,7 @@
 #include <utility>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <nlohmann/json.hpp>
 
 #include "hdHair/plan/NearestStrandRule.h"
@@ -160,6 +161,7 @@ std::vector<FrameResource> batchShadowReads(const FrameRecipe& recipe, size_t ba
         if (shadow < 0 || assignedNoMap(recipe.shadows.lights[size_t(shadow)])) continue;
         const PlannedShadow& planned = recipe.shadows.lights[size_t(shadow)];
         if (recipe.shadows.meshesCast && planned.meshView.valid) readOnce(recipe.shadows.meshResourceOf(size_t(shadow)));
+        if (planned.byVolume && recipe.shadows.usesVolume()) readOnce(ResourceKind::DensityVolume);
         if (!planned.view.valid) continue;
         srbfMapRead = srbfMapRead || recipe.lighting.lights.lights[light].isSrbf();
         readOnce(recipe.shadows.resourceOf(size_t(shadow)));
@@ -200,11 +202,32 @@ void addUploadPasses(FrameGraph& graph, const FrameRecipe& recipe, const StrandS
                             : "no bin sorting on this path"});
 }
 
-// Every shadow map's passes, then the mip chain that averages them when an
-// SRBF light reads through it.
+// "densityVolume": the hair's optical density on a grid, for the lights
+// shadowed through it.
+void addDensityVolumePass(FrameGraph& graph, const FrameRecipe& recipe, bool anyStrands) {
+    const ShadowPlan& shadows = recipe.shadows;
+    std::vector<std::string> lights;
+    for (const PlannedShadow& shadow : shadows.lights)
+        if (shadow.byVolume) lights.push_back(shadow.key + ": " + shadow.volumeReason);
+    const bool wanted = anyStrands && shadows.usesVolume();
+    const DensityGridShape& grid = shadows.volumeGrid;
+    graph.add(FramePass{
+        PassKind::DensityVolume, "densityVolume", {ResourceKind::PreparedStrands}, {ResourceKind::DensityVolume},
+        wanted,
+        wanted ? fmt::format("the hair's optical density on {}x{}x{} voxels of {:.3g} ({:.1f} MB{}), for {}",
+                             grid.dims.x, grid.dims.y, grid.dims.z, grid.voxelSize,
+                             double(grid.voxelCount()) * 4.0 / (1024.0 * 1024.0),
+                             shadows.volumeCoarsened ? "; " + shadows.volumeNote : "", fmt::join(lights, "; "))
+        : !anyStrands ? "no visible curves"
+                      : fmt::format("no light is shadowed through it (shadowMode={})", toString(shadows.setting))});
+}
+
+// Every shadow map's passes, the density volume, then the mip chain that
+// averages the maps when an SRBF light reads through it.
 void addShadowMapPasses(FrameGraph& graph, const FrameRecipe& recipe, bool anyStrands) {
     for (size_t shadow = 0; shadow < recipe.shadows.lights.size(); ++shadow)
         addShadowPasses(graph, recipe, shadow, anyStrands);
+    addDensityVolumePass(graph, recipe, anyStrands);
     if (!recipe.shadows.convolvedOpacity) return;
     // After every map it averages: the chain covers the whole array.
     // Wanted exactly when a batch reads the chain: an SRBF light has a
@@ -235,7 +258,7 @@ FramePass meshesPass(const std::vector<FrameResource>& frameImages, const FrameR
     if (recipe.lighting.meshesLit && !recipe.lighting.batches.empty())
         for (const FrameResource& map : batchShadowReads(recipe, 0))
             if (map.kind == ResourceKind::DeepOpacity || map.kind == ResourceKind::ShadowFragments ||
-                map.kind == ResourceKind::MeshDepth)
+                map.kind == ResourceKind::MeshDepth || map.kind == ResourceKind::DensityVolume)
                 reads.push_back(map);
     FramePass pass{PassKind::Meshes, "meshes", reads, frameImages, meshes.meshes > 0, noMeshes};
     if (!pass.wanted) return pass;

@@ -30,11 +30,13 @@ struct CameraView;
 //   shadowDepth L      strands -> hairDepth L       per shadow-casting light L: its nearest hair
 //   deepOpacity L      strands, hairDepth L -> deepOpacity L   its opacity layers
 //   shadowFragments L  strands -> shadowFragments L  shadowMode=reference instead: every fragment
-//   meshShadow L       meshGeometry -> meshDepth L  with meshes: the nearest mesh, which hides the hair behind it
+//   meshShadow L       meshGeometry -> meshDepth L  with meshes: the nearest mesh in a view of hair and meshes,
+//                 which hides the hair, the other meshes and its own far faces behind it
 //                 (a map kept from an earlier frame is an input of the graph instead)
 //   opacityMipmaps  deepOpacity of every light -> convolvedOpacity   domeShadowFilter=mipmap, an SRBF light's map read
+//   densityVolume preparedStrands -> densityVolume  a light shadowed through it (shadowMode=auto: inside the hair)
 //   clear         -> color, depth[, ids]            the frame's targets, empty
-//   meshes        meshGeometry, color, depth[, ids] -> color, depth[, ids]   opaque, lights of batch 1
+//   meshes        meshGeometry, color, depth[, ids, the batch's shadows] -> color, depth[, ids]   opaque, lights of batch 1
 //   strands       strands[, drawOrder], color, depth[, the batch's shadows] -> color, depth[, ids]   lights of batch 1
 //   ids           strands, depth -> ids             blended paths, when a host asks for ids
 //   resolve       color, depth[, ids] (in place)    multisampled frames

@@ -132,10 +132,16 @@ const std::vector<SettingDescriptor>& RenderSettings::descriptors() {
          "Dual scattering's backward density factor d_b: how much of the light that passes a fibre its neighbours "
          "scatter back (0.6 to 0.8 for human hair; 0 drops the back scattering)",
          0.0, 1.0, {}, &SettingValues::multipleScatteringBackDensity},
-        {"shadowMode", SettingType::Token, "deepOpacity",
-         "Hair self-shadowing from lights that cast shadows (inputs:shadow:enable): deepOpacity (deep opacity "
-         "maps), reference (every light-view fragment kept and summed per lookup: slow, the yardstick), or off",
+        {"shadowMode", SettingType::Token, "auto",
+         "Hair self-shadowing from lights that cast shadows (inputs:shadow:enable): auto (deep opacity maps, and "
+         "the hair's density volume for a light inside the hair, which one map cannot see), deepOpacity (maps "
+         "only: a light inside the hair shades unshadowed), volume (every light through the density volume), "
+         "reference (every light-view fragment kept and summed per lookup: slow, the yardstick), or off",
          0, 0, {}, tokenField<&SettingValues::shadowMode>()},
+        {"densityVolumeMemoryMB", SettingType::Int, "16",
+         "GPU memory for the hair density volume (R32F voxels, at most 128 along the hair's longest side); a "
+         "smaller budget makes the voxels coarser, with a warning",
+         1, 4096, {}, &SettingValues::densityVolumeMemoryMB},
         {"shadowLayers", SettingType::Int, "3",
          "Opacity layers of a deep opacity map behind the nearest hair (3 as in Yuksel & Keyser; up to 32, in "
          "RGBA16F targets of 4 layers)",

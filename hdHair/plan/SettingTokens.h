@@ -89,11 +89,14 @@ struct TokenTable<MultipleScattering> {
 };
 
 // shadowMode: how lights shadow the hair.
-enum class ShadowMode { DeepOpacity, Reference, Off };
+enum class ShadowMode { Auto, DeepOpacity, Volume, Reference, Off };
 template <>
 struct TokenTable<ShadowMode> {
-    static constexpr std::array<TokenName<ShadowMode>, 3> names{
-        {{ShadowMode::DeepOpacity, "deepOpacity"}, {ShadowMode::Reference, "reference"}, {ShadowMode::Off, "off"}}};
+    static constexpr std::array<TokenName<ShadowMode>, 5> names{{{ShadowMode::Auto, "auto"},
+                                                                  {ShadowMode::DeepOpacity, "deepOpacity"},
+                                                                  {ShadowMode::Volume, "volume"},
+                                                                  {ShadowMode::Reference, "reference"},
+                                                                  {ShadowMode::Off, "off"}}};
 };
 
 // shadowStrandLines: how deep opacity maps draw the strands.

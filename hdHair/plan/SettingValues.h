@@ -47,7 +47,8 @@ struct SettingValues {
     MultipleScattering multipleScattering = MultipleScattering::Auto;
     double multipleScatteringForwardDensity = 0.0;  // multipleScattering:forwardDensity
     double multipleScatteringBackDensity = 0.0;     // multipleScattering:backDensity
-    ShadowMode shadowMode = ShadowMode::DeepOpacity;
+    ShadowMode shadowMode = ShadowMode::Auto;
+    int densityVolumeMemoryMB = 16;
     int shadowLayers = 0;
     int shadowMapResolution = 0;
     double shadowTessellationTolerance = 0.0;

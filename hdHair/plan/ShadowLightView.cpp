@@ -11,7 +11,8 @@
 namespace hdhair {
 
 bool ShadowLightView::operator==(const ShadowLightView& other) const {
-    return valid == other.valid && fallback == other.fallback && orthographic == other.orthographic &&
+    return valid == other.valid && fallback == other.fallback && needsCubeMap == other.needsCubeMap &&
+           orthographic == other.orthographic &&
            view == other.view && projection == other.projection && eye == other.eye && forward == other.forward &&
            nearDepth == other.nearDepth && farDepth == other.farDepth && texelSize == other.texelSize &&
            resolution == other.resolution && pixelsPerUnit == other.pixelsPerUnit;
@@ -176,10 +177,13 @@ ShadowLightView fitShadowLightView(const ShadingLight& light, const CasterBounds
         }
     }
     if (!(tanHalf <= maxTanHalf)) {
-        return invalid(fmt::format(
+        ShadowLightView view = invalid(fmt::format(
             "the light is inside or too close to the hair's bounds: one perspective view would need more than "
-            "{} degrees either side (a cube map); shaded without its shadows",
+            "{} degrees either side (a cube map); shaded without its shadows (shadowMode=auto or volume shadow it "
+            "through the hair's density volume)",
             kMaxShadowHalfFieldOfViewDegrees));
+        view.needsCubeMap = true;
+        return view;
     }
     // A cone wholly behind the hair's depth range lights none of it.
     double farthest = 0.0;

@@ -51,6 +51,10 @@ constexpr double kMaxShadowHalfFieldOfViewDegrees = 75.0;
 struct ShadowLightView {
     bool valid = false;
     std::string fallback;  // why not valid, for the warning and --explain
+    // Not valid because the light is a local one inside or too close to the
+    // bounds: it would need a cube map (shadowMode=auto shadows it through
+    // the hair's density volume instead, ShadowPlanner.h).
+    bool needsCubeMap = false;
     bool orthographic = true;
     glm::dmat4 view{1.0}, projection{1.0};  // world -> light view -> clip (GL conventions)
     glm::dvec3 eye{0.0}, forward{0.0, 0.0, -1.0};

@@ -109,7 +109,11 @@ void planStrandLines(PlannedShadow& shadow, const ShadowPlan& shadows, ShadowStr
 // The shadow settings, as a plan without lights.
 ShadowPlan shadowSettings(const SettingValues& settings) {
     ShadowPlan shadows;
-    shadows.mode = settings.shadowMode;
+    shadows.setting = settings.shadowMode;
+    shadows.mode = settings.shadowMode == ShadowMode::Auto || settings.shadowMode == ShadowMode::Volume
+                       ? ShadowMode::DeepOpacity
+                       : settings.shadowMode;
+    shadows.volumeMemoryMB = settings.densityVolumeMemoryMB;
     shadows.layers = settings.shadowLayers;
     shadows.boundaries = deepOpacityLayerBoundaries(shadows.layers, settings.shadowLayerSpacing);
     shadows.layerDepth = settings.shadowLayerDepth;
@@ -134,26 +138,69 @@ void fitMeshView(PlannedShadow& shadow, const ShadingLight& light, const ShadowP
                  const StrandSummary& strands, const MeshSummary& meshes) {
     shadow.meshView = fitShadowLightView(light, unite(strands.casters, meshes.bounds), shadows.resolution);
     if (shadow.meshView.valid) return;
-    const std::string why = shadow.meshView.fallback;
+    const std::string why = shadow.meshView.needsCubeMap
+                                ? "the light is inside or too close to the bounds of the hair and meshes for one "
+                                  "perspective view (a cube map)"
+                                : shadow.meshView.fallback;
     if (shadow.view.valid) {
         shadow.meshView = shadow.view;
         shadow.meshFallback = "meshes shadow each other only within the hair's light view: " + why;
     } else {
-        shadow.meshFallback = "no mesh shadows from this light: " + why;
+        shadow.meshFallback = "the meshes cast no shadows from this light: " + why;
     }
+}
+
+// Whether `shadow` is shadowed through the hair's density volume: every
+// light under shadowMode=volume; under auto, a light whose view cannot hold
+// the hair (a local light inside or too close to it, which one perspective
+// view cannot see: a cube map would), with strands to shadow. deepOpacity
+// keeps such a light unshadowed (warned), as before the volume existed.
+void planVolumeShadow(PlannedShadow& shadow, ShadowMode setting, const StrandSummary& strands) {
+    if (strands.casters.empty()) return;
+    if (setting == ShadowMode::Volume) {
+        shadow.byVolume = true;
+        shadow.volumeReason = "through the hair's density volume (shadowMode=volume)";
+        shadow.view.fallback = "shadowMode=volume: no map, the density volume instead";
+    } else if (setting == ShadowMode::Auto && !shadow.view.valid && shadow.view.needsCubeMap) {
+        shadow.byVolume = true;
+        shadow.volumeReason = "through the hair's density volume (shadowMode=auto): the light is inside or too "
+                              "close to the hair's bounds for one map's view";
+    }
+}
+
+// The density volume's grid over the hair, when a light reads it: as fine
+// as kMaxDensityVoxelsAlong gives, or as densityVolumeMemoryMB holds.
+void planVolumeGrid(ShadowPlan& shadows, const StrandSummary& strands) {
+    const bool read = std::any_of(shadows.lights.begin(), shadows.lights.end(),
+                                  [](const PlannedShadow& shadow) { return shadow.byVolume; });
+    if (!read) return;
+    const CasterBounds& casters = strands.casters;
+    const size_t maxVoxels = size_t(shadows.volumeMemoryMB) * 1024 * 1024 / sizeof(float);
+    shadows.volumeGrid = fitDensityGrid(casters.min, casters.max, maxVoxels);
+    const DensityGridShape finest = fitDensityGrid(casters.min, casters.max, std::numeric_limits<size_t>::max());
+    shadows.volumeCoarsened = !shadows.volumeGrid.empty() && shadows.volumeGrid.voxelSize > finest.voxelSize;
+    if (shadows.volumeCoarsened)
+        shadows.volumeNote = fmt::format("densityVolumeMemoryMB={} holds {}x{}x{} voxels of {:.3g}, coarser than the "
+                                         "{:.3g} the hair's size calls for",
+                                         shadows.volumeMemoryMB, shadows.volumeGrid.dims.x, shadows.volumeGrid.dims.y,
+                                         shadows.volumeGrid.dims.z, shadows.volumeGrid.voxelSize, finest.voxelSize);
 }
 
 // Light views fitted to the casters for `shadow` (the hair's, and with
 // meshes the meshes' too), while shadowMemoryMB holds another map (`mapped`
-// so far); past that, why it has none.
+// so far); past that, why it has none. Whether the density volume shadows
+// it instead, which needs no map.
 void fitView(PlannedShadow& shadow, const ShadingLight& light, ShadowPlan& shadows, const StrandSummary& strands,
              const MeshSummary& meshes, size_t& mapped) {
-    if (mapped < shadows.maxMaps) {
+    if (shadows.setting != ShadowMode::Volume && mapped < shadows.maxMaps)
         shadow.view = fitShadowLightView(light, strands.casters, shadows.resolution);
+    planVolumeShadow(shadow, shadows.setting, strands);
+    if (mapped < shadows.maxMaps) {
         if (shadows.meshesCast) fitMeshView(shadow, light, shadows, strands, meshes);
         mapped += shadow.view.valid || shadow.meshView.valid ? 1 : 0;
         return;
     }
+    if (shadow.byVolume) return;  // the volume needs no slot; only the meshes' depth goes unshadowed
     shadow.view.valid = false;
     shadow.overBudget = true;
     shadow.view.fallback = fmt::format("shadowMemoryMB={} holds {} maps of {}x{} texels", shadows.memoryMB,
@@ -209,6 +256,7 @@ ShadowPlan planShadows(const LightPlan& lights, const SettingValues& settings, c
         shadows.lights.push_back(std::move(shadow));
     }
     checkSampledDomesShadowed(shadows, lights, strands);
+    planVolumeGrid(shadows, strands);
     planShadowSampling(shadows, shadows.samplingSetting, strands);
     if (shadows.mode == ShadowMode::DeepOpacity && settings.domeShadowFilter == DomeShadowFilter::Mipmap)
         for (size_t i = 0; i < lights.lights.lights.size() && !shadows.convolvedOpacity; ++i)

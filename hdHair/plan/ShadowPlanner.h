@@ -14,6 +14,7 @@
 #include <tuple>
 #include <vector>
 
+#include "hdHair/curves/HairDensityGrid.h"
 #include "hdHair/plan/FrameGraph.h"
 #include "hdHair/plan/SettingTokens.h"
 #include "hdHair/plan/ShadowLightView.h"
@@ -49,6 +50,12 @@ struct PlannedShadow {
     // either, the meshes are unshadowed by this light (meshFallback says why).
     ShadowLightView meshView;
     std::string meshFallback;
+    // Shadowed through the hair's density volume (ShadowPlan::volumeGrid)
+    // rather than a map: shadowMode=volume, or auto for a light its view
+    // cannot hold (inside the hair: view.needsCubeMap). `volumeReason` says
+    // which, for --explain.
+    bool byVolume = false;
+    std::string volumeReason;
     // The renderer's decision for its map (ShadowMapAssignment, below),
     // copied in when the plan is made: never changed while the frame runs.
     bool assigned = false;  // decided: the plan the frame runs
@@ -75,7 +82,11 @@ struct PlannedShadow {
 };
 
 struct ShadowPlan {
+    // How the maps are drawn: deepOpacity under shadowMode auto, deepOpacity
+    // and volume (the lights the volume shadows have no hair map, and the
+    // meshes' depth is drawn all the same), reference or off.
     ShadowMode mode = ShadowMode::Off;
+    ShadowMode setting = ShadowMode::Off;  // shadowMode as set
     int layers = 3;                // shadowLayers
     std::vector<float> boundaries;  // d_k / d_K (DeepOpacityLayers.h)
     double layerDepth = 1.0;       // shadowLayerDepth: d_K over the casters' depth range
@@ -117,6 +128,15 @@ struct ShadowPlan {
     // SRBF lights without a map of their own that read another light's
     // (LightPlan::sharedMaps): light index -> the index of the light whose map.
     std::map<size_t, size_t> sharedMaps;
+    // The hair density volume's grid, when a light is shadowed through it
+    // (PlannedShadow::byVolume); empty otherwise. `volumeCoarsened`: the
+    // densityVolumeMemoryMB budget made its voxels coarser than the size
+    // kMaxDensityVoxelsAlong gives (`volumeNote` says how, for the warning).
+    DensityGridShape volumeGrid;
+    int volumeMemoryMB = 16;
+    bool volumeCoarsened = false;
+    std::string volumeNote;
+    bool usesVolume() const { return !volumeGrid.empty(); }
     // domeShadowFilter=mipmap and some SRBF light reads a map: the
     // "opacityMipmaps" pass averages the opacity layers into a mip chain,
     // the convolution optical depth map those lights read ("convolvedOpacity").

@@ -160,6 +160,7 @@ gl::ShadingFeatures bindBatchInputs(FrameContext& context, gl::RenderTarget& tar
     resources.srbfTables.bind();
     resources.shadowMaps.bindForLookup();
     resources.shadowReference.bindForLookup();
+    resources.densityVolume.bind();
     const gl::LightUniforms lights = lightUniforms(context.plan, batch);
     const gl::ShadowUniforms shadows = batchShadowUniforms(context.plan.recipe(), batch);
     const gl::ShadingFeatures features = strandFeatures(context, batch, false);
@@ -184,6 +185,7 @@ void touchBatchShadows(FrameContext& context, size_t batch, bool strands) {
             if (meshSlot >= 0 && shadows.isMeshMapped(planned) && planned.slot == meshSlot)
                 touch(context, shadows.meshResourceOf(shadow), Access::Read);
         }
+        if ((uniforms.volume.x >> entry) & 1) touch(context, ResourceKind::DensityVolume, Access::Read);
         if (strands && shadows.convolvedOpacity && recipe.lighting.lights.lights[begin + entry].isSrbf())
             touch(context, ResourceKind::ConvolvedOpacity, Access::Read);
     }
@@ -447,6 +449,17 @@ void meshShadow(FrameContext& context, size_t shadow) {
                                             lightShadowUniforms(context.plan.recipe(), shadow));
 }
 
+// "densityVolume": every drawn prim's strands into the density grid the
+// plan sized, sent to the GPU.
+void densityVolume(FrameContext& context) {
+    touch(context, ResourceKind::PreparedStrands, Access::Read);
+    touch(context, ResourceKind::DensityVolume, Access::Write);
+    DensityGrid grid(context.plan.recipe().shadows.volumeGrid);
+    for (const DrawnPrim& drawn : context.inputs.drawn) addStrandsToGrid(grid, *drawn.curves);
+    const gl::GpuMemoryUse use("densityVolume");
+    context.resources.densityVolume.update(grid);
+}
+
 // "opacityMipmaps": the mip chain of every map (ShadowMapStorage says why
 // all at once).
 void opacityMipmaps(FrameContext& context) {
@@ -562,6 +575,7 @@ void runFramePass(const FramePass& pass, FrameContext& context) {
     case PassKind::ShadowFragments: return shadowFragments(context, pass.subject);
     case PassKind::MeshShadow: return meshShadow(context, pass.subject);
     case PassKind::OpacityMipmaps: return opacityMipmaps(context);
+    case PassKind::DensityVolume: return densityVolume(context);
     case PassKind::Clear: return clear(context);
     case PassKind::Meshes: return drawMeshes(context, *context.target, 0);
     case PassKind::Strands: return drawStrands(context, *context.target, 0);

@@ -7,6 +7,7 @@
 
 #include <memory>
 
+#include "hdHair/gl/DensityVolumeTexture.h"
 #include "hdHair/gl/DisplayTransformPass.h"
 #include "hdHair/gl/FragmentListPass.h"
 #include "hdHair/gl/HairMaterialTable.h"
@@ -45,6 +46,7 @@ struct FrameResources {
     gl::ShadowMapStorage shadowMaps;
     gl::ShadowMapPass shadowMapPass;
     gl::ShadowReferencePass shadowReference;
+    gl::DensityVolumeTexture densityVolume;  // the hair's density, for lights shadowed through it
     int maxSamples = 0;  // the driver's GL_MAX_SAMPLES
 
 private:

@@ -1,5 +1,6 @@
 #include "hdHair/render/FrameScheduler.h"
 
+#include "hdHair/render/FrameResources.h"
 #include "hdHair/render/RenderResult.h"
 
 namespace hdhair {
@@ -21,6 +22,8 @@ void runFrameGraph(FrameContext& context, gl::PassTiming timing) {
         timer.end(i);
         if (context.cancellation) glFinish();
     }
+    // What no pass of this frame used is not held for later ones.
+    if (!context.plan.isEnabled(PassKind::DensityVolume)) context.resources.densityVolume.release();
     context.passMilliseconds = timer.collect();
     RenderStats& stats = context.result.stats;
     for (size_t i = 0; i < passes.size(); ++i)

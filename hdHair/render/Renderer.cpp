@@ -343,7 +343,7 @@ ShadowMapAssignment Renderer::decideShadowMaps(const RenderPlan& plan, const Str
         const bool followsCamera =
             recipe.lighting.cameraLight && shadow.light + 1 == recipe.lighting.lights.lights.size();
         if (shadows.mode != ShadowMode::Off && !recipe.lighting.flatShading && summary.segments > 0 &&
-            !shadow.view.valid && !shadow.overBudget)
+            !shadow.view.valid && !shadow.overBudget && !shadow.byVolume)
             diagnostics.warn(shadow.key, "no shadows from this light: " + shadow.view.fallback);
         if (!shadow.meshFallback.empty() && !recipe.lighting.flatShading) diagnostics.warn(shadow.key, shadow.meshFallback);
         if (!plan.shadowUsed(i)) continue;
@@ -355,6 +355,10 @@ ShadowMapAssignment Renderer::decideShadowMaps(const RenderPlan& plan, const Str
         requests.push_back({shadow.key, shadow.view, followsCamera, shadow.meshView});
         requested.push_back(i);
     }
+    if (shadows.volumeCoarsened && !recipe.lighting.flatShading && plan.isEnabled(PassKind::DensityVolume))
+        diagnostics.warn("render", "the hair density volume: " + shadows.volumeNote +
+                                       "; its shadows are blurred over the larger voxels (raise "
+                                       "densityVolumeMemoryMB for the finer grid)");
     // domeLighting=sampled throws over budget when it is planned (planShadows).
     const bool shadowsDrawn = shadows.overBudget > 0 && !recipe.lighting.flatShading && summary.segments > 0;
     if (shadowsDrawn)

@@ -8,6 +8,9 @@ namespace {
 
 int modeOf(ShadowMode mode) {
     switch (mode) {
+    // The plan's map mode is deepOpacity under auto and volume (ShadowPlan::mode).
+    case ShadowMode::Auto:
+    case ShadowMode::Volume:
     case ShadowMode::DeepOpacity: return gl::kShadowModeDeepOpacity;
     case ShadowMode::Reference: return gl::kShadowModeReference;
     case ShadowMode::Off: break;
@@ -23,6 +26,11 @@ gl::ShadowUniforms common(const ShadowPlan& shadows) {
     uniforms.mode = glm::ivec4(modeOf(shadows.mode), shadows.layers, shadows.bilinear ? 1 : 0, shadows.resolution);
     uniforms.extinction = glm::vec4(kShadowExtinction, 0.0f, 0.0f, 0.0f);
     uniforms.occluders = glm::ivec4(shadows.meshesCast ? 1 : 0, shadows.convolvedOpacity ? 1 : 0, 0, 0);
+    if (shadows.usesVolume()) {
+        const DensityGridShape& grid = shadows.volumeGrid;
+        uniforms.volumeOrigin = glm::vec4(glm::vec3(grid.origin), float(grid.voxelSize));
+        uniforms.volume = glm::ivec4(0, grid.dims);
+    }
     for (glm::vec4& map : uniforms.lightMap) map.x = -1.0f;
     for (glm::vec4& map : uniforms.meshMap) map.x = -1.0f;
     return uniforms;
@@ -34,6 +42,7 @@ void setEntry(gl::ShadowUniforms& uniforms, int entry, const ShadowPlan& shadows
     uniforms.lightViewProjection[entry] = glm::mat4(view.projection * view.view);
     uniforms.lightEye[entry] = glm::vec4(glm::vec3(view.eye), 0.0f);
     uniforms.lightForward[entry] = glm::vec4(glm::vec3(view.forward), 0.0f);
+    if (shadow.byVolume && shadows.usesVolume()) uniforms.volume.x |= 1 << entry;
     const bool mapped = shadows.isMapped(shadow);
     uniforms.lightMap[entry] = glm::vec4(mapped ? float(shadow.slot) : -1.0f,
                                          float(shadows.layerDepth * (view.farDepth - view.nearDepth)),

@@ -50,14 +50,17 @@ gl::ShadingFeatures batchShadingFeatures(const FrameRecipe& recipe, size_t batch
         else if (recipe.lighting.lights.lights[light].isLocal)
             features.add(ShadingFeature::LocalLights);
         const int shadow = shadows.shadowOf(light);
-        if (shadow < 0 || !shadows.isMapped(shadows.lights[size_t(shadow)])) continue;
+        if (shadow < 0) continue;
+        const PlannedShadow& planned = shadows.lights[size_t(shadow)];
+        if (shadows.isMeshMapped(planned)) features.add(ShadingFeature::MeshOccluders);
+        if (planned.byVolume && shadows.usesVolume()) features.add(ShadingFeature::DensityVolume);
+        if (!shadows.isMapped(planned)) continue;
         if (shadows.mode == ShadowMode::Reference) {
             features.add(ShadingFeature::ShadowReference);
         } else {
             features.add(ShadingFeature::DeepOpacity);
             features.setShadowLayers(shadows.layers);
         }
-        if (shadows.meshesCast) features.add(ShadingFeature::MeshOccluders);
         if (shadows.bilinear) features.add(ShadingFeature::BilinearShadows);
         if (srbf)
             features.add(shadows.convolvedOpacity ? ShadingFeature::SrbfShadowMipmap : ShadingFeature::SrbfShadowTaps);

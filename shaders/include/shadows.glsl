@@ -32,6 +32,11 @@ layout(std140, binding = 2) uniform ShadowUniforms {
     // x: the slot of its mesh depth (-1: none), y: a texel's world size (at
     // linear depth 1 when perspective), z: 1 perspective, 0 orthographic.
     vec4 meshMap[HDHAIR_MAX_LIGHTS];
+    // The hair density volume (densityVolume.glsl): xyz its lowest corner, w
+    // a voxel's edge; x: a bit per light of the pass shadowed through it,
+    // yzw: its voxels along x, y, z.
+    vec4 volumeOrigin;
+    ivec4 volume;
 } shadows;
 
 // Per light slot: the nearest hair's linear depth, and the layers, 4 a texel
@@ -41,6 +46,8 @@ layout(binding = 3) uniform sampler2DArray shadowOpacity;
 // Per light slot: the nearest mesh's linear depth (R32F; HDHAIR_NO_HAIR
 // where there is none). Meshes are opaque: what lies behind gets no light.
 layout(binding = 4) uniform sampler2DArray shadowMeshDepths;
+
+#include "include/densityVolume.glsl"
 
 // Linear depth in light i's view: world units along its viewing direction.
 float shadowLinearDepth(int i, vec3 position) {
@@ -261,6 +268,9 @@ vec4 gatheredTransmittances(int i, ivec2 base, float z) {
 // pixel or texel) and the light's rasterisation of the same strand disagree
 // by less than a texel, the strand does not shadow itself.
 float hairShadowTransmittance(int i, vec3 point) {
+#if HDHAIR_FEATURE_DENSITY_VOLUME
+    if (densityVolumeLight(i)) return densityVolumeTransmittance(i, point);
+#endif
 #if !HDHAIR_FEATURE_DEEP_OPACITY && !HDHAIR_FEATURE_SHADOW_REFERENCE
     return 1.0;  // shadows off, or no light of the pass has a map
 #else

@@ -1,12 +1,16 @@
-// Shadows between meshes and hair: a mesh hides the hair behind it from a
-// light (its depth in the light's view, ShadowMapPass::renderMeshDepth), and
-// hair shadows a mesh through its deep opacity map (shaders/mesh.frag).
-// Where each shadow falls follows from the geometry by hand, and so does how
-// dark the hair's shadow on a mesh is: T = exp(-k opacity), k = 1.
+// Shadows between meshes and hair: a mesh hides the hair, other meshes and
+// its own faces behind it from a light (its depth in the light's mesh view,
+// ShadowMapPass::renderMeshDepth), and hair shadows a mesh through its deep
+// opacity map (shaders/mesh.frag). Where each shadow falls follows from the
+// geometry by hand, and so does how dark the hair's shadow on a mesh is:
+// T = exp(-k opacity), k = 1.
 
 #include <cmath>
+#include <functional>
 #include <limits>
+#include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <glm/geometric.hpp>
@@ -159,11 +163,12 @@ TEST(MeshShadows, AClumpOverAPlaneShadowsThePlane) {
     Scene planeOnly;
     planeOnly.setMesh(plane);
     planeOnly.setLight(distantLightFrom(towardsLight));
-    // The plane alone has no hair to fit a light view to: no shadow passes.
+    // The plane alone has no hair: only its own depth is drawn, and a flat
+    // plane does not shadow itself (checked below: every pixel is lit).
     const RenderResult bare = render(planeOnly);
     EXPECT_FALSE(bare.plan.isEnabled("shadowDepth /light"));
-    EXPECT_FALSE(bare.plan.isEnabled("meshShadow /light"));
-    EXPECT_EQ(bare.stats.shadowMapsRebuilt, 0u);
+    EXPECT_TRUE(bare.plan.isEnabled("meshShadow /light"));
+    EXPECT_EQ(bare.stats.shadowMapsRebuilt, 1u);
     Scene withHair = planeOnly;
     withHair.setCurves(horizontalStrands("/hair", 1, 0, float(depthAbovePlane), heights, width, {1, 1, 1}, opacity));
     const RenderResult shadowed = render(withHair);
@@ -236,4 +241,125 @@ TEST(MeshShadows, AMeshOfZeroAreaFacesStaysFinite) {
         ASSERT_TRUE(std::isfinite(frame.color.pixels[i])) << i;
         ASSERT_NEAR(frame.color.pixels[i], bare.color.pixels[i], 1e-6f) << i;
     }
+}
+
+namespace {
+
+// A grey 4 x 4 plane at z = 0 about the origin, of quads.
+MeshPrim groundPlane(const std::string& path = "/plane") {
+    MeshPrim plane = grey(quadGrid(4, path));
+    plane.worldTransform = glm::translate(glm::dmat4(1.0), glm::dvec3(-2.0, -2.0, 0.0));
+    return plane;
+}
+
+// Compares `shadowed` with `unshadowed` (the same scene, shadowMode=off:
+// Lambert alone) pixel by pixel: black where `inShadow` says a pixel lies
+// well inside a mesh's shadow, equal where it lies well outside, skipped
+// between (`inShadow` returns nullopt there and where the camera sees no
+// receiver). Returns how many pixels were inside and outside.
+std::pair<size_t, size_t> compareShadowed(const RenderResult& shadowed, const RenderResult& unshadowed,
+                                          const std::function<std::optional<bool>(glm::dvec2)>& inShadow) {
+    size_t inside = 0, outside = 0;
+    for (int py = 0; py < kPixels; ++py) {
+        for (int px = 0; px < kPixels; ++px) {
+            const std::optional<bool> in = inShadow(worldAt(px, py));
+            if (!in) continue;
+            const size_t i = 4 * (size_t(py) * kPixels + size_t(px));
+            for (int c = 0; c < 3; ++c) {
+                const float lit = unshadowed.color.pixels[i + size_t(c)], seen = shadowed.color.pixels[i + size_t(c)];
+                EXPECT_GT(lit, 0.01f) << "(" << px << ", " << py << ") is lit without shadows";
+                if (*in) {
+                    EXPECT_LT(seen, 1e-6f) << "(" << px << ", " << py << ") in a mesh's shadow";
+                } else {
+                    EXPECT_NEAR(seen, lit, 1e-5f * lit) << "(" << px << ", " << py << ") out of the shadows";
+                }
+            }
+            (*in ? inside : outside) += 1;
+        }
+    }
+    return {inside, outside};
+}
+
+}  // namespace
+
+// A sphere over a plane, lit from +X+Z: the plane is black inside the
+// sphere's shadow, whose outline follows by hand, and lit exactly as
+// without shadows outside it; the sphere's own lit side is not darkened
+// (a convex mesh cannot shadow its lit side). With or without hair in the
+// frame (a strand along y = 1.6 whose own stripe is left out): without
+// hair only the meshes' depth is drawn; with it the meshes' view holds both.
+class MeshOnMesh : public ::testing::TestWithParam<bool> {};
+
+TEST_P(MeshOnMesh, ASphereShadowsThePlaneAndNotItself) {
+    const bool withHair = GetParam();
+    const glm::dvec3 towardsLight(1.0, 0.0, 1.0), centre(0.0, 0.0, 1.0);
+    const double radius = 0.5, hairY = 1.6, hairWidth = 0.1;
+    Scene scene;
+    scene.setMesh(groundPlane());
+    scene.setMesh(grey(uvSphere("/sphere", glm::vec3(centre), float(radius), 32, 64)));
+    scene.setLight(distantLightFrom(towardsLight));
+    if (withHair)
+        scene.setCurves(horizontalStrands("/hair", 1, 0, 0.5f, {hairY}, hairWidth, {0.9f, 0.7f, 0.5f}, 1.0f));
+    const RenderResult shadowed = render(scene);
+    const RenderResult unshadowed = render(scene, {"shadowMode=off"});
+    ASSERT_TRUE(shadowed.plan.isEnabled("meshShadow /light"));
+    EXPECT_EQ(shadowed.plan.isEnabled("deepOpacity /light"), withHair);
+
+    const auto [inside, outside] = compareShadowed(shadowed, unshadowed, [&](glm::dvec2 w) -> std::optional<bool> {
+        if (withHair && std::abs(w.y - hairY) < 0.5 * hairWidth + kMargin) return std::nullopt;
+        const double fromCentre = glm::length(w - glm::dvec2(centre));
+        if (fromCentre < radius + kMargin) {
+            // The sphere itself: its lit side, away from the terminator,
+            // where n.l is at least 0.2 (the facets' normals are smoothed).
+            if (fromCentre > radius - kMargin) return std::nullopt;
+            const glm::dvec3 normal(w.x - centre.x, w.y - centre.y,
+                                    std::sqrt(radius * radius - fromCentre * fromCentre));
+            const double lit = glm::dot(glm::normalize(normal), glm::normalize(towardsLight));
+            return lit > 0.2 ? std::optional<bool>(false) : std::nullopt;
+        }
+        const double outsideBy = outsideSphereShadow({w.x, w.y, 0.0}, towardsLight, centre, radius);
+        if (outsideBy < -kMargin) return true;
+        if (outsideBy > kMargin) return false;
+        return std::nullopt;
+    });
+    // The shadow is an ellipse 0.71 x 0.5 about (-1, 0): about 0.8 square
+    // units well inside, 420 pixels; most of the plane and half the sphere
+    // outside.
+    EXPECT_GT(inside, 300u);
+    EXPECT_GT(outside, 6000u);
+}
+
+INSTANTIATE_TEST_SUITE_P(MeshShadows, MeshOnMesh, ::testing::Values(false, true),
+                         [](const ::testing::TestParamInfo<bool>& param) { return param.param ? "withHair" : "meshesOnly"; });
+
+// One mesh prim of two parts, a 1 x 1 quad at z = 0.5 over the plane, lit
+// from +X+Z: the quad's shadow on its own plane is the square
+// x in [-0.5, 0.5], y in [-0.5, 0.5], half of it hidden from the camera
+// by the quad (x >= 0).
+TEST(MeshShadows, AMeshShadowsItself) {
+    MeshPrim mesh = groundPlane("/shelf");
+    const int first = int(mesh.points.size());
+    // In the plane's local frame (translated by -2, -2): x 2..3, y 1.5..2.5.
+    for (glm::vec2 corner : {glm::vec2(2.0f, 1.5f), glm::vec2(3.0f, 1.5f), glm::vec2(3.0f, 2.5f), glm::vec2(2.0f, 2.5f)})
+        mesh.points.emplace_back(corner.x, corner.y, 0.5f);
+    mesh.faceVertexCounts.push_back(4);
+    mesh.faceVertexIndices.insert(mesh.faceVertexIndices.end(), {first, first + 1, first + 2, first + 3});
+    Scene scene;
+    scene.setMesh(mesh);
+    scene.setLight(distantLightFrom({1.0, 0.0, 1.0}));
+    const RenderResult shadowed = render(scene);
+    const RenderResult unshadowed = render(scene, {"shadowMode=off"});
+    const auto [inside, outside] = compareShadowed(shadowed, unshadowed, [](glm::dvec2 w) -> std::optional<bool> {
+        const bool onQuad = w.x > -kMargin && w.x < 1.0 + kMargin && std::abs(w.y) < 0.5 + kMargin;
+        if (onQuad) return w.x > kMargin && w.x < 1.0 - kMargin && std::abs(w.y) < 0.5 - kMargin
+                               ? std::optional<bool>(false)  // the quad's top, lit
+                               : std::nullopt;
+        if (std::abs(w.x) < 0.5 - kMargin && std::abs(w.y) < 0.5 - kMargin) return true;
+        if (std::abs(w.x) > 0.5 + kMargin || std::abs(w.y) > 0.5 + kMargin) return false;
+        return std::nullopt;
+    });
+    // Well inside: x in [-0.4, -0.1], y in [-0.4, 0.4] (the quad hides the
+    // rest), about 0.3 x 0.8 units, 140 pixels.
+    EXPECT_GT(inside, 120u);
+    EXPECT_GT(outside, 7000u);
 }

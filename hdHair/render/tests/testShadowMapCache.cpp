@@ -23,7 +23,7 @@ CasterBounds unitBox() {
 ShadowMapRequest request(const std::string& key, glm::vec3 towardsLight) {
     ShadingLight light;
     light.directionOrPosition = glm::normalize(towardsLight);
-    return {key, fitShadowLightView(light, unitBox(), 64), false};
+    return {key, fitShadowLightView(light, unitBox(), 64), false, ShadowLightView{}};
 }
 
 // The shadow plan the cache keys its maps by, and one with other maps.
@@ -75,6 +75,12 @@ TEST(ShadowMapCache, OnlyWhatChangedIsRebuilt) {
     EXPECT_FALSE(moved.maps[0].rebuild);
     EXPECT_TRUE(moved.maps[1].rebuild);
     EXPECT_EQ(moved.maps[1].reason, "rebuilt: the light moved");
+
+    // Its meshes' view moves (a mesh moved away from the hair): its map alone.
+    lights[0].meshView = lights[1].view;
+    ShadowFrame meshMoved = cache.update(lights, s, 1, false);
+    EXPECT_TRUE(meshMoved.maps[0].rebuild);
+    EXPECT_FALSE(meshMoved.maps[1].rebuild);
 
     // The hair or the settings change: all of them.
     ShadowFrame hair = cache.update(lights, s, 2, false);

@@ -106,11 +106,23 @@ TEST(StrandShadingFeatures, EachPlannedConditionTurnsOnItsFeature) {
     deepLookup.setShadowLayers(deep.shadows.layers);
     EXPECT_EQ(featuresOf(deep), deepLookup);
     deep.shadows.meshesCast = true;
+    EXPECT_EQ(featuresOf(deep), deepLookup) << "meshes cast, but this light has no view of them";
+    deep.shadows.lights[0].meshView = deep.shadows.lights[0].view;
     deepLookup.add(ShadingFeature::MeshOccluders);
     EXPECT_EQ(featuresOf(deep), deepLookup);
     deep.shadows.bilinear = true;
     deepLookup.add(ShadingFeature::BilinearShadows);
     EXPECT_EQ(featuresOf(deep), deepLookup);
+
+    FrameRecipe volume = litPlan();
+    volume.shadows.mode = ShadowMode::DeepOpacity;
+    volume.shadows.bilinear = false;
+    castFrom(volume, 0, -1);
+    volume.shadows.lights[0].view.valid = false;  // no map's view holds the hair
+    volume.shadows.lights[0].byVolume = true;
+    EXPECT_EQ(featuresOf(volume), shade) << "a light through the volume, but no grid planned";
+    volume.shadows.volumeGrid = fitDensityGrid(glm::dvec3(-1.0), glm::dvec3(1.0), 1000);
+    EXPECT_EQ(featuresOf(volume), only({ShadingFeature::Shade, ShadingFeature::DensityVolume}));
 
     FrameRecipe reference = litPlan();
     reference.shadows.mode = ShadowMode::Reference;
