@@ -599,6 +599,228 @@ INSTANTIATE_TEST_SUITE_P(Clumps, CyclesShadows,
                                          ClumpCase{"opaqueBacklit", 1.0, 10.0, 160.0, 0.45, 0.8}),
                          [](const testing::TestParamInfo<ClumpCase>& param) { return std::string(param.param.name); });
 
+// ---- Meshes in each other's light and in the hair's ------------------------
+
+// The light-unit cases' diffuse sphere's mesh block, named `name`, with
+// `transform` (xformOp lines) inserted.
+std::string sphereMesh(const std::string& name, const std::string& transform) {
+    const std::string stage = sphereStage("");
+    const size_t from = stage.find("    def Mesh \"sphere\"");
+    std::string mesh = stage.substr(from, stage.find("\n    }\n", from) + 7 - from);
+    mesh.replace(mesh.find("\"sphere\""), 8, "\"" + name + "\"");
+    mesh.insert(mesh.find("        uniform token subdivisionScheme"), transform);
+    return mesh;
+}
+
+// A head-like sphere (radius 1, at the origin) seen from straight above
+// (orthographic, 3 units across), lit by a distant light from 45° above
+// -X, with something above its crown on the light's side whose shadow falls
+// beside it toward +X: a small sphere (`occluder`, radius 0.3: mesh on
+// mesh) or a tuft of 80 opaque dark strands 0.02 wide running along Z
+// (`tuft`: hair on a mesh, a scalp under a groom), 0.5 to 0.7 above the
+// crown.
+std::string shadowedSphereStage(const std::string& caster) {
+    std::string casterText;
+    if (caster == "occluder") {
+        casterText = sphereMesh("occluder", "        double3 xformOp:translate = (-0.3, 1.6, 0)\n"
+                                            "        float3 xformOp:scale = (0.3, 0.3, 0.3)\n"
+                                            "        uniform token[] xformOpOrder = [\"xformOp:translate\", "
+                                            "\"xformOp:scale\"]\n");
+    } else {
+        std::ostringstream points, counts;
+        uint32_t state = 11;
+        auto uniform = [&state] {  // a fixed LCG: the same tuft on every machine
+            state = state * 1664525u + 1013904223u;
+            return double(state >> 8) / double(1u << 24);
+        };
+        for (int i = 0; i < 80; ++i) {
+            const double x = -0.45 + 0.3 * uniform(), y = 1.5 + 0.15 * uniform();
+            points << (i ? ", " : "") << "(" << x << ", " << y << ", -0.45), (" << x << ", " << y << ", 0.45)";
+            counts << (i ? ", " : "") << 2;
+        }
+        casterText = R"(    def BasisCurves "tuft" (prepend apiSchemas = ["HdHairAPI"])
+    {
+        uniform token type = "linear"
+        int[] curveVertexCounts = [)" +
+                     counts.str() + R"(]
+        point3f[] points = [)" +
+                     points.str() + R"(]
+        float[] widths = [0.02] (interpolation = "constant")
+        token primvars:hdHair:shadingModel = "marschner"
+        float[] primvars:hdHair:melanin = [0.95] (interpolation = "constant")
+    }
+)";
+    }
+    return R"(#usda 1.0
+(
+    defaultPrim = "World"
+    upAxis = "Y"
+)
+def Xform "World"
+{
+    def Camera "cam"
+    {
+        token projection = "orthographic"
+        float horizontalAperture = 30
+        float verticalAperture = 30
+        float2 clippingRange = (1, 100)
+        double3 xformOp:translate = (0, 10, 0)
+        float3 xformOp:rotateXYZ = (-90, 0, 0)
+        uniform token[] xformOpOrder = ["xformOp:translate", "xformOp:rotateXYZ"]
+    }
+)" + sphereMesh("head", "") +
+           casterText + R"(    def DistantLight "light"
+    {
+        float inputs:intensity = 3
+        float inputs:angle = 0.5
+        float3 xformOp:rotateXYZ = (-45, -90, 0)
+        uniform token[] xformOpOrder = ["xformOp:rotateXYZ"]
+    }
+}
+)";
+}
+
+struct MeshShadowCase {
+    const char* name;
+    double lowest, highest;  // the bound on Cycles / hdHair, around what was measured
+};
+
+class CyclesMeshShadows : public testing::TestWithParam<MeshShadowCase> {};
+
+// The head's pixels beside the caster, x in [0, 0.8] and z in [-0.5, 0.5]
+// (columns 32-48, rows 21-42; the camera's up is -Z), which the caster does
+// not cover and where about half its shadow falls: Cycles with
+// single scattering (exact shadows) against hdHair's defaults (the meshes'
+// depth map, the hair's deep opacity maps). The bounds are what was
+// measured (docs/cycles-reference.md, "Shadows on meshes") with room for
+// noise; the mutation, shadows off, falls far outside them.
+TEST_P(CyclesMeshShadows, ShadowsOnASphereAgreeWithinTheirMeasuredBound) {
+    const MeshShadowCase& testCase = GetParam();
+    const std::string name = std::string("meshShadow_") + testCase.name;
+    const std::string stage = writeStage(name, shadowedSphereStage(testCase.name));
+    const PixelRegion besideCaster{32, 21, 17, 22};
+    const Image cycles = cyclesFrame(stage, name + "_cycles.exr", 64, 0);
+    const Image shadowed = record(stage, name + "_hdhair.exr",
+                                  "--reader embedded -s supersampling=4 -s multipleScattering=off");
+    const Image unshadowed = hdHairFrame(stage, name + "_off.exr");
+    const std::array<double, 3> c = meanRadiance(cycles, besideCaster), h = meanRadiance(shadowed, besideCaster),
+                                off = meanRadiance(unshadowed, besideCaster);
+    std::printf("%s: Cycles / hdHair %.3f %.3f %.3f, / unshadowed %.3f %.3f %.3f\n", testCase.name, c[0] / h[0],
+                c[1] / h[1], c[2] / h[2], c[0] / off[0], c[1] / off[1], c[2] / off[2]);
+    ASSERT_GT(h[0], 1e-3);
+    for (size_t channel = 0; channel < 3; ++channel) {
+        EXPECT_GT(c[channel] / h[channel], testCase.lowest) << "channel " << channel;
+        EXPECT_LT(c[channel] / h[channel], testCase.highest) << "channel " << channel;
+        const double mutated = c[channel] / off[channel];
+        EXPECT_TRUE(mutated < testCase.lowest || mutated > testCase.highest)
+            << "shadows off went unnoticed in channel " << channel;
+    }
+}
+
+INSTANTIATE_TEST_SUITE_P(Meshes, CyclesMeshShadows,
+                         testing::Values(MeshShadowCase{"occluder", 0.95, 1.05}, MeshShadowCase{"tuft", 0.82, 0.96}),
+                         [](const testing::TestParamInfo<MeshShadowCase>& param) {
+                             return std::string(param.param.name);
+                         });
+
+// ---- A light inside the hair: the density volume ------------------------
+
+// 200 brown Marschner strands (0.02 wide) standing along Y in a shell about
+// the Y axis, 0.25 to 0.45 from it, seen from +Z (orthographic, 2 units
+// across), lit only by a small sphere light at `light` (the origin: on the
+// axis, inside the hair, where no map's view can hold it).
+std::string tuftAroundLightStage(const std::string& light, bool shadows = true) {
+    std::ostringstream points, counts;
+    uint32_t state = 5;
+    auto uniform = [&state] {  // a fixed LCG: the same tuft on every machine
+        state = state * 1664525u + 1013904223u;
+        return double(state >> 8) / double(1u << 24);
+    };
+    for (int i = 0; i < 200; ++i) {
+        const double r = std::sqrt(0.0625 + (0.2025 - 0.0625) * uniform()), t = 2.0 * M_PI * uniform();
+        points << (i ? ", " : "") << "(" << r * std::cos(t) << ", -0.8, " << r * std::sin(t) << "), ("
+               << r * std::cos(t) << ", 0.8, " << r * std::sin(t) << ")";
+        counts << (i ? ", " : "") << 2;
+    }
+    return R"(#usda 1.0
+(
+    defaultPrim = "World"
+    upAxis = "Y"
+)
+def Xform "World"
+{
+    def Camera "cam"
+    {
+        token projection = "orthographic"
+        float horizontalAperture = 20
+        float verticalAperture = 20
+        float2 clippingRange = (1, 100)
+        double3 xformOp:translate = (0, 0, 10)
+        uniform token[] xformOpOrder = ["xformOp:translate"]
+    }
+    def BasisCurves "tuft" (prepend apiSchemas = ["HdHairAPI"])
+    {
+        uniform token type = "linear"
+        int[] curveVertexCounts = [)" +
+           counts.str() + R"(]
+        point3f[] points = [)" +
+           points.str() + R"(]
+        float[] widths = [0.02] (interpolation = "constant")
+        token primvars:hdHair:shadingModel = "marschner"
+        float[] primvars:hdHair:melanin = [0.3] (interpolation = "constant")
+    }
+    def SphereLight "light"
+    {
+        float inputs:intensity = 20
+        float inputs:radius = 0.02
+        bool inputs:shadow:enable = )" +
+           (shadows ? "1" : "0") + R"(
+        double3 xformOp:translate = )" +
+           light + R"(
+        uniform token[] xformOpOrder = ["xformOp:translate"]
+    }
+}
+)";
+}
+
+// What the hair lets through from a light inside it: each renderer's frame
+// with the light's shadows over its frame without them (the light's
+// inputs:shadow:enable off on both sides), so that the fibre models'
+// difference (the same in both frames) divides out and only visibility is
+// compared: Cycles with single scattering (exact shadows) against hdHair's
+// default, shadowMode=auto, which shadows this light through the hair
+// density volume. The bound is what was measured (docs/cycles-reference.md,
+// "A light inside the hair") with room for noise. Mutations that must fail
+// it: hdHair without the light's shadows (as before the volume), and the
+// light moved out of the hair (to +Z, where a deep opacity map shadows it).
+TEST(CyclesLightInsideHair, TheDensityVolumeLetsThroughWhatCyclesDoes) {
+    const std::string stage = writeStage("tuft_light", tuftAroundLightStage("(0, 0, 0)"));
+    const std::string bare = writeStage("tuft_light_bare", tuftAroundLightStage("(0, 0, 0)", false));
+    const std::string settings = "--reader embedded -s supersampling=4 -s multipleScattering=off";
+    const std::array<double, 3> c = meanRadiance(cyclesFrame(stage, "tuft_light_cycles.exr", 64, 0)),
+                                cBare = meanRadiance(cyclesFrame(bare, "tuft_light_cycles_bare.exr", 64, 0)),
+                                h = meanRadiance(record(stage, "tuft_light_hdhair.exr", settings)),
+                                hBare = meanRadiance(record(bare, "tuft_light_hdhair_bare.exr", settings));
+    const std::string movedStage = writeStage("tuft_light_moved", tuftAroundLightStage("(0, 0, 1.5)"));
+    const std::string movedBareStage =
+        writeStage("tuft_light_moved_bare", tuftAroundLightStage("(0, 0, 1.5)", false));
+    const std::array<double, 3> moved = meanRadiance(record(movedStage, "tuft_light_moved.exr", settings)),
+                                movedBare = meanRadiance(record(movedBareStage, "tuft_light_moved_bare.exr", settings));
+    const double lowest = 0.77, highest = 0.9;
+    ASSERT_GT(hBare[0], 1e-4);
+    for (size_t channel = 0; channel < 3; ++channel) {
+        const double cycles = c[channel] / cBare[channel], hdHair = h[channel] / hBare[channel];
+        const double outside = moved[channel] / movedBare[channel];
+        std::printf("light inside a tuft, channel %zu: let through, Cycles %.3f, hdHair %.3f (ratio %.3f); the "
+                    "light outside %.3f; the renderers' unshadowed frames %.3f\n",
+                    channel, cycles, hdHair, cycles / hdHair, outside, cBare[channel] / hBare[channel]);
+        EXPECT_GT(cycles / hdHair, lowest) << "channel " << channel;
+        EXPECT_LT(cycles / hdHair, highest) << "channel " << channel;
+        for (double mutated : {cycles, cycles / outside})
+            EXPECT_TRUE(mutated < lowest || mutated > highest) << "a mutation went unnoticed in channel " << channel;
+    }
+}
+
 // ---- Multiple scattering -------------------------------------------------
 
 // The largest channel's |1 - hdHair / Cycles| of the mean radiance over what
