@@ -82,7 +82,9 @@ struct ShadowUniforms {
     // The view each light's mesh depth is drawn from (PlannedShadow::meshView):
     // world to its clip space, its eye (xyz) and unit viewing direction (xyz);
     // x: the slot of its mesh depth (-1: none), y: a texel's world size (at
-    // linear depth 1 when perspective), z: 1 perspective, 0 orthographic.
+    // linear depth 1 when perspective), z: 1 perspective, 0 orthographic,
+    // w: 1 when the view is the light's own, 0 when borrowed (an SRBF lobe
+    // reading another lobe's map: meshes do not shadow themselves through it).
     glm::mat4 meshViewProjection[kMaxLightsPerPass]{};
     glm::vec4 meshEye[kMaxLightsPerPass]{};
     glm::vec4 meshForward[kMaxLightsPerPass]{};

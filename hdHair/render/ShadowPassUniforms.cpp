@@ -37,7 +37,10 @@ gl::ShadowUniforms common(const ShadowPlan& shadows) {
 }
 
 // Entry `entry` describes planned shadow `shadow`; no slot, no shadow.
-void setEntry(gl::ShadowUniforms& uniforms, int entry, const ShadowPlan& shadows, const PlannedShadow& shadow) {
+// `borrowed`: the entry's light reads another light's map (an SRBF lobe,
+// ShadowPlan::sharedMaps).
+void setEntry(gl::ShadowUniforms& uniforms, int entry, const ShadowPlan& shadows, const PlannedShadow& shadow,
+              bool borrowed = false) {
     const ShadowLightView& view = shadow.view;
     uniforms.lightViewProjection[entry] = glm::mat4(view.projection * view.view);
     uniforms.lightEye[entry] = glm::vec4(glm::vec3(view.eye), 0.0f);
@@ -52,8 +55,8 @@ void setEntry(gl::ShadowUniforms& uniforms, int entry, const ShadowPlan& shadows
     uniforms.meshViewProjection[entry] = glm::mat4(meshView.projection * meshView.view);
     uniforms.meshEye[entry] = glm::vec4(glm::vec3(meshView.eye), 0.0f);
     uniforms.meshForward[entry] = glm::vec4(glm::vec3(meshView.forward), 0.0f);
-    uniforms.meshMap[entry] =
-        glm::vec4(float(shadow.slot), float(meshView.texelSize), meshView.orthographic ? 0.0f : 1.0f, 0.0f);
+    uniforms.meshMap[entry] = glm::vec4(float(shadow.slot), float(meshView.texelSize),
+                                        meshView.orthographic ? 0.0f : 1.0f, borrowed ? 0.0f : 1.0f);
 }
 
 }  // namespace
@@ -63,7 +66,9 @@ gl::ShadowUniforms batchShadowUniforms(const FrameRecipe& recipe, size_t batch) 
     auto [begin, end] = recipe.lighting.batches[batch];
     for (size_t light = begin; light < end && light - begin < size_t(gl::kMaxLightsPerPass); ++light) {
         const int shadow = recipe.shadows.shadowOf(light);
-        if (shadow >= 0) setEntry(uniforms, int(light - begin), recipe.shadows, recipe.shadows.lights[size_t(shadow)]);
+        if (shadow < 0) continue;
+        const PlannedShadow& planned = recipe.shadows.lights[size_t(shadow)];
+        setEntry(uniforms, int(light - begin), recipe.shadows, planned, planned.light != light);
     }
     return uniforms;
 }

@@ -30,7 +30,8 @@ layout(std140, binding = 2) uniform ShadowUniforms {
     vec4 meshEye[HDHAIR_MAX_LIGHTS];      // xyz: its eye
     vec4 meshForward[HDHAIR_MAX_LIGHTS];  // xyz: its unit viewing direction
     // x: the slot of its mesh depth (-1: none), y: a texel's world size (at
-    // linear depth 1 when perspective), z: 1 perspective, 0 orthographic.
+    // linear depth 1 when perspective), z: 1 perspective, 0 orthographic,
+    // w: 1 the light's own view, 0 borrowed (an SRBF lobe reading another's).
     vec4 meshMap[HDHAIR_MAX_LIGHTS];
     // The hair density volume (densityVolume.glsl): xyz its lowest corner, w
     // a voxel's edge; x: a bit per light of the pass shadowed through it,
@@ -316,7 +317,11 @@ float shadowTransmittance(int i, vec3 centre) {
 // depth of a surface at angle θ to the light changes by tan θ a texel, and
 // the offset, 1.5/cos θ texels along the light, covers that over the two
 // texels the filter reads, so a lit face does not shadow itself at any angle.
+// A lobe that borrows another lobe's map (ShadowPlan::sharedMaps) sees the
+// meshes from that lobe's direction, where a surface's own faces are not
+// where they are along this one: meshes take only the hair's shadow from it.
 float meshShadowTransmittance(int i, vec3 point, vec3 normal) {
+    if (shadows.meshMap[i].w < 0.5) return hairShadowTransmittance(i, point);
     float texel = meshTexelSize(i, meshLinearDepth(i, point));
     return hairShadowTransmittance(i, point) * meshTransmittance(i, point + normal * (1.5 * texel), 1.0);
 }

@@ -409,6 +409,42 @@ TEST(CyclesTexturedDome, TheSkyReachesADiffuseSphereTheSameWayRound) {
 
 // ---- The fibre model -----------------------------------------------------
 
+// A fixed linear congruential generator: the same clumps and tufts on
+// every machine, in [0, 1).
+class FixedRandom {
+public:
+    explicit FixedRandom(uint32_t seed) : state_(seed) {}
+    double operator()() {
+        state_ = state_ * 1664525u + 1013904223u;
+        return double(state_ >> 8) / double(1u << 24);
+    }
+
+private:
+    uint32_t state_;
+};
+
+// A stage's opening, up to its prims: Y up, and an orthographic camera at
+// +Z looking down -Z, 2 units across.
+std::string orthographicStageStart() {
+    return R"(#usda 1.0
+(
+    defaultPrim = "World"
+    upAxis = "Y"
+)
+def Xform "World"
+{
+    def Camera "cam"
+    {
+        token projection = "orthographic"
+        float horizontalAperture = 20
+        float verticalAperture = 20
+        float2 clippingRange = (1, 100)
+        double3 xformOp:translate = (0, 0, 10)
+        uniform token[] xformOpOrder = ["xformOp:translate"]
+    }
+)";
+}
+
 // A sparse curtain of eight vertical Marschner fibres, seen from +Z through an
 // orthographic camera, lit by one distant light in the YZ plane (so no fibre
 // shadows another), `elevation` degrees towards the tips and `azimuth`
@@ -425,23 +461,7 @@ std::string fibreStage(double melanin, double elevation, double azimuth) {
         counts << (i ? ", " : "") << 4;
     }
     std::ostringstream out;
-    out << R"(#usda 1.0
-(
-    defaultPrim = "World"
-    upAxis = "Y"
-)
-def Xform "World"
-{
-    def Camera "cam"
-    {
-        token projection = "orthographic"
-        float horizontalAperture = 20
-        float verticalAperture = 20
-        float2 clippingRange = (1, 100)
-        double3 xformOp:translate = (0, 0, 10)
-        uniform token[] xformOpOrder = ["xformOp:translate"]
-    }
-    def BasisCurves "fibres" (prepend apiSchemas = ["HdHairAPI"])
+    out << orthographicStageStart() << R"(    def BasisCurves "fibres" (prepend apiSchemas = ["HdHairAPI"])
     {
         uniform token type = "cubic"
         uniform token basis = "catmullRom"
@@ -529,11 +549,7 @@ INSTANTIATE_TEST_SUITE_P(Fibres, CyclesFibreModel,
 std::string clumpStage(double opacity, double elevation, double azimuth, double melanin = 0.3, int strands = 60) {
     std::string stage = fibreStage(melanin, elevation, azimuth);
     std::ostringstream points, counts;
-    uint32_t state = 7;
-    auto uniform = [&state] {  // a fixed LCG: the same clump on every machine
-        state = state * 1664525u + 1013904223u;
-        return double(state >> 8) / double(1u << 24);
-    };
+    FixedRandom uniform(7u);  // the same clump on every machine
     for (int i = 0; i < strands; ++i) {
         const double r = 0.35 * std::sqrt(uniform()), t = 2.0 * M_PI * uniform(), bend = 0.3 * uniform() - 0.15;
         for (int k = 0; k < 5; ++k)
@@ -628,11 +644,7 @@ std::string shadowedSphereStage(const std::string& caster) {
                                             "\"xformOp:scale\"]\n");
     } else {
         std::ostringstream points, counts;
-        uint32_t state = 11;
-        auto uniform = [&state] {  // a fixed LCG: the same tuft on every machine
-            state = state * 1664525u + 1013904223u;
-            return double(state >> 8) / double(1u << 24);
-        };
+        FixedRandom uniform(11u);  // the same tuft on every machine
         for (int i = 0; i < 80; ++i) {
             const double x = -0.45 + 0.3 * uniform(), y = 1.5 + 0.15 * uniform();
             points << (i ? ", " : "") << "(" << x << ", " << y << ", -0.45), (" << x << ", " << y << ", 0.45)";
@@ -731,34 +743,14 @@ INSTANTIATE_TEST_SUITE_P(Meshes, CyclesMeshShadows,
 // axis, inside the hair, where no map's view can hold it).
 std::string tuftAroundLightStage(const std::string& light, bool shadows = true) {
     std::ostringstream points, counts;
-    uint32_t state = 5;
-    auto uniform = [&state] {  // a fixed LCG: the same tuft on every machine
-        state = state * 1664525u + 1013904223u;
-        return double(state >> 8) / double(1u << 24);
-    };
+    FixedRandom uniform(5u);  // the same tuft on every machine
     for (int i = 0; i < 200; ++i) {
         const double r = std::sqrt(0.0625 + (0.2025 - 0.0625) * uniform()), t = 2.0 * M_PI * uniform();
         points << (i ? ", " : "") << "(" << r * std::cos(t) << ", -0.8, " << r * std::sin(t) << "), ("
                << r * std::cos(t) << ", 0.8, " << r * std::sin(t) << ")";
         counts << (i ? ", " : "") << 2;
     }
-    return R"(#usda 1.0
-(
-    defaultPrim = "World"
-    upAxis = "Y"
-)
-def Xform "World"
-{
-    def Camera "cam"
-    {
-        token projection = "orthographic"
-        float horizontalAperture = 20
-        float verticalAperture = 20
-        float2 clippingRange = (1, 100)
-        double3 xformOp:translate = (0, 0, 10)
-        uniform token[] xformOpOrder = ["xformOp:translate"]
-    }
-    def BasisCurves "tuft" (prepend apiSchemas = ["HdHairAPI"])
+    return orthographicStageStart() + R"(    def BasisCurves "tuft" (prepend apiSchemas = ["HdHairAPI"])
     {
         uniform token type = "linear"
         int[] curveVertexCounts = [)" +

@@ -58,6 +58,9 @@ std::vector<SpecializationCase> specializationCases() {
         {"PerPointParametersAndAbsorptionUnderADome", "testenv/stages/hair_parameters.usda",
          {"shadowMapResolution=128"}, true},
         {"MeshesOccludeTheLights", "testenv/stages/meshes.usda", {"shadowMapResolution=128"}},
+        // The density volume: every light through it, on strands and on meshes.
+        {"DensityVolumeShadows", shadowed, {"shadowMode=volume"}},
+        {"DensityVolumeOnMeshes", "testenv/stages/meshes.usda", {"shadowMode=volume", "shadowMapResolution=128"}},
         {"ExactTransparency", "examples/dense_clump.usda", {"transparency=exact", "strandRaster=hardware"}},
         // Lists no longer than 180 fragments a pixel: longer ones sum their
         // tail in the order fragments were appended, which compute

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numeric>
 #include <string>
 #include <vector>
 
@@ -842,8 +843,10 @@ TEST(Shadows, HardCasesStayFiniteAndSayWhatTheyDid) {
         EXPECT_EQ(*std::max_element(image.pixels.begin(), image.pixels.end()), 0.0f);
     }
     for (glm::dvec3 position : {glm::dvec3(0.0, 0.0, 0.0), glm::dvec3(0.95, 0.0, 0.0)}) {
-        // A sphere light inside, then touching, the hair's bounds: no map,
-        // a warning, and the light still shades unshadowed.
+        // A sphere light inside, then touching, the hair's bounds: no map.
+        // Under deepOpacity a warning, and the light still shades
+        // unshadowed; under auto (the default) the density volume shadows
+        // it, without a warning, and the frame is finite and darker.
         Scene scene = slabScene();
         scene.remove("/light");
         LightPrim bulb;
@@ -852,8 +855,15 @@ TEST(Shadows, HardCasesStayFiniteAndSayWhatTheyDid) {
         bulb.intensity = 0.5f;
         bulb.worldTransform = glm::translate(glm::dmat4(1.0), position);
         scene.setLight(bulb);
+        Diagnostics autoDiagnostics;
+        const RenderResult volume = renderChecked(scene, {}, &autoDiagnostics);
+        EXPECT_EQ(autoDiagnostics.warningCount(), 0u);
+        EXPECT_TRUE(volume.plan.isEnabled("densityVolume"));
+        for (float value : volume.color.pixels) ASSERT_TRUE(std::isfinite(value));
         Diagnostics diagnostics;
-        const RenderResult on = renderChecked(scene, {}, &diagnostics);
+        const RenderResult on = renderChecked(scene, {"shadowMode=deepOpacity"}, &diagnostics);
+        EXPECT_LT(std::accumulate(volume.color.pixels.begin(), volume.color.pixels.end(), 0.0),
+                  std::accumulate(on.color.pixels.begin(), on.color.pixels.end(), 0.0));
         ASSERT_EQ(diagnostics.warningCount(), 1u);
         EXPECT_EQ(diagnostics.warnings()[0].where, "/bulb");
         EXPECT_NE(diagnostics.warnings()[0].message.find("inside or too close to the hair's bounds"), std::string::npos);

@@ -80,6 +80,13 @@ const std::vector<Block>& blocks() {
              {"mode", offsetof(ShadowUniforms, mode)},
              {"extinction", offsetof(ShadowUniforms, extinction)},
              {"occluders", offsetof(ShadowUniforms, occluders)},
+             {"meshViewProjection[0]", offsetof(ShadowUniforms, meshViewProjection), 4 * kVec4, kMaxLightsPerPass,
+              kVec4},
+             {"meshEye[0]", offsetof(ShadowUniforms, meshEye), kVec4, kMaxLightsPerPass},
+             {"meshForward[0]", offsetof(ShadowUniforms, meshForward), kVec4, kMaxLightsPerPass},
+             {"meshMap[0]", offsetof(ShadowUniforms, meshMap), kVec4, kMaxLightsPerPass},
+             {"volumeOrigin", offsetof(ShadowUniforms, volumeOrigin)},
+             {"volume", offsetof(ShadowUniforms, volume)},
          }},
         // An unsized array of HairMaterial: each element laid out as GpuHairMaterial.
         {GL_SHADER_STORAGE_BLOCK, GL_BUFFER_VARIABLE, "HairMaterials", "materials[0].", sizeof(GpuHairMaterial), true,
