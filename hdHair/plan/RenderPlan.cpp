@@ -78,6 +78,18 @@ std::string meshViewDescription(const PlannedShadow& shadow, int resolution) {
                        shadow.meshFallback.empty() ? "" : " (" + shadow.meshFallback + ")");
 }
 
+// "meshShadow L", drawn with or without hair: meshes shadow each other.
+FramePass meshShadowPass(const ShadowPlan& shadows, size_t index, const std::string& flat) {
+    const PlannedShadow& shadow = shadows.lights[index];
+    const bool wanted = shadow.meshView.valid;
+    return FramePass{PassKind::MeshShadow, "meshShadow " + shadow.key, {ResourceKind::MeshGeometry},
+                     {shadows.meshResourceOf(index)}, wanted,
+                     (wanted              ? meshViewDescription(shadow, shadows.resolution)
+                      : shadow.overBudget ? "no shadows from this light: " + shadow.view.fallback
+                                          : shadow.meshFallback) +
+                         flat};
+}
+
 // The passes that build light `shadow`'s map, wanted or not with the reason.
 void addShadowPasses(FrameGraph& graph, const FrameRecipe& recipe, size_t index, bool anyStrands) {
     const ShadowPlan& shadows = recipe.shadows;
@@ -133,14 +145,7 @@ void addShadowPasses(FrameGraph& graph, const FrameRecipe& recipe, size_t index,
                                     : why) +
                                 drawn + flat});
     }
-    if (!shadows.meshesCast) return;
-    // The meshes' depth is drawn with or without hair: meshes shadow each other.
-    const bool meshWanted = shadow.meshView.valid;
-    add(FramePass{PassKind::MeshShadow, "meshShadow " + key, {ResourceKind::MeshGeometry}, {shadows.meshResourceOf(index)}, meshWanted,
-                        (meshWanted        ? meshViewDescription(shadow, shadows.resolution)
-                         : shadow.overBudget ? "no shadows from this light: " + shadow.view.fallback
-                                             : shadow.meshFallback) +
-                            flat});
+    if (shadows.meshesCast) add(meshShadowPass(shadows, index, flat));
 }
 
 // The opacity layers of every map averaged into a mip chain ("opacityMipmaps").
