@@ -109,6 +109,8 @@ void addShadowPasses(FrameGraph& graph, const FrameRecipe& recipe, size_t index,
         why = "shadowMode=off";
     } else if (!anyStrands) {
         why = "no visible curves";
+    } else if (shadow.byVolume) {
+        why = "no map: " + shadow.volumeReason;
     } else if (!shadow.view.valid) {
         why = "no shadows from this light: " + shadow.view.fallback;
     } else {

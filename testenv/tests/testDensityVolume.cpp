@@ -142,6 +142,15 @@ TEST(DensityVolume, ALightInsideTheHairShadowsThroughTheVolume) {
     const RenderResult unshadowed = render(scene, {"shadowMode=off"});
     EXPECT_TRUE(shadowed.plan.isEnabled("densityVolume"));
     EXPECT_FALSE(shadowed.plan.isEnabled("deepOpacity /light")) << "no map's view holds the hair";
+    // --explain says why, on the map's passes and on the volume's.
+    ASSERT_TRUE(shadowed.plan.graph().find("deepOpacity /light"));
+    EXPECT_NE(shadowed.plan.graph().find("deepOpacity /light")->reason.find("no map: through the hair's density volume"),
+              std::string::npos)
+        << shadowed.plan.graph().find("deepOpacity /light")->reason;
+    EXPECT_NE(shadowed.plan.graph().find("densityVolume")->reason.find("/light: through the hair's density volume "
+                                                                      "(shadowMode=auto): the light is inside"),
+              std::string::npos)
+        << shadowed.plan.graph().find("densityVolume")->reason;
     const auto [largest, compared] = largestTransmittanceError(shadowed, unshadowed);
     std::printf("largest |T / exp(-(w/p)/cos) - 1| over %zu pixels: %.4f\n", compared, largest);
     EXPECT_GT(compared, 5000u);

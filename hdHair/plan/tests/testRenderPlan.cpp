@@ -493,17 +493,30 @@ TEST(RenderPlan, TheReferenceKeepsEveryLightViewFragment) {
     EXPECT_TRUE(reads(plan, "strands", "shadowFragments /key"));
 }
 
+// A light inside the hair has no map's view: under deepOpacity it casts
+// nothing and says why; under auto (the default) the density volume
+// shadows it, and the map's passes say so.
 TEST(RenderPlan, ALightInsideTheHairCastsNothingAndSaysWhy) {
     Scene scene;
     LightPrim inside = distantLight("/bulb");
     inside.type = LightType::Sphere;  // at the origin, inside the casters
     scene.setLight(inside);
-    RenderPlan plan = makeRenderPlan(scene, RenderSettings{}, cameraAtPlusZ(), castingStrands());
+    RenderSettings mapsOnly;
+    mapsOnly.set("shadowMode", "deepOpacity");
+    RenderPlan plan = makeRenderPlan(scene, mapsOnly, cameraAtPlusZ(), castingStrands());
     EXPECT_FALSE(plan.isEnabled("shadowDepth /bulb"));
     EXPECT_NE(plan.graph().find("shadowDepth /bulb")->reason.find("no shadows from this light: the light is inside"),
               std::string::npos);
     EXPECT_FALSE(reads(plan, "strands", "deepOpacity /bulb"));
+    EXPECT_FALSE(plan.isEnabled("densityVolume"));
     EXPECT_TRUE(plan.isEnabled("strands"));
+
+    RenderPlan volume = makeRenderPlan(scene, RenderSettings{}, cameraAtPlusZ(), castingStrands());
+    EXPECT_FALSE(volume.isEnabled("shadowDepth /bulb"));
+    EXPECT_NE(volume.graph().find("shadowDepth /bulb")->reason.find("no map: through the hair's density volume"),
+              std::string::npos);
+    EXPECT_TRUE(volume.isEnabled("densityVolume"));
+    EXPECT_TRUE(reads(volume, "strands", "densityVolume"));
 }
 
 // Like hosts' camera lights, hdHair's casts no shadow unless asked: a light
