@@ -142,6 +142,9 @@ TEST(DensityVolume, ALightInsideTheHairShadowsThroughTheVolume) {
     const RenderResult unshadowed = render(scene, {"shadowMode=off"});
     EXPECT_TRUE(shadowed.plan.isEnabled("densityVolume"));
     EXPECT_FALSE(shadowed.plan.isEnabled("deepOpacity /light")) << "no map's view holds the hair";
+    // --stats counts its memory: R32F, one float a voxel.
+    ASSERT_TRUE(shadowed.stats.gpuBytes.count("densityVolume"));
+    EXPECT_EQ(shadowed.stats.gpuBytes.at("densityVolume"), 4u * shadowed.plan.recipe().shadows.volumeGrid.voxelCount());
     // --explain says why, on the map's passes and on the volume's.
     ASSERT_TRUE(shadowed.plan.graph().find("deepOpacity /light"));
     EXPECT_NE(shadowed.plan.graph().find("deepOpacity /light")->reason.find("no map: through the hair's density volume"),
