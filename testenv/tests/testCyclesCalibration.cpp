@@ -423,9 +423,13 @@ private:
     uint32_t state_;
 };
 
-// A stage's opening, up to its prims: Y up, and an orthographic camera at
-// +Z looking down -Z, 2 units across.
-std::string orthographicStageStart() {
+// A stage's opening, up to its prims: Y up, and an orthographic camera
+// `aperture` tenths of a unit across, placed by `placement` (its xformOp
+// lines): by default at +Z looking down -Z, 2 units across.
+std::string orthographicStageStart(const std::string& aperture = "20",
+                                   const std::string& placement =
+                                       "        double3 xformOp:translate = (0, 0, 10)\n"
+                                       "        uniform token[] xformOpOrder = [\"xformOp:translate\"]\n") {
     return R"(#usda 1.0
 (
     defaultPrim = "World"
@@ -436,13 +440,11 @@ def Xform "World"
     def Camera "cam"
     {
         token projection = "orthographic"
-        float horizontalAperture = 20
-        float verticalAperture = 20
+        float horizontalAperture = )" +
+           aperture + "\n        float verticalAperture = " + aperture + R"(
         float2 clippingRange = (1, 100)
-        double3 xformOp:translate = (0, 0, 10)
-        uniform token[] xformOpOrder = ["xformOp:translate"]
-    }
-)";
+)" + placement +
+           "    }\n";
 }
 
 // A sparse curtain of eight vertical Marschner fibres, seen from +Z through an
@@ -663,24 +665,11 @@ std::string shadowedSphereStage(const std::string& caster) {
     }
 )";
     }
-    return R"(#usda 1.0
-(
-    defaultPrim = "World"
-    upAxis = "Y"
-)
-def Xform "World"
-{
-    def Camera "cam"
-    {
-        token projection = "orthographic"
-        float horizontalAperture = 30
-        float verticalAperture = 30
-        float2 clippingRange = (1, 100)
-        double3 xformOp:translate = (0, 10, 0)
+    // From straight above, 3 units across; the image's up is -Z.
+    return orthographicStageStart("30", R"(        double3 xformOp:translate = (0, 10, 0)
         float3 xformOp:rotateXYZ = (-90, 0, 0)
         uniform token[] xformOpOrder = ["xformOp:translate", "xformOp:rotateXYZ"]
-    }
-)" + sphereMesh("head", "") +
+)") + sphereMesh("head", "") +
            casterText + R"(    def DistantLight "light"
     {
         float inputs:intensity = 3
