@@ -570,6 +570,21 @@ std::string clumpStage(double opacity, double elevation, double azimuth, double 
     return stage;
 }
 
+// Per channel, Cycles / hdHair (`cycles` over `shadowed`) within
+// [lowest, highest], and Cycles over hdHair's frame with shadows off (the
+// mutation) outside it.
+void expectShadowedWithinAndUnshadowedOutside(const std::array<double, 3>& cycles,
+                                              const std::array<double, 3>& shadowed,
+                                              const std::array<double, 3>& unshadowed, double lowest,
+                                              double highest) {
+    for (size_t channel = 0; channel < 3; ++channel) {
+        EXPECT_GT(cycles[channel] / shadowed[channel], lowest) << "channel " << channel;
+        EXPECT_LT(cycles[channel] / shadowed[channel], highest) << "channel " << channel;
+        const double mutated = cycles[channel] / unshadowed[channel];
+        EXPECT_TRUE(mutated < lowest || mutated > highest) << "shadows off went unnoticed in channel " << channel;
+    }
+}
+
 struct ClumpCase {
     const char* name;
     double opacity, elevation, azimuth;
@@ -603,13 +618,7 @@ TEST_P(CyclesShadows, DeepOpacityMapsAgreeWithinTheirMeasuredBound) {
                 testCase.name, c[0] / h[0], c[1] / h[1], c[2] / h[2], c[0] / r[0], c[1] / r[1], c[2] / r[2],
                 c[0] / off[0], c[1] / off[1], c[2] / off[2], coverage(cycles) / coverage(shadowed));
     EXPECT_NEAR(coverage(cycles) / coverage(shadowed), 1.0, 0.01);
-    for (size_t channel = 0; channel < 3; ++channel) {
-        EXPECT_GT(c[channel] / h[channel], testCase.lowest) << "channel " << channel;
-        EXPECT_LT(c[channel] / h[channel], testCase.highest) << "channel " << channel;
-        const double mutated = c[channel] / off[channel];
-        EXPECT_TRUE(mutated < testCase.lowest || mutated > testCase.highest)
-            << "shadows off went unnoticed in channel " << channel;
-    }
+    expectShadowedWithinAndUnshadowedOutside(c, h, off, testCase.lowest, testCase.highest);
 }
 
 INSTANTIATE_TEST_SUITE_P(Clumps, CyclesShadows,
@@ -709,13 +718,7 @@ TEST_P(CyclesMeshShadows, ShadowsOnASphereAgreeWithinTheirMeasuredBound) {
     std::printf("%s: Cycles / hdHair %.3f %.3f %.3f, / unshadowed %.3f %.3f %.3f\n", testCase.name, c[0] / h[0],
                 c[1] / h[1], c[2] / h[2], c[0] / off[0], c[1] / off[1], c[2] / off[2]);
     ASSERT_GT(h[0], 1e-3);
-    for (size_t channel = 0; channel < 3; ++channel) {
-        EXPECT_GT(c[channel] / h[channel], testCase.lowest) << "channel " << channel;
-        EXPECT_LT(c[channel] / h[channel], testCase.highest) << "channel " << channel;
-        const double mutated = c[channel] / off[channel];
-        EXPECT_TRUE(mutated < testCase.lowest || mutated > testCase.highest)
-            << "shadows off went unnoticed in channel " << channel;
-    }
+    expectShadowedWithinAndUnshadowedOutside(c, h, off, testCase.lowest, testCase.highest);
 }
 
 INSTANTIATE_TEST_SUITE_P(Meshes, CyclesMeshShadows,
