@@ -2,6 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <vector>
+
+#include <glm/vec2.hpp>
+#include <tbb/parallel_for.h>
 
 #include "hdHair/curves/CatmullRomEvaluation.h"
 
@@ -52,11 +57,57 @@ void forEachCorner(const DensityGridShape& shape, const TrilinearCell& cell, Vis
 // voxels around it with the trilinear lookup's weights (its adjoint): a
 // piece between two voxel centres is not counted whole in one, which would
 // alias against pieces of half a voxel (two or three to a voxel).
-void splat(DensityGrid& grid, const glm::dvec3& point, double sigma) {
+// Only voxels in z-layers [layers.x, layers.y) are written: the slab of the
+// grid the caller owns.
+void splat(DensityGrid& grid, const glm::dvec3& point, double sigma, const glm::ivec2& layers) {
     TrilinearCell cell;
     if (!cellAt(grid.shape, point, cell)) return;
-    forEachCorner(grid.shape, cell, [&](size_t index, double weight) { grid.extinction[index] += float(weight * sigma); });
+    const size_t layerSize = size_t(grid.shape.dims.x) * size_t(grid.shape.dims.y);
+    forEachCorner(grid.shape, cell, [&](size_t index, double weight) {
+        const int layer = int(index / layerSize);
+        if (layer >= layers.x && layer < layers.y) grid.extinction[index] += float(weight * sigma);
+    });
 }
+
+// The z-layers a span's splat can reach: the span lies within its Bézier
+// control polygon's bounds, and the splat reaches the voxel centres either
+// side. Empty (x >= y) for a span that is not finite.
+glm::ivec2 spanLayers(const DensityGridShape& shape, const StrandControlPoint* controls) {
+    double low = std::numeric_limits<double>::infinity(), high = -low;
+    for (int i = 0; i < 4; ++i) {
+        low = std::min(low, double(controls[i].position.z));
+        high = std::max(high, double(controls[i].position.z));
+    }
+    if (!std::isfinite(low) || !std::isfinite(high)) return glm::ivec2(0);
+    const double from = std::floor((low - shape.origin.z) / shape.voxelSize - 0.5);
+    const double to = std::floor((high - shape.origin.z) / shape.voxelSize - 0.5) + 2.0;
+    return glm::ivec2(int(std::clamp(from, 0.0, double(shape.dims.z))), int(std::clamp(to, 0.0, double(shape.dims.z))));
+}
+
+// Cuts span `segment` into pieces no longer than half a voxel and splats
+// each into the grid's z-layers `layers` (σ = α w L / V).
+void addSpan(DensityGrid& grid, const PreparedCurves& curves, size_t segment, const glm::ivec2& layers) {
+    const DensityGridShape& shape = grid.shape;
+    const double volume = shape.voxelSize * shape.voxelSize * shape.voxelSize;
+    const int maxPieces = 4 * std::max({shape.dims.x, shape.dims.y, shape.dims.z});
+    const StrandControlPoint* controls = curves.spanControls(segment);
+    const double bound = bezierPolygonLength(controls);
+    if (!std::isfinite(bound)) return;
+    const int pieces = std::clamp(int(std::ceil(bound / (0.5 * shape.voxelSize))), 1, maxPieces);
+    StrandControlPoint previous = evaluate(controls, 0.0f);
+    for (int piece = 1; piece <= pieces; ++piece) {
+        const StrandControlPoint next = evaluate(controls, float(piece) / float(pieces));
+        const double length = glm::length(glm::dvec3(next.position) - glm::dvec3(previous.position));
+        const double width = std::max(0.5 * double(previous.width + next.width), 0.0);
+        const double opacity = std::clamp(0.5 * double(previous.opacity + next.opacity), 0.0, 1.0);
+        const glm::dvec3 middle = 0.5 * (glm::dvec3(previous.position) + glm::dvec3(next.position));
+        previous = next;
+        splat(grid, middle, opacity * width * length / volume, layers);
+    }
+}
+
+// Slabs of this many z-layers are filled in parallel.
+constexpr int kLayersPerSlab = 4;
 
 }  // namespace
 
@@ -94,24 +145,45 @@ DensityGridShape fitDensityGrid(const glm::dvec3& low, const glm::dvec3& high, s
 void addStrandsToGrid(DensityGrid& grid, const PreparedCurves& curves) {
     const DensityGridShape& shape = grid.shape;
     if (shape.empty()) return;
-    const double volume = shape.voxelSize * shape.voxelSize * shape.voxelSize;
-    const int maxPieces = 4 * std::max({shape.dims.x, shape.dims.y, shape.dims.z});
+    // Slab by slab of z-layers, in parallel: each slab takes, in span order,
+    // the spans that reach it and adds only to its own layers, so every
+    // voxel sums the same pieces in the same order whatever the threads (the
+    // frame does not change with the machine's core count).
+    const int slabs = (shape.dims.z + kLayersPerSlab - 1) / kLayersPerSlab;
+    std::vector<std::vector<size_t>> spansOfSlab(static_cast<size_t>(slabs));
     for (size_t segment = 0; segment < curves.segmentCount(); ++segment) {
-        const StrandControlPoint* controls = curves.spanControls(segment);
-        const double bound = bezierPolygonLength(controls);
-        if (!std::isfinite(bound)) continue;
-        const int pieces = std::clamp(int(std::ceil(bound / (0.5 * shape.voxelSize))), 1, maxPieces);
-        StrandControlPoint previous = evaluate(controls, 0.0f);
-        for (int piece = 1; piece <= pieces; ++piece) {
-            const StrandControlPoint next = evaluate(controls, float(piece) / float(pieces));
-            const double length = glm::length(glm::dvec3(next.position) - glm::dvec3(previous.position));
-            const double width = std::max(0.5 * double(previous.width + next.width), 0.0);
-            const double opacity = std::clamp(0.5 * double(previous.opacity + next.opacity), 0.0, 1.0);
-            const glm::dvec3 middle = 0.5 * (glm::dvec3(previous.position) + glm::dvec3(next.position));
-            previous = next;
-            splat(grid, middle, opacity * width * length / volume);
-        }
+        const glm::ivec2 layers = spanLayers(shape, curves.spanControls(segment));
+        for (int slab = layers.x / kLayersPerSlab; slab * kLayersPerSlab < layers.y; ++slab)
+            spansOfSlab[size_t(slab)].push_back(segment);
     }
+    tbb::parallel_for(0, slabs, [&](int slab) {
+        const glm::ivec2 layers(slab * kLayersPerSlab, std::min((slab + 1) * kLayersPerSlab, shape.dims.z));
+        for (size_t segment : spansOfSlab[size_t(slab)]) addSpan(grid, curves, segment, layers);
+    });
+}
+
+std::vector<float> halvedDensity(const std::vector<float>& level, const glm::ivec3& dims, glm::ivec3& halvedDims) {
+    halvedDims = glm::max(dims / 2, glm::ivec3(1));
+    std::vector<float> halved(size_t(halvedDims.x) * size_t(halvedDims.y) * size_t(halvedDims.z), 0.0f);
+    if (level.size() != size_t(dims.x) * size_t(dims.y) * size_t(dims.z)) return halved;
+    tbb::parallel_for(0, halvedDims.z, [&](int z) {
+        for (int y = 0; y < halvedDims.y; ++y)
+            for (int x = 0; x < halvedDims.x; ++x) {
+                double sum = 0.0;
+                int count = 0;
+                for (int corner = 0; corner < 8; ++corner) {
+                    const glm::ivec3 voxel =
+                        2 * glm::ivec3(x, y, z) + glm::ivec3(corner & 1, (corner >> 1) & 1, corner >> 2);
+                    if (glm::any(glm::greaterThanEqual(voxel, dims))) continue;
+                    sum +=
+                        level[(size_t(voxel.z) * size_t(dims.y) + size_t(voxel.y)) * size_t(dims.x) + size_t(voxel.x)];
+                    ++count;
+                }
+                halved[(size_t(z) * size_t(halvedDims.y) + size_t(y)) * size_t(halvedDims.x) + size_t(x)] =
+                    count > 0 ? float(sum / count) : 0.0f;
+            }
+    });
+    return halved;
 }
 
 double extinctionAt(const DensityGrid& grid, const glm::dvec3& point) {

@@ -72,6 +72,14 @@ struct DensityGrid {
 // their length, so a strand longer than the grid costs what the grid does.
 void addStrandsToGrid(DensityGrid& grid, const PreparedCurves& curves);
 
+// The next level of the grid's mip chain: max(dims / 2, 1) texels, each
+// the mean σ of the voxels of `level` under it (the 2 x 2 x 2 whose
+// indices halve to its own; an odd side's last voxel, in the empty margin,
+// is left out), as OpenGL sizes mip levels. The cone lookups of
+// shaders/include/densityVolume.glsl read it: the mean density over a
+// cone's cross-section.
+std::vector<float> halvedDensity(const std::vector<float>& level, const glm::ivec3& dims, glm::ivec3& halvedDims);
+
 // σ at a world point, trilinear between voxel centres (as the GPU's
 // sampler3D filters it), 0 outside the grid.
 double extinctionAt(const DensityGrid& grid, const glm::dvec3& point);

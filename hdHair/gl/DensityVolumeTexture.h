@@ -2,8 +2,10 @@
 // The hair density volume on the GPU (hdHair/curves/HairDensityGrid.h): σ per
 // voxel in a GL_R32F 3-D texture at unit 8, filtered trilinearly between
 // voxel centres and clamped at the edges (the grid's margin is empty), as
-// shaders/include/densityVolume.glsl reads it. A frame without it binds a
-// 1-voxel placeholder of 0.
+// shaders/include/densityVolume.glsl reads it. Its mip chain (each level the
+// mean σ of the eight voxels under a texel: halvedDensity) serves the cone
+// lookups: the mean density over a cone's cross-section. A frame without it
+// binds a 1-voxel placeholder of 0.
 
 #include <cstddef>
 
@@ -26,6 +28,7 @@ public:
 private:
     Texture texture_;
     glm::ivec3 dims_{0};
+    GLsizei levels_ = 1;
 };
 
 }  // namespace hdhair::gl

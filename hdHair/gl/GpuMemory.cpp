@@ -63,6 +63,15 @@ void recordTextureStorage(GLuint name, GLenum internalFormat, GLsizei width, GLs
     ledger().textures[name] = Entry{texels * texelBytes(internalFormat), useOrCurrent(use)};
 }
 
+void recordVolumeTextureStorage(GLuint name, GLenum internalFormat, GLsizei width, GLsizei height, GLsizei depth,
+                                GLsizei levels, const char* use) {
+    uint64_t texels = 0;
+    for (GLsizei level = 0; level < std::max<GLsizei>(levels, 1); ++level)
+        texels += uint64_t(std::max(width >> level, 1)) * uint64_t(std::max(height >> level, 1)) *
+                  uint64_t(std::max(depth >> level, 1));
+    ledger().textures[name] = Entry{texels * texelBytes(internalFormat), useOrCurrent(use)};
+}
+
 void forgetBuffer(GLuint name) { ledger().buffers.erase(name); }
 
 void forgetTexture(GLuint name) { ledger().textures.erase(name); }

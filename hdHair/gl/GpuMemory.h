@@ -33,6 +33,9 @@ void recordBufferBytes(GLuint name, size_t bytes, const char* use = nullptr);
 // texel) over the same layers.
 void recordTextureStorage(GLuint name, GLenum internalFormat, GLsizei width, GLsizei height, GLsizei depthOrLayers,
                           GLsizei samples, const char* use = nullptr, GLsizei levels = 1);
+// A 3-D texture whose `levels` halve along all three sides (at least 1).
+void recordVolumeTextureStorage(GLuint name, GLenum internalFormat, GLsizei width, GLsizei height, GLsizei depth,
+                                GLsizei levels, const char* use = nullptr);
 // Called when the names are deleted (GlObjects' deleters).
 void forgetBuffer(GLuint name);
 void forgetTexture(GLuint name);

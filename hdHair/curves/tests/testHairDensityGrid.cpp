@@ -160,3 +160,26 @@ TEST(HairDensityGrid, TheBudgetCoarsensTheVoxels) {
         EXPECT_GE(high.z, 0.25);
     }
 }
+
+// The mip chain's next level, by hand: a 4 x 2 x 3 grid whose voxel (x, y,
+// z) holds x + 10 y + 100 z halves to 2 x 1 x 1, each texel the mean of the
+// 2 x 2 x 2 voxels under it (z = 2, the odd side's last layer, left out):
+// 55.5 and 57.5. A grid of one voxel stays one voxel. A level of the wrong
+// size halves to zeros, not past its end.
+TEST(HairDensityGrid, TheMipChainHalvesToTheMeanOfTheVoxelsUnderEachTexel) {
+    const glm::ivec3 dims(4, 2, 3);
+    std::vector<float> level;
+    for (int z = 0; z < dims.z; ++z)
+        for (int y = 0; y < dims.y; ++y)
+            for (int x = 0; x < dims.x; ++x) level.push_back(float(x + 10 * y + 100 * z));
+    glm::ivec3 halvedDims;
+    const std::vector<float> halved = hdhair::halvedDensity(level, dims, halvedDims);
+    EXPECT_EQ(halvedDims, glm::ivec3(2, 1, 1));
+    ASSERT_EQ(halved.size(), 2u);
+    EXPECT_FLOAT_EQ(halved[0], 55.5f);  // x 0-1, y 0-1, z 0-1: 0.5 + 5 + 50
+    EXPECT_FLOAT_EQ(halved[1], 57.5f);  // x 2-3
+    glm::ivec3 oneDims;
+    EXPECT_EQ(hdhair::halvedDensity({3.0f}, glm::ivec3(1), oneDims), std::vector<float>{3.0f});
+    EXPECT_EQ(oneDims, glm::ivec3(1));
+    EXPECT_EQ(hdhair::halvedDensity({1.0f, 2.0f}, dims, halvedDims), std::vector<float>(2, 0.0f));
+}
