@@ -23,6 +23,7 @@ const std::vector<ShadingFeatureSwitch>& shadingFeatureSwitches() {
         {ShadingFeature::SrbfShadowTaps, "HDHAIR_FEATURE_SRBF_SHADOW_TAPS", "srbfShadowTaps"},
         {ShadingFeature::SrbfShadowMipmap, "HDHAIR_FEATURE_SRBF_SHADOW_MIPMAP", "srbfShadowMipmap"},
         {ShadingFeature::DensityVolume, "HDHAIR_FEATURE_DENSITY_VOLUME", "densityVolume"},
+        {ShadingFeature::VolumeBackScattering, "HDHAIR_FEATURE_VOLUME_BACK_SCATTERING", "volumeBackScattering"},
     };
     return switches;
 }

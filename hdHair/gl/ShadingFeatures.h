@@ -35,7 +35,8 @@ enum class ShadingFeature : uint32_t {
     BilinearShadows = 1u << 14,     // four texels a lookup (shadowFilter=bilinear), not one
     SrbfShadowTaps = 1u << 12,      // a lobe with a map, nine taps (domeShadowFilter=taps)
     SrbfShadowMipmap = 1u << 13,    // a lobe with a map, the mip chain (domeShadowFilter=mipmap)
-    DensityVolume = 1u << 16,       // a light shadowed through the hair's density volume
+    DensityVolume = 1u << 16,       // a light or the uniform dome through the hair's density volume
+    VolumeBackScattering = 1u << 17,  // dual scattering's local term from the density volume
 };
 
 class ShadingFeatures {

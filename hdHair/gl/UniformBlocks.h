@@ -77,7 +77,11 @@ struct ShadowUniforms {
     // x: 1 when meshes cast shadows: every slot's mesh depth (the nearest
     // mesh in the light's view) is current and hides the strands behind it.
     // y: 1 when SRBF lights read the opacity layers' mip chain
-    // (domeShadowFilter=mipmap, ShadowPlan::convolvedOpacity).
+    // (domeShadowFilter=mipmap, ShadowPlan::convolvedOpacity). z: 1 when
+    // the hair behind each fibre, which dual scattering's local term sends
+    // back, is read from the density volume (ShadowPlan::volumeBackScattering).
+    // w: 1 when the uniform dome reaches the strands through the density
+    // volume (ShadowPlan::volumeDomeOcclusion).
     glm::ivec4 occluders{0};
     // The view each light's mesh depth is drawn from (PlannedShadow::meshView):
     // world to its clip space, its eye (xyz) and unit viewing direction (xyz);

@@ -78,6 +78,7 @@ std::vector<PlannedDome> addDomeLights(const Scene& scene, const std::vector<Dom
         PlannedDome dome;
         dome.path = path;
         dome.firstLight = lights.lights.size();
+        lights.uniformDomeCastsShadow = lights.uniformDomeCastsShadow || prim.shadowEnable;
         if (found == domes.end()) {
             lights.uniformDome += lightRadiance(prim);
             planned.push_back(dome);

@@ -176,6 +176,10 @@ std::vector<FrameResource> batchShadowReads(const FrameRecipe& recipe, size_t ba
     // Its SRBF lights that read a map read it through the mip chain (which
     // "opacityMipmaps" makes whenever an SRBF light has a map).
     if (recipe.shadows.convolvedOpacity && srbfMapRead) reads.push_back(kConvolvedOpacity);
+    // Dual scattering's local term reads the volume under every light; the
+    // uniform dome belongs to the first batch (lightUniforms).
+    const bool volumeRead = recipe.shadows.volumeBackScattering || (batch == 0 && recipe.shadows.volumeDomeOcclusion);
+    if (volumeRead && recipe.shadows.usesVolume()) readOnce(ResourceKind::DensityVolume);
     return reads;
 }
 
@@ -216,6 +220,8 @@ void addDensityVolumePass(FrameGraph& graph, const FrameRecipe& recipe, bool any
     std::vector<std::string> lights;
     for (const PlannedShadow& shadow : shadows.lights)
         if (shadow.byVolume) lights.push_back(shadow.key + ": " + shadow.volumeReason);
+    if (shadows.volumeBackScattering) lights.push_back("dual scattering's " + shadows.backScatteringReason);
+    if (shadows.volumeDomeOcclusion) lights.push_back(shadows.domeOcclusionReason);
     const bool wanted = anyStrands && shadows.usesVolume();
     const DensityGridShape& grid = shadows.volumeGrid;
     graph.add(FramePass{
@@ -226,7 +232,9 @@ void addDensityVolumePass(FrameGraph& graph, const FrameRecipe& recipe, bool any
                              double(grid.voxelCount()) * 4.0 / (1024.0 * 1024.0),
                              shadows.volumeCoarsened ? "; " + shadows.volumeNote : "", fmt::join(lights, "; "))
         : !anyStrands ? "no visible curves"
-                      : fmt::format("no light is shadowed through it (shadowMode={})", toString(shadows.setting))});
+                      : fmt::format("no light is shadowed through it (shadowMode={}), nor the uniform dome, and "
+                                    "dual scattering does not read it",
+                                    toString(shadows.setting))});
 }
 
 // Every shadow map's passes, the density volume, then the mip chain that
@@ -300,6 +308,8 @@ std::string shadingDescription(const FrameRecipe& recipe, const StrandSummary& s
     for (const std::string& material : strands.multipleScattering) shading += "; multiple scattering on " + material;
     if (strands.dualScatteringMaterials > 0 && recipe.shadows.mode == ShadowMode::Off)
         shading += " (shadowMode=off: every light reaches every fibre, so only the local back scattering adds)";
+    if (!recipe.shadows.backScatteringReason.empty()) shading += "; " + recipe.shadows.backScatteringReason;
+    if (!recipe.shadows.domeOcclusionReason.empty()) shading += "; " + recipe.shadows.domeOcclusionReason;
     return shading;
 }
 

@@ -132,6 +132,12 @@ const std::vector<SettingDescriptor>& RenderSettings::descriptors() {
          "Dual scattering's backward density factor d_b: how much of the light that passes a fibre its neighbours "
          "scatter back (0.6 to 0.8 for human hair; 0 drops the back scattering)",
          0.0, 1.0, {}, &SettingValues::multipleScatteringBackDensity},
+        {"multipleScattering:localTerm", SettingType::Token, "densityVolume",
+         "What dual scattering's local back scattering finds behind each fibre: densityVolume (d_b times the share "
+         "of the light passing the fibre that the hair behind it intercepts, from the hair's density volume, so "
+         "sparse tufts and lone fibres get what their neighbours send back; needs shadows) or constant (d_b "
+         "everywhere: a whole groom behind every fibre, as Zinke et al. 2008 assume)",
+         0, 0, {}, tokenField<&SettingValues::multipleScatteringLocalTerm>()},
         {"shadowMode", SettingType::Token, "auto",
          "Hair self-shadowing from lights that cast shadows (inputs:shadow:enable): auto (deep opacity maps, and "
          "the hair's density volume for a light inside the hair, which one map cannot see), deepOpacity (maps "

@@ -88,6 +88,15 @@ struct TokenTable<MultipleScattering> {
          {MultipleScattering::Off, "off"}}};
 };
 
+// multipleScattering:localTerm: what dual scattering's local back
+// scattering assumes lies behind each fibre.
+enum class DualScatteringLocalTerm { DensityVolume, Constant };
+template <>
+struct TokenTable<DualScatteringLocalTerm> {
+    static constexpr std::array<TokenName<DualScatteringLocalTerm>, 2> names{
+        {{DualScatteringLocalTerm::DensityVolume, "densityVolume"}, {DualScatteringLocalTerm::Constant, "constant"}}};
+};
+
 // shadowMode: how lights shadow the hair.
 enum class ShadowMode { Auto, DeepOpacity, Volume, Reference, Off };
 template <>

@@ -47,6 +47,7 @@ struct SettingValues {
     MultipleScattering multipleScattering = MultipleScattering::Auto;
     double multipleScatteringForwardDensity = 0.0;  // multipleScattering:forwardDensity
     double multipleScatteringBackDensity = 0.0;     // multipleScattering:backDensity
+    DualScatteringLocalTerm multipleScatteringLocalTerm = DualScatteringLocalTerm::DensityVolume;
     ShadowMode shadowMode = ShadowMode::Auto;
     int densityVolumeMemoryMB = 16;
     int shadowLayers = 0;

@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include <fmt/format.h>
+#include <glm/geometric.hpp>
 
 #include "hdHair/gl/LightViewRaster.h"
 #include "hdHair/plan/DeepOpacityLayers.h"
@@ -168,14 +169,51 @@ void planVolumeShadow(PlannedShadow& shadow, ShadowMode setting, const StrandSum
     }
 }
 
-// The density volume's grid over the hair, when a light reads it: as fine
-// as kMaxDensityVoxelsAlong gives, or as densityVolumeMemoryMB holds.
+// Whether dual scattering's local term reads the density volume, and why
+// (or why not, where a material has dual scattering).
+void planVolumeBackScattering(ShadowPlan& shadows, const SettingValues& settings, const StrandSummary& strands) {
+    if (strands.dualScatteringMaterials == 0 || strands.casters.empty()) return;
+    if (settings.multipleScatteringLocalTerm == DualScatteringLocalTerm::Constant) {
+        shadows.backScatteringReason = "local back scattering d_b everywhere (multipleScattering:localTerm=constant)";
+    } else if (!(settings.multipleScatteringBackDensity > 0.0)) {
+        shadows.backScatteringReason = "no local back scattering (multipleScattering:backDensity=0)";
+    } else if (shadows.mode == ShadowMode::Off) {
+        shadows.backScatteringReason = "local back scattering d_b everywhere: shadowMode=off builds no density volume";
+    } else {
+        shadows.volumeBackScattering = true;
+        shadows.backScatteringReason = "local back scattering from the hair behind each fibre in the density volume "
+                                       "(multipleScattering:localTerm=densityVolume)";
+    }
+}
+
+// Whether the uniform dome reaches the strands through the density volume,
+// and why (or why not, where there is a uniform dome over hair).
+void planVolumeDomeOcclusion(ShadowPlan& shadows, const ShadingLights& lights, const StrandSummary& strands) {
+    if (!(glm::length(lights.uniformDome) > 0.0f) || strands.casters.empty()) return;
+    if (!lights.uniformDomeCastsShadow) {
+        shadows.domeOcclusionReason = "the uniform dome unshadowed: it casts no shadows (inputs:shadow:enable)";
+    } else if (shadows.mode == ShadowMode::Off) {
+        shadows.domeOcclusionReason = "the uniform dome unshadowed (shadowMode=off)";
+    } else if (shadows.setting == ShadowMode::DeepOpacity) {
+        shadows.domeOcclusionReason = "the uniform dome unshadowed: maps need a direction (shadowMode=deepOpacity)";
+    } else {
+        shadows.volumeDomeOcclusion = true;
+        shadows.domeOcclusionReason =
+            fmt::format("the uniform dome through the density volume, six cones (shadowMode={})",
+                        toString(shadows.setting));
+    }
+}
+
+// The density volume's grid over the hair, when a light, the uniform dome
+// or dual scattering reads it: as fine as kMaxDensityVoxelsAlong gives, or
+// as densityVolumeMemoryMB holds with its mip chain (a seventh more).
 void planVolumeGrid(ShadowPlan& shadows, const StrandSummary& strands) {
-    const bool read = std::any_of(shadows.lights.begin(), shadows.lights.end(),
+    const bool read = shadows.volumeBackScattering || shadows.volumeDomeOcclusion ||
+                      std::any_of(shadows.lights.begin(), shadows.lights.end(),
                                   [](const PlannedShadow& shadow) { return shadow.byVolume; });
     if (!read) return;
     const CasterBounds& casters = strands.casters;
-    const size_t maxVoxels = size_t(shadows.volumeMemoryMB) * 1024 * 1024 / sizeof(float);
+    const size_t maxVoxels = size_t(shadows.volumeMemoryMB) * 1024 * 1024 / sizeof(float) * 7 / 8;
     shadows.volumeGrid = fitDensityGrid(casters.min, casters.max, maxVoxels);
     const DensityGridShape finest = fitDensityGrid(casters.min, casters.max, std::numeric_limits<size_t>::max());
     shadows.volumeCoarsened = !shadows.volumeGrid.empty() && shadows.volumeGrid.voxelSize > finest.voxelSize;
@@ -256,6 +294,8 @@ ShadowPlan planShadows(const LightPlan& lights, const SettingValues& settings, c
         shadows.lights.push_back(std::move(shadow));
     }
     checkSampledDomesShadowed(shadows, lights, strands);
+    planVolumeBackScattering(shadows, settings, strands);
+    planVolumeDomeOcclusion(shadows, lights.lights, strands);
     planVolumeGrid(shadows, strands);
     planShadowSampling(shadows, shadows.samplingSetting, strands);
     if (shadows.mode == ShadowMode::DeepOpacity && settings.domeShadowFilter == DomeShadowFilter::Mipmap)

@@ -133,6 +133,20 @@ struct ShadowPlan {
     // densityVolumeMemoryMB budget made its voxels coarser than the size
     // kMaxDensityVoxelsAlong gives (`volumeNote` says how, for the warning).
     DensityGridShape volumeGrid;
+    // Dual scattering's local back scattering reads the volume too
+    // (multipleScattering:localTerm=densityVolume, a material where dual
+    // scattering runs with d_b > 0, shadows on): d_b scaled by the share of
+    // the light passing each fibre that the hair behind it intercepts.
+    // `backScatteringReason` says why, or why not, for --explain.
+    bool volumeBackScattering = false;
+    std::string backScatteringReason;
+    // The uniform dome's light reaches each strand through the hair as the
+    // volume lets it (shadowMode auto, volume or reference, a uniform dome
+    // that casts shadows): its visibility, averaged over six cones. The
+    // maps cannot: a light from every direction has no view.
+    // `domeOcclusionReason` says why, or why not, for --explain.
+    bool volumeDomeOcclusion = false;
+    std::string domeOcclusionReason;
     int volumeMemoryMB = 16;
     bool volumeCoarsened = false;
     std::string volumeNote;

@@ -189,6 +189,10 @@ void touchBatchShadows(FrameContext& context, size_t batch, bool strands) {
         if (strands && shadows.convolvedOpacity && recipe.lighting.lights.lights[begin + entry].isSrbf())
             touch(context, ResourceKind::ConvolvedOpacity, Access::Read);
     }
+    if (strands && shadows.volumeBackScattering && shadows.usesVolume())
+        touch(context, ResourceKind::DensityVolume, Access::Read);
+    if (strands && batch == 0 && shadows.volumeDomeOcclusion && shadows.usesVolume())
+        touch(context, ResourceKind::DensityVolume, Access::Read);
 }
 
 // Draws the meshes lit by the lights of one batch into `target`, before the

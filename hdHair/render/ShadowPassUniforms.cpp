@@ -25,7 +25,9 @@ gl::ShadowUniforms common(const ShadowPlan& shadows) {
         uniforms.layerBoundaries[i / 4][int(i % 4)] = shadows.boundaries[i];
     uniforms.mode = glm::ivec4(modeOf(shadows.mode), shadows.layers, shadows.bilinear ? 1 : 0, shadows.resolution);
     uniforms.extinction = glm::vec4(kShadowExtinction, 0.0f, 0.0f, 0.0f);
-    uniforms.occluders = glm::ivec4(shadows.meshesCast ? 1 : 0, shadows.convolvedOpacity ? 1 : 0, 0, 0);
+    uniforms.occluders = glm::ivec4(shadows.meshesCast ? 1 : 0, shadows.convolvedOpacity ? 1 : 0,
+                                    shadows.volumeBackScattering && shadows.usesVolume() ? 1 : 0,
+                                    shadows.volumeDomeOcclusion && shadows.usesVolume() ? 1 : 0);
     if (shadows.usesVolume()) {
         const DensityGridShape& grid = shadows.volumeGrid;
         uniforms.volumeOrigin = glm::vec4(glm::vec3(grid.origin), float(grid.voxelSize));

@@ -43,6 +43,10 @@ gl::ShadingFeatures batchShadingFeatures(const FrameRecipe& recipe, size_t batch
     features.add(ShadingFeature::Shade).add(materials);
     if (batch == 0 && glm::length(recipe.lighting.lights.uniformDome) > 0.0f) features.add(ShadingFeature::UniformDome);
     const ShadowPlan& shadows = recipe.shadows;
+    if (materials.has(ShadingFeature::DualScattering) && shadows.volumeBackScattering && shadows.usesVolume())
+        features.add(ShadingFeature::VolumeBackScattering);
+    if (features.has(ShadingFeature::UniformDome) && shadows.volumeDomeOcclusion && shadows.usesVolume())
+        features.add(ShadingFeature::DensityVolume);
     const auto [begin, end] = batchLights(recipe, batch);
     for (size_t light = begin; light < end; ++light) {
         const bool srbf = recipe.lighting.lights.lights[light].isSrbf();

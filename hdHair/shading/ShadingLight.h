@@ -69,6 +69,7 @@ struct ShadingLights {
     // Untextured domes' radiance, summed, shaded as the fibre model's exact
     // response to uniform light (domeLighting=srbf; hdHair/plan/DomeLighting.h).
     glm::vec3 uniformDome{0.0f};
+    bool uniformDomeCastsShadow = false;  // one of those domes has inputs:shadow:enable
 };
 
 // Radiance of a light before geometry: intensity · 2^exposure · color, times

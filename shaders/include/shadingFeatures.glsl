@@ -29,5 +29,6 @@
 #define HDHAIR_FEATURE_MESH_OCCLUDERS 1       // occluders.x: the meshes' depth in every slot
 #define HDHAIR_FEATURE_SRBF_SHADOW_TAPS 1     // an SRBF lobe with a map, occluders.y 0
 #define HDHAIR_FEATURE_SRBF_SHADOW_MIPMAP 1   // an SRBF lobe with a map, occluders.y 1
-#define HDHAIR_FEATURE_DENSITY_VOLUME 1       // volume.x: a light shadowed through the density volume
+#define HDHAIR_FEATURE_DENSITY_VOLUME 1       // volume.x or occluders.w: a light or the uniform dome through the volume
+#define HDHAIR_FEATURE_VOLUME_BACK_SCATTERING 1 // occluders.z: dual scattering's local term from the volume
 #endif

@@ -23,7 +23,10 @@ layout(std140, binding = 2) uniform ShadowUniforms {
     ivec4 mode;               // x: HDHAIR_SHADOW_*, y: layers, z: 0 nearest, 1 bilinear; w: resolution
     vec4 extinction;          // x: k of T = exp(-k opacity)
     ivec4 occluders;          // x: 1 when shadowMeshDepths holds the meshes of every slot;
-                              // y: 1 when SRBF lights read shadowOpacity's mip chain
+                              // y: 1 when SRBF lights read shadowOpacity's mip chain;
+                              // z: 1 when dual scattering reads the hair behind a fibre
+                              // from the density volume (strandShading.glsl); w: 1 when
+                              // the uniform dome reaches strands through the volume
     // The view each light's mesh depth is drawn from, fitted to the hair and
     // the meshes together (hdHair/plan/ShadowPlanner.h PlannedShadow::meshView).
     mat4 meshViewProjection[HDHAIR_MAX_LIGHTS];
@@ -338,7 +341,12 @@ float meshShadowTransmittance(int i, vec3 point, vec3 normal) {
 // convolution optical depth map (convolvedOpacityAt). Within a texel of z0
 // (R < 1) it is the ordinary lookup; light views in perspective (not SRBFs)
 // too.
+// Through the density volume, a cone as wide as the lobe instead
+// (densityVolumeLobeTransmittance).
 float srbfShadowTransmittance(int i, vec3 centre) {
+#if HDHAIR_FEATURE_DENSITY_VOLUME
+    if (densityVolumeLight(i)) return densityVolumeLobeTransmittance(i, centre) * meshTransmittance(i, centre, 1.0);
+#endif
 #if !HDHAIR_FEATURE_SRBF_SHADOW_TAPS && !HDHAIR_FEATURE_SRBF_SHADOW_MIPMAP
     return shadowTransmittance(i, centre);  // no lobe of the pass has a map
 #else

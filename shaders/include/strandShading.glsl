@@ -6,8 +6,9 @@
 // dome read their material's convolution table (srbfLighting.glsl). Each
 // light's irradiance is scaled by its shadow transmittance at the strand's
 // centre line `centre`, or as strand.tese looked it up there with vertex
-// shadows (the same for Kajiya-Kay and Marschner; the ambient and uniform
-// dome terms are not shadowed). `segment` and `u` locate the fragment on its
+// shadows (the same for Kajiya-Kay and Marschner); the uniform dome's
+// through the density volume where the plan says (uniformDomeVisibility),
+// the flat ambient term never. `segment` and `u` locate the fragment on its
 // span, for parameters that vary along the prim. Marschner materials with
 // HAIR_MATERIAL_DUAL_SCATTERING add multiple scattering (dualScattering.glsl),
 // from the same shadow transmittance.
@@ -42,6 +43,33 @@ float strandShadowTransmittance(int i, vec3 centre) { return shadowTransmittance
 float strandSrbfShadowTransmittance(int i, vec3 centre) { return srbfShadowTransmittance(i, centre); }
 #endif
 
+// Dual scattering's densities (d_f, d_b) for light arriving from `toLight`:
+// with the local term from the density volume, d_b times the share of the
+// light passing the fibre that the hair behind it sends back, over a cone
+// as wide as the back-scattered light's spread σ_b (Zinke 2008 eq. 17),
+// held under 45°.
+#if HDHAIR_FEATURE_DUAL_SCATTERING
+vec2 dualScatteringDensitiesAt(vec2 densities, DualScatteringFibre fibre, vec3 centre, vec3 toLight) {
+#if HDHAIR_FEATURE_VOLUME_BACK_SCATTERING
+    if (shadows.occluders.z == 0) return densities;
+    float spread = min(sqrt(max(dualScatteringMean(fibre.sigmaB2), 0.0)), 0.25 * MARSCHNER_PI);
+    return vec2(densities.x, densities.y * densityVolumeBackOccupancy(centre, -toLight, tan(spread)));
+#else
+    return densities;
+#endif
+}
+#endif
+
+// What of the uniform dome (ambient.w 1) reaches a strand at `centre`, of
+// unit tangent `t`: as
+// the density volume lets it through (occluders.w), else all of it.
+float uniformDomeVisibility(vec3 centre, vec3 t) {
+#if HDHAIR_FEATURE_DENSITY_VOLUME
+    if (shadows.occluders.w != 0 && lights.ambient.w > 0.5) return densityVolumeDomeVisibility(centre, t);
+#endif
+    return 1.0;
+}
+
 vec3 strandRadiance(vec3 worldPosition, vec3 centre, vec3 worldTangent, vec3 hairColor, int materialIndex, int segment,
                     float u) {
     HairShading shading = hairShadingAt(materialIndex, segment, u);
@@ -57,10 +85,10 @@ vec3 strandRadiance(vec3 worldPosition, vec3 centre, vec3 worldTangent, vec3 hai
     SrbfAbsorption absorption = srbfNoAbsorption();
 #endif
 #if HDHAIR_FEATURE_UNIFORM_DOME
-    vec3 radiance =
-        lights.ambient.w > 0.5
-            ? lights.ambient.rgb * srbfUniformDomeResponse(materialIndex, shading, absorption, t, e, hairColor)
-            : lights.ambient.rgb * hairColor;
+    vec3 dome = lights.ambient.rgb * uniformDomeVisibility(centre, t);
+    vec3 radiance = lights.ambient.w > 0.5
+                        ? dome * srbfUniformDomeResponse(materialIndex, shading, absorption, t, e, hairColor)
+                        : lights.ambient.rgb * hairColor;
 #else
     vec3 radiance = lights.ambient.rgb * hairColor;
 #endif
@@ -74,7 +102,10 @@ vec3 strandRadiance(vec3 worldPosition, vec3 centre, vec3 worldTangent, vec3 hai
     if (dual) {
         dualFibre = dualScatteringFibre(marschnerTables, shading.dualLayer, sqrt(max(0.0, 1.0 - dot(t, e) * dot(t, e))));
 #if HDHAIR_FEATURE_UNIFORM_DOME
-        if (lights.ambient.w > 0.5) radiance += lights.ambient.rgb * dualScatteringUniformDome(dualFibre, shading.dualDensities);
+        // The dome's light that comes back to the eye arrived from its side.
+        if (lights.ambient.w > 0.5)
+            radiance += dome * dualScatteringUniformDome(dualFibre,
+                                                  dualScatteringDensitiesAt(shading.dualDensities, dualFibre, centre, e));
 #endif
     }
 #endif
@@ -91,7 +122,9 @@ vec3 strandRadiance(vec3 worldPosition, vec3 centre, vec3 worldTangent, vec3 hai
                 float shadow = strandSrbfShadowTransmittance(i, centre);
                 radiance += lobe * shadow +
                             lobeIrradiance * dualScattering(t, toLobe, e, dualFibre, shading.fibre.alpha,
-                                                            shading.fibre.beta, shadow, shading.dualDensities,
+                                                            shading.fibre.beta, shadow,
+                                                            dualScatteringDensitiesAt(shading.dualDensities, dualFibre,
+                                                                                      centre, toLobe),
                                                             0.25 / max(lights.lightScale[i].w, 1e-6));
                 continue;
             }
@@ -108,7 +141,9 @@ vec3 strandRadiance(vec3 worldPosition, vec3 centre, vec3 worldTangent, vec3 hai
 #if HDHAIR_FEATURE_DUAL_SCATTERING
         if (dual)
             radiance += unshadowed * dualScattering(t, l, e, dualFibre, shading.fibre.alpha, shading.fibre.beta, shadow,
-                                                    shading.dualDensities, 0.0);
+                                                    dualScatteringDensitiesAt(shading.dualDensities, dualFibre,
+                                                                              centre, l),
+                                                    0.0);
 #endif
 #if HDHAIR_FEATURE_MARSCHNER_TABLED || HDHAIR_FEATURE_MARSCHNER_ANALYTIC
 #if HDHAIR_FEATURE_KAJIYA_KAY

@@ -7,6 +7,7 @@
 // the hard cases (docs/hard-cases.md). Against Cycles: testCyclesCalibration.
 
 #include <cmath>
+#include <cstdio>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -132,7 +133,10 @@ TEST(MultipleScattering, GpuMatchesTheCpuReferenceBehindAnOccluder) {
         scene.setCurves(hair);
         scene.setCurves(occluder);
         scene.setLight(distantLightFrom(towardsLight));
-        const RenderSettings settings = settingsWith("dualScattering", "reference");
+        // d_b everywhere, as the CPU's reference has it (the volume's local
+        // term: TheLocalTermSendsBackWhatTheHairBehindHas).
+        RenderSettings settings = settingsWith("dualScattering", "reference");
+        settings.set("multipleScattering:localTerm", "constant");
         const HairMaterial material = materialOf(hair, settings);
         const glm::vec3 gpu = pixel(renderScene(scene, settings), 32, 32);
         const glm::vec3 cpu = cpuCentre(material, towardsLight, std::exp(-0.5f));
@@ -141,6 +145,50 @@ TEST(MultipleScattering, GpuMatchesTheCpuReferenceBehindAnOccluder) {
         // term) the pixel would be far off.
         const glm::vec3 unshadowed = cpuCentre(material, towardsLight, 1.0f);
         EXPECT_GT(std::abs(unshadowed.x - gpu.x), 0.1f * gpu.x);
+    }
+}
+
+// The local term from the density volume (multipleScattering:localTerm=
+// densityVolume, the default with shadows on) sends back what the hair
+// behind a fibre has. A blond fibre alone has none: it keeps under 5 % of
+// the local back scattering d_b everywhere gives it (0.0 % measured: the
+// march starts past its own density). The same fibre in front of twelve
+// like it stacked along the light gets all of it, within 3 % (100.0 %).
+// Light and eye along +Z, the front fibre unshadowed (T = 1): the pixel is
+// its single scattering plus d_b f_back times the share sent back.
+TEST(MultipleScattering, TheLocalTermSendsBackWhatTheHairBehindHas) {
+    const glm::dvec3 towardsLight(0.0, 0.0, 1.0);
+    std::vector<CurvesPrim> slab;
+    for (int i = 1; i <= 12; ++i)
+        slab.push_back(strand("/behind" + std::to_string(i), glm::vec3(0.0f, 0.0f, -0.1f * float(i)), 0.5f, 0.15f));
+    struct Case {
+        const char* name;
+        std::vector<CurvesPrim> behind;
+        double lowest, highest;  // the volume's local term over d_b everywhere's
+    };
+    for (const Case& c : {Case{"alone", {}, 0.0, 0.05}, Case{"before a slab", slab, 0.97, 1.03}}) {
+        SCOPED_TRACE(c.name);
+        Scene scene;
+        scene.setCurves(strand("/front", glm::vec3(0.0f), 0.5f, 0.15f));
+        for (const CurvesPrim& prim : c.behind) scene.setCurves(prim);
+        scene.setLight(distantLightFrom(towardsLight));
+        RenderSettings constant = settingsWith("dualScattering", "deepOpacity");
+        constant.set("multipleScattering:localTerm", "constant");
+        const RenderResult volume = renderScene(scene, settingsWith("dualScattering", "deepOpacity"));
+        EXPECT_TRUE(volume.plan.isEnabled("densityVolume"));
+        const glm::vec3 single = pixel(renderScene(scene, settingsWith("off", "deepOpacity")), 32, 32);
+        const glm::vec3 everywhere = pixel(renderScene(scene, constant), 32, 32) - single;
+        const glm::vec3 behind = pixel(volume, 32, 32) - single;
+        for (int channel = 0; channel < 3; ++channel) {
+            ASSERT_GT(everywhere[channel], 0.01f * single[channel]) << "d_b everywhere adds light, channel " << channel;
+            const double share = behind[channel] / everywhere[channel];
+            std::printf(
+                "%s, channel %d: the volume's local term is %.3f of d_b "
+                "everywhere's\n",
+                c.name, channel, share);
+            EXPECT_GE(share, c.lowest) << "channel " << channel;
+            EXPECT_LE(share, c.highest) << "channel " << channel;
+        }
     }
 }
 
@@ -163,12 +211,16 @@ TEST(MultipleScattering, AutoSkipsBlackHairAndRunsOnBlond) {
         EXPECT_NE(material["reason"].get<std::string>().find(blond ? "runs" : "skipped"), std::string::npos)
             << material.dump();
     }
-    // Black hair alone: the frame is off's, bit for bit. Blond alone: brighter.
+    // Black hair alone: the frame is off's, bit for bit. Blond alone:
+    // brighter, with d_b everywhere (alone, the volume finds no hair behind
+    // it to send light back: TheLocalTermSendsBackWhatTheHairBehindHas).
     for (float melanin : {0.95f, 0.15f}) {
         Scene alone;
         alone.setCurves(strand("/hair", glm::vec3(0.0f), 0.4f, melanin));
         alone.setLight(distantLightFrom({0.0, 0.6, 1.0}));
-        const RenderResult withAuto = renderScene(alone, settingsWith("auto", "deepOpacity"));
+        RenderSettings automaticEverywhere = settingsWith("auto", "deepOpacity");
+        automaticEverywhere.set("multipleScattering:localTerm", "constant");
+        const RenderResult withAuto = renderScene(alone, automaticEverywhere);
         const RenderResult withOff = renderScene(alone, settingsWith("off", "deepOpacity"));
         if (melanin > 0.5f) {
             EXPECT_EQ(withAuto.color.pixels, withOff.color.pixels);
@@ -185,7 +237,8 @@ TEST(MultipleScattering, AutoSkipsBlackHairAndRunsOnBlond) {
 // Under a textured dome every SRBF lobe is a light of its own (its
 // irradiance from its centre, its width added to the spreads): the strand
 // programs compile dual scattering with the SRBF lights, and the blond
-// strand gains light, finite everywhere.
+// strand gains light (d_b everywhere: alone, it has no hair behind it),
+// finite everywhere.
 TEST(MultipleScattering, TexturedDomeLobesAddMultipleScattering) {
     Scene scene;
     scene.setCurves(strand("/hair", glm::vec3(0.0f), 0.5f, 0.15f));
@@ -195,7 +248,9 @@ TEST(MultipleScattering, TexturedDomeLobesAddMultipleScattering) {
     dome.textureFile = std::string(HDHAIR_SOURCE_DIR) + "/examples/dome_sky.exr";
     dome.textureFormat = "latlong";
     scene.setLight(dome);
-    const RenderResult dual = renderScene(scene, settingsWith("dualScattering", "deepOpacity"));
+    RenderSettings everywhere = settingsWith("dualScattering", "deepOpacity");
+    everywhere.set("multipleScattering:localTerm", "constant");
+    const RenderResult dual = renderScene(scene, everywhere);
     const RenderResult off = renderScene(scene, settingsWith("off", "deepOpacity"));
     bool compiled = false;
     for (const std::string& shader : dual.stats.strandShaders)

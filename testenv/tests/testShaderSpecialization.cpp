@@ -61,6 +61,16 @@ std::vector<SpecializationCase> specializationCases() {
         // The density volume: every light through it, on strands and on meshes.
         {"DensityVolumeShadows", shadowed, {"shadowMode=volume"}},
         {"DensityVolumeOnMeshes", "testenv/stages/meshes.usda", {"shadowMode=volume", "shadowMapResolution=128"}},
+        // Dual scattering, its local term from the volume: under a light
+        // with a map, under SRBF lobes through the volume's cones, and under
+        // the uniform dome.
+        {"DualScatteringsLocalTermFromTheVolume", shadowed,
+         {"shadingModel=marschner", "multipleScattering=dualScattering", "shadowMapResolution=128"}},
+        {"SrbfLobesThroughTheVolumeWithDualScattering", domeLit,
+         {"shadingModel=marschner", "multipleScattering=dualScattering", "shadowMode=volume"}},
+        {"DualScatteringUnderTheUniformDome", "testenv/cases/lights_9/stage.usda",
+         {"shadingModel=marschner", "multipleScattering=dualScattering", "domeLighting=srbf",
+          "shadowMapResolution=128"}},
         {"ExactTransparency", "examples/dense_clump.usda", {"transparency=exact", "strandRaster=hardware"}},
         // Lists no longer than 180 fragments a pixel: longer ones sum their
         // tail in the order fragments were appended, which compute

@@ -519,6 +519,70 @@ TEST(RenderPlan, ALightInsideTheHairCastsNothingAndSaysWhy) {
     EXPECT_TRUE(reads(volume, "strands", "densityVolume"));
 }
 
+// Dual scattering's local term reads the density volume by default: the
+// volume is built for a light outside the hair that keeps its map, the
+// strands read it, and --explain says why. It is not built, and --explain
+// says why not, for localTerm=constant, backDensity=0 and shadowMode=off,
+// nor without a material where dual scattering runs.
+TEST(RenderPlan, DualScatteringsLocalTermReadsTheDensityVolume) {
+    Scene scene;
+    scene.setLight(distantLight("/key"));
+    StrandSummary dual = castingStrands();
+    dual.dualScatteringMaterials = 1;
+    const RenderPlan plan = makeRenderPlan(scene, RenderSettings{}, cameraAtPlusZ(), dual);
+    EXPECT_TRUE(plan.isEnabled("shadowDepth /key"));
+    ASSERT_TRUE(plan.isEnabled("densityVolume"));
+    EXPECT_TRUE(reads(plan, "strands", "densityVolume"));
+    EXPECT_NE(plan.graph().find("densityVolume")->reason.find("hair behind each fibre"), std::string::npos);
+    EXPECT_NE(plan.graph().find("strands")->reason.find("multipleScattering:localTerm=densityVolume"),
+              std::string::npos);
+    const std::pair<const char*, const char*> without[] = {{"multipleScattering:localTerm=constant", "d_b everywhere"},
+                                                           {"multipleScattering:backDensity=0", "no local back"},
+                                                           {"shadowMode=off", "shadowMode=off builds no density"}};
+    for (const auto& [setting, why] : without) {
+        RenderSettings settings;
+        const std::string text = setting;
+        settings.set(text.substr(0, text.find('=')), text.substr(text.find('=') + 1));
+        const RenderPlan off = makeRenderPlan(scene, settings, cameraAtPlusZ(), dual);
+        EXPECT_FALSE(off.isEnabled("densityVolume")) << setting;
+        EXPECT_FALSE(reads(off, "strands", "densityVolume")) << setting;
+        EXPECT_NE(off.graph().find("strands")->reason.find(why), std::string::npos) << setting;
+    }
+    EXPECT_FALSE(makeRenderPlan(scene, RenderSettings{}, cameraAtPlusZ(), castingStrands()).isEnabled("densityVolume"))
+        << "no material has dual scattering";
+}
+
+// A uniform dome over hair reaches the strands through the density volume
+// under shadowMode=auto (no map can: its light has no direction): the
+// volume is built, the first batch's strands read it, and --explain says
+// so. Not under deepOpacity or off, nor for a dome that casts no shadows.
+TEST(RenderPlan, TheUniformDomeReachesTheStrandsThroughTheDensityVolume) {
+    LightPrim dome = distantLight("/sky");
+    dome.type = LightType::Dome;
+    Scene scene;
+    scene.setLight(dome);
+    const RenderPlan plan = makeRenderPlan(scene, RenderSettings{}, cameraAtPlusZ(), castingStrands());
+    ASSERT_TRUE(plan.isEnabled("densityVolume"));
+    EXPECT_TRUE(reads(plan, "strands", "densityVolume"));
+    EXPECT_NE(plan.graph().find("densityVolume")->reason.find("the uniform dome through the density volume"),
+              std::string::npos);
+    EXPECT_NE(plan.graph().find("strands")->reason.find("six cones (shadowMode=auto)"), std::string::npos);
+    for (const char* mode : {"deepOpacity", "off"}) {
+        RenderSettings settings;
+        settings.set("shadowMode", mode);
+        const RenderPlan unshadowed = makeRenderPlan(scene, settings, cameraAtPlusZ(), castingStrands());
+        EXPECT_FALSE(unshadowed.isEnabled("densityVolume")) << mode;
+        EXPECT_NE(unshadowed.graph().find("strands")->reason.find("the uniform dome unshadowed"), std::string::npos)
+            << mode;
+    }
+    dome.shadowEnable = false;
+    Scene noShadows;
+    noShadows.setLight(dome);
+    const RenderPlan casting = makeRenderPlan(noShadows, RenderSettings{}, cameraAtPlusZ(), castingStrands());
+    EXPECT_FALSE(casting.isEnabled("densityVolume"));
+    EXPECT_NE(casting.graph().find("strands")->reason.find("casts no shadows"), std::string::npos);
+}
+
 // Like hosts' camera lights, hdHair's casts no shadow unless asked: a light
 // at the eye darkens only what the eye cannot see, at the cost of a map.
 TEST(RenderPlan, TheCameraLightCastsOnlyWhenAsked) {

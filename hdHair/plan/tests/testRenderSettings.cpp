@@ -105,7 +105,7 @@ TEST(RenderSettings, TokenSettingsAreEnumsListedFromTheirTables) {
             EXPECT_EQ(settings.getToken(descriptor.name), token);
         }
     }
-    EXPECT_EQ(tokenSettings, 20u);
+    EXPECT_EQ(tokenSettings, 21u);
     // A misspelt value is refused by the table, whatever its case.
     Quality quality = Quality::Default;
     EXPECT_FALSE(parseToken("High", &quality));

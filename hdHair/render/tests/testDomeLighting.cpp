@@ -296,10 +296,16 @@ TEST_F(DomeLighting, TurningTheDomeMovesTheLitSide) {
     EXPECT_GT(verticalTurned, 0.8f * verticalStill);
 }
 
+// Unshadowed (the dome's inputs:shadow:enable off), a uniform dome gives
+// the model's exact response. Shadowed (the default), it reaches the
+// strands through the density volume: the same far from the other strand
+// (the row's left third), darker above the vertical strand's top, which
+// hides part of the sky below (docs/how-it-works.md, "Hair density volume").
 TEST_F(DomeLighting, AUniformDomeIsTheModelsExactResponse) {
     Scene scene = twoStrands();
     LightPrim uniform = dome("");
     uniform.color = glm::vec3(0.5f, 0.6f, 0.7f);
+    uniform.shadowEnable = false;
     scene.setLight(uniform);
     Renderer renderer(gl::GlBackend::Egl);
     const CameraView camera = squareCamera(96);
@@ -316,6 +322,16 @@ TEST_F(DomeLighting, AUniformDomeIsTheModelsExactResponse) {
     const glm::vec3 expected = uniform.color * (kKajiyaKay.diffuse * u.x * kHairColor + kKajiyaKay.specular * u.y);
     EXPECT_LT(largestRelativeDifference(coveredRow(srbf, camera, 0.5f), expected), 1e-3f);
     EXPECT_GT(largestRelativeDifference(coveredRow(srbf, camera, 0.5f), expected * 1.05f), 1e-3f);
+
+    Scene shadowedScene = twoStrands();
+    uniform.shadowEnable = true;
+    shadowedScene.setLight(uniform);
+    const RenderResult shadowed = renderer.render(shadowedScene, camera, settings, diagnostics);
+    EXPECT_TRUE(shadowed.plan.isEnabled("densityVolume"));
+    RowPixels far = coveredRow(shadowed, camera, 0.5f);
+    far.colors.resize(far.colors.size() / 3);
+    EXPECT_LT(largestRelativeDifference(far, expected), 1e-3f);
+    EXPECT_LT(pixelAt(shadowed, camera, {0.5f, 0.5f}).g, 0.95f * expected.g);
 
     // domeLighting=ambient: the old flat term, radiance × colour, exactly.
     settings.set("domeLighting", "ambient");

@@ -123,6 +123,16 @@ TEST(StrandShadingFeatures, EachPlannedConditionTurnsOnItsFeature) {
     EXPECT_EQ(featuresOf(volume), shade) << "a light through the volume, but no grid planned";
     volume.shadows.volumeGrid = fitDensityGrid(glm::dvec3(-1.0), glm::dvec3(1.0), 1000);
     EXPECT_EQ(featuresOf(volume), only({ShadingFeature::Shade, ShadingFeature::DensityVolume}));
+    // Dual scattering's local term from the volume: only with a material
+    // where dual scattering runs.
+    volume.shadows.volumeBackScattering = true;
+    EXPECT_EQ(featuresOf(volume), only({ShadingFeature::Shade, ShadingFeature::DensityVolume}));
+    const ShadingFeatures dual = only({ShadingFeature::DualScattering});
+    EXPECT_EQ(batchShadingFeatures(volume, 0, dual),
+              only({ShadingFeature::Shade, ShadingFeature::DualScattering, ShadingFeature::DensityVolume,
+                    ShadingFeature::VolumeBackScattering}));
+    volume.shadows.volumeGrid = DensityGridShape();
+    EXPECT_FALSE(batchShadingFeatures(volume, 0, dual).has(ShadingFeature::VolumeBackScattering)) << "no grid planned";
 
     FrameRecipe reference = litPlan();
     reference.shadows.mode = ShadowMode::Reference;
